@@ -1,0 +1,86 @@
+//! Reading and writing reflector sets as JSON text and files (writes are atomic).
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::{FORMAT_NAME, FORMAT_VERSION, FormatError, ReflectorSet};
+
+impl ReflectorSet {
+    /// Parses and validates a set from JSON text.
+    ///
+    /// The `format` and `version` fields are checked before anything else, so a file of
+    /// another version is refused as such rather than with a field error.
+    ///
+    /// # Errors
+    /// Any [`FormatError`] but `Read`, `Write` and `InFile`.
+    pub fn from_json_str(text: &str) -> Result<Self, FormatError> {
+        let value: serde_json::Value = serde_json::from_str(text)?;
+        check_header(&value)?;
+        let set: ReflectorSet = serde_json::from_value(value)?;
+        set.validate()?;
+        Ok(set)
+    }
+
+    /// Validates the set and writes it as pretty-printed JSON.
+    ///
+    /// # Errors
+    /// [`FormatError::Invalid`] (and friends) when the set breaks an invariant.
+    pub fn to_json_string(&self) -> Result<String, FormatError> {
+        self.validate()?;
+        let mut text = serde_json::to_string_pretty(self)?;
+        text.push('\n');
+        Ok(text)
+    }
+
+    /// Reads, parses and validates the set at `path`.
+    ///
+    /// # Errors
+    /// [`FormatError::Read`], or any parse or validation error wrapped in
+    /// [`FormatError::InFile`] naming the path.
+    pub fn load(path: impl AsRef<Path>) -> Result<Self, FormatError> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|source| FormatError::Read { path: path.to_owned(), source })?;
+        Self::from_json_str(&text).map_err(|e| e.in_file(path))
+    }
+
+    /// Validates the set and writes it to `path` atomically: the text goes to a temporary
+    /// file in the same directory, which is then renamed over `path`. On failure `path` is
+    /// left as it was and no temporary file remains.
+    ///
+    /// # Errors
+    /// Validation errors (nothing is written) or [`FormatError::Write`].
+    pub fn save(&self, path: impl AsRef<Path>) -> Result<(), FormatError> {
+        let path = path.as_ref();
+        let text = self.to_json_string().map_err(|e| e.in_file(path))?;
+        write_atomically(path, text.as_bytes())
+            .map_err(|source| FormatError::Write { path: path.to_owned(), source })
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
+///
+/// # Errors
+/// Any I/O error; the temporary file is removed and `path` is untouched.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let mut tmp = tempfile::Builder::new().prefix(".ppr-").suffix(".tmp").tempfile_in(dir)?;
+    tmp.write_all(bytes)?;
+    tmp.as_file().sync_all()?;
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+fn check_header(value: &serde_json::Value) -> Result<(), FormatError> {
+    let found = |key: &str| value.get(key).map_or_else(|| "missing".to_owned(), |v| v.to_string());
+    if value.get("format").and_then(|v| v.as_str()) != Some(FORMAT_NAME) {
+        return Err(FormatError::WrongFormat { found: found("format") });
+    }
+    if value.get("version").and_then(|v| v.as_u64()) != Some(u64::from(FORMAT_VERSION)) {
+        return Err(FormatError::UnknownVersion { found: found("version") });
+    }
+    Ok(())
+}

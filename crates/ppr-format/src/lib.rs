@@ -1,0 +1,42 @@
+//! Reflector-set types and the versioned `*.ppr.json` file format.
+//!
+//! A [`ReflectorSet`] is what the extractor writes, the inspector edits and a game loads:
+//! a list of analytical planar rectangles ([`Reflector`]) that enclose the reflective
+//! areas of a level, each with the list of reflectors that may occlude it.
+//!
+//! This crate knows nothing about glTF or wgpu. It owns the serde derives and the format
+//! version; every other crate converts to and from these types.
+//!
+//! ```
+//! use ppr_format::{Reflector, ReflectorKind, ReflectorSet};
+//! use glam::{DVec2, DVec3};
+//!
+//! let mut set = ReflectorSet::new("level.glb");
+//! set.reflectors.push(Reflector::new(
+//!     0,
+//!     "floor",
+//!     ReflectorKind::Opaque,
+//!     DVec3::ZERO,
+//!     DVec3::X,
+//!     DVec3::NEG_Z,
+//!     DVec2::new(5.0, 5.0),
+//! ));
+//! let json = set.to_json_string().unwrap();
+//! let back = ReflectorSet::from_json_str(&json).unwrap();
+//! assert_eq!(set, back);
+//! ```
+
+mod error;
+mod io;
+pub use io::write_atomically;
+mod reflector;
+mod set;
+mod validate;
+
+pub use error::{FormatError, InvalidField, ReflectorRef};
+pub use reflector::{Reflector, ReflectorKind, ReflectorSource};
+pub use set::{ExtractorInfo, FORMAT_NAME, FORMAT_VERSION, ReflectorSet, SourceInfo};
+pub use validate::{AXIS_TOLERANCE, MAX_COORDINATE};
+
+/// The JSON Schema of the format, as published beside it in `schema/`.
+pub const JSON_SCHEMA: &str = include_str!("../schema/ppr-reflector-set.schema.json");
