@@ -1,0 +1,182 @@
+//! Fitting each planar region with rectangles: the region's own plane (area-weighted fit,
+//! reflecting side by area-weighted majority), its triangles as polygons in that plane,
+//! the minimum-area rectangle, and the split of non-convex regions.
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use ppr_format::ReflectorKind;
+
+use crate::cluster::{Connectivity, GrownRegion};
+use crate::level::Level;
+use crate::plane::{Plane, PlaneAccumulator};
+use crate::polygon::Polygon;
+use crate::rect_fit::Rect2;
+use crate::select::Candidate;
+use crate::split::{Piece, SplitSettings, split_region};
+use crate::{ExtractParams, SceneScale};
+
+/// One rectangle fitted to (part of) a region, in local coordinates.
+#[derive(Clone, Debug)]
+pub struct FittedShape {
+    /// Reflector kind.
+    pub kind: ReflectorKind,
+    /// The region's plane (local coordinates).
+    pub plane: Plane,
+    /// The rectangle in the plane's frame.
+    pub rect: Rect2,
+    /// Reflective area enclosed, square metres.
+    pub area: f64,
+    /// The polygons enclosed (their `spatial` vertices are the region's vertices).
+    pub polygons: Vec<Polygon>,
+    /// Names of the nodes the triangles came from (sorted).
+    pub nodes: Vec<String>,
+    /// Names of their materials (sorted).
+    pub materials: Vec<String>,
+    /// The node and material with the most area: used for names and ids.
+    pub primary: (String, String),
+    /// Part number and part count when the region was split (1-based), else (1, 1).
+    pub part: (usize, usize),
+}
+
+/// What fitting did, for the summary.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct FitStats {
+    /// Regions fitted (kept).
+    pub regions: usize,
+    /// Regions dropped for an area below the minimum.
+    pub small_regions_dropped: usize,
+    /// Duplicate triangles (same welded corners) counted once.
+    pub duplicate_triangles: usize,
+    /// Regions split into several rectangles.
+    pub regions_split: usize,
+    /// Extra rectangles those splits added.
+    pub shapes_added_by_splits: usize,
+    /// Rectangle area of the split regions before splitting, square metres.
+    pub split_area_before: f64,
+    /// ... and after, square metres.
+    pub split_area_after: f64,
+}
+
+/// A region ready for fitting: its plane and its polygons (duplicates removed).
+#[derive(Clone, Debug)]
+pub struct PreparedRegion {
+    /// Reflector kind.
+    pub kind: ReflectorKind,
+    /// The region's plane (local coordinates).
+    pub plane: Plane,
+    /// Its triangles as polygons in the plane.
+    pub polygons: Vec<Polygon>,
+    /// Names of the nodes the triangles came from (sorted).
+    pub nodes: Vec<String>,
+    /// Names of their materials (sorted).
+    pub materials: Vec<String>,
+    /// The node and material with the most area.
+    pub primary: (String, String),
+}
+
+/// Plane fit and projection of every region large enough to keep.
+pub fn prepare_regions(
+    level: &Level,
+    candidates: &[Candidate],
+    regions: &[GrownRegion],
+    conn: &Connectivity,
+    scale: &SceneScale,
+    stats: &mut FitStats,
+) -> Vec<PreparedRegion> {
+    let mut out = Vec::new();
+    for region in regions {
+        // Quick reject on raw area before any work.
+        let raw_area: f64 = region.members.iter().map(|&m| candidates[m as usize].area).sum();
+        if raw_area < scale.min_area {
+            stats.small_regions_dropped += 1;
+            continue;
+        }
+        let first = candidates[region.members[0] as usize].positions[0];
+        let mut acc = PlaneAccumulator::new(first);
+        for &m in &region.members {
+            acc.add(candidates[m as usize].positions);
+        }
+        let Some(plane) = acc.fit() else { continue };
+        let mut seen: BTreeSet<[u32; 3]> = BTreeSet::new();
+        let mut polygons = Vec::with_capacity(region.members.len());
+        let mut node_area: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut material_area: BTreeMap<&str, f64> = BTreeMap::new();
+        for &m in &region.members {
+            let c = &candidates[m as usize];
+            let mut key = conn.welded[m as usize];
+            key.sort_unstable();
+            if !seen.insert(key) {
+                stats.duplicate_triangles += 1;
+                continue;
+            }
+            let source = &level.sources[level.triangles[c.triangle as usize].source as usize];
+            *node_area.entry(&source.node).or_default() += c.area;
+            *material_area.entry(&level.materials[source.material as usize].name).or_default() += c.area;
+            polygons.push(Polygon { flat: c.positions.iter().map(|&p| plane.project(p)).collect(), spatial: c.positions.to_vec() });
+        }
+        let heaviest = |m: &BTreeMap<&str, f64>| {
+            m.iter().max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(a.0))).map(|(k, _)| (*k).to_owned()).unwrap_or_default()
+        };
+        out.push(PreparedRegion {
+            kind: region.kind,
+            plane,
+            primary: (heaviest(&node_area), heaviest(&material_area)),
+            nodes: node_area.keys().map(|s| (*s).to_owned()).collect(),
+            materials: material_area.keys().map(|s| (*s).to_owned()).collect(),
+            polygons,
+        });
+    }
+    out
+}
+
+/// Fits every prepared region with one or more rectangles; `progress(f)` gets the fraction done.
+pub fn fit_shapes(
+    regions: Vec<PreparedRegion>,
+    params: &ExtractParams,
+    scale: &SceneScale,
+    stats: &mut FitStats,
+    progress: &mut dyn FnMut(f32),
+) -> Vec<FittedShape> {
+    let settings = SplitSettings {
+        min_gain: params.split_min_gain,
+        max_pieces: params.max_shapes_per_region,
+        grid_cells: params.split_grid_cells,
+    };
+    let total = regions.len();
+    let mut shapes = Vec::new();
+    for (r, region) in regions.into_iter().enumerate() {
+        if r % 64 == 0 {
+            progress(r as f32 / total.max(1) as f32);
+        }
+        let Some(piece) = Piece::new(region.polygons) else { continue };
+        if piece.area < scale.min_area {
+            stats.small_regions_dropped += 1;
+            continue;
+        }
+        stats.regions += 1;
+        let before = piece.rect.area();
+        let pieces = split_region(piece, &settings);
+        if pieces.len() > 1 {
+            stats.regions_split += 1;
+            stats.shapes_added_by_splits += pieces.len() - 1;
+            stats.split_area_before += before;
+            stats.split_area_after += pieces.iter().map(|p| p.rect.area()).sum::<f64>();
+        }
+        let count = pieces.len();
+        for (k, p) in pieces.into_iter().enumerate() {
+            shapes.push(FittedShape {
+                kind: region.kind,
+                plane: region.plane,
+                rect: p.rect,
+                area: p.area,
+                polygons: p.polygons,
+                nodes: region.nodes.clone(),
+                materials: region.materials.clone(),
+                primary: region.primary.clone(),
+                part: (k + 1, count),
+            });
+        }
+    }
+    progress(1.0);
+    shapes
+}

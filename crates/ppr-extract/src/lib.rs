@@ -1,0 +1,59 @@
+//! glTF level → reflector set: the library behind the `ppr-extract` command.
+//!
+//! ```text
+//! load_level ─► select ─► cluster (weld, connect, grow coplanar regions)
+//!            ─► regions (plane fit, polygons) ─► fit (min-area rectangles, splits)
+//!            ─► parallel groups, stable ids, occluder lists ─► ReflectorSet
+//! ```
+//!
+//! - [`load_level`] reads `.glb` / `.gltf` (external, embedded or meshopt-compressed
+//!   buffers, quantized positions, skins at rest pose, GPU instancing) into world-space
+//!   triangles with their source node, mesh and material ([`Level`]).
+//! - [`extract`] turns a level into an [`Extraction`]: the [`ppr_format::ReflectorSet`],
+//!   each reflector's region vertices, warnings and stage timings. Candidate selection is
+//!   documented in [`select`]; splitting in [`split`]; the occluder rule in [`occluders`].
+//!
+//! Everything is relative to the level's size (tolerances are fractions of its
+//! bounding-box diagonal) and computed in `f64` around a local origin, so levels 100 km
+//! from the origin and levels a millimetre wide extract alike. Extraction is deterministic.
+//!
+//! ```
+//! use glam::DVec3;
+//! use ppr_extract::{ExtractParams, Level, MaterialInfo, extract};
+//!
+//! // A 4 m × 2 m mirror-like floor made of two triangles.
+//! let (a, b, c, d) = (DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(4.0, 0.0, -2.0), DVec3::new(0.0, 0.0, -2.0));
+//! let floor = MaterialInfo { roughness: 0.05, ..MaterialInfo::gltf_default() };
+//! let level = Level::from_triangles("floor", &[[a, b, c], [a, c, d]], floor);
+//! let out = extract(&level, &ExtractParams::default(), &|_, _| {});
+//! assert_eq!(out.set.reflectors.len(), 1);
+//! let r = &out.set.reflectors[0];
+//! assert!((r.area() - 8.0).abs() < 1e-9 && r.normal.y > 0.999);
+//! ```
+
+pub mod cluster;
+mod extract;
+mod extraction;
+pub mod fit;
+pub mod hull;
+mod int_hash;
+mod level;
+mod load;
+pub mod occluders;
+pub mod parallel;
+mod params;
+pub mod plane;
+pub mod polygon;
+pub mod rect_fit;
+mod scale;
+pub mod select;
+pub mod split;
+pub mod stable_id;
+pub mod summary;
+
+pub use extract::extract;
+pub use extraction::{Extraction, ExtractionStats, Stage, Warning};
+pub use level::{Level, LevelTriangle, MaterialInfo, ReflectorOverride, TriangleSource};
+pub use load::{LoadError, can_read_extension, load_level, load_level_from_bytes};
+pub use params::{CandidateRule, ExtractParams};
+pub use scale::SceneScale;

@@ -1,0 +1,187 @@
+//! The `ppr-extract` command: parses arguments, then loads, extracts, writes and prints the
+//! summary through the library.
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use anyhow::Context as _;
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use ppr_extract::{CandidateRule, ExtractParams, Stage, extract, load_level, summary::summary_table};
+
+/// Exit status: success.
+const EXIT_OK: u8 = 0;
+/// Exit status: bad command line.
+const EXIT_USAGE: u8 = 1;
+/// Exit status: the input could not be read or is not valid glTF.
+const EXIT_INPUT: u8 = 2;
+/// Exit status: the output could not be written.
+const EXIT_OUTPUT: u8 = 3;
+/// Exit status: the extracted set failed validation (a bug).
+const EXIT_INTERNAL: u8 = 4;
+
+/// Levels with at least this many triangles get a progress bar (on a terminal).
+const PROGRESS_MIN_TRIANGLES: usize = 20_000;
+
+const AFTER_HELP: &str = "\
+CANDIDATES:
+  A triangle is a candidate when its node's, else its mesh's, else its material's glTF
+  extras say {\"ppr\": {\"reflector\": true}}; never when they say false. Otherwise, by
+  material: roughness <= 0.3, or metallic >= 0.8 with roughness <= 0.5, or transmission
+  > 0, or clear coat >= 0.5 with clear-coat roughness <= 0.3, or a material, mesh or node
+  name containing mirror, glass, water, puddle, chrome or polished. With --all-planar
+  every triangle is a candidate (for levels with one material for everything).
+  Kind: extras {\"ppr\": {\"kind\": \"opaque|transparent|water\"}} wins; else a name
+  containing \"water\" gives water; else transmission > 0 gives transparent; else opaque.
+
+EXAMPLES:
+  ppr-extract level.glb                      writes level.ppr.json beside it
+  ppr-extract level.gltf -o out/level.ppr.json
+  ppr-extract collision-world.glb --all-planar --min-area 0.5
+  ppr-extract level.glb --angle-tolerance 2 --distance-tolerance 1e-3 --reach 5
+
+EXIT CODES:
+  0  success (the set was written; it may be empty: see the notes)
+  1  usage error (bad arguments)
+  2  the input cannot be read: missing file, not glTF, truncated .glb, missing external
+     buffer, accessor out of range, NaN positions, a required extension it cannot read
+  3  the output cannot be written (nothing partial is left behind)
+  4  internal error: the extracted set failed validation (please report it)";
+
+/// Extract planar reflectors (rectangles, occluder lists) from a glTF level.
+///
+/// Reads a .glb or .gltf, finds reflective planar areas, fits them with rectangles and
+/// writes a reflector set (`*.ppr.json`) atomically, then prints a summary.
+#[derive(Parser, Debug)]
+#[command(name = "ppr-extract", version, about, long_about, after_long_help = AFTER_HELP, after_help = "See --help for the candidate rule, examples and exit codes.")]
+struct Cli {
+    /// The level: a .glb, or a .gltf with its buffers.
+    input: PathBuf,
+    /// Where to write the set [default: <input stem>.ppr.json beside the input].
+    #[arg(short, long, value_name = "PATH")]
+    output: Option<PathBuf>,
+    /// Every planar area is a candidate, whatever its material.
+    #[arg(long)]
+    all_planar: bool,
+    /// Smallest reflective area kept, m² [default: 1e-4 × level diagonal²].
+    #[arg(long, value_name = "M2")]
+    min_area: Option<f64>,
+    /// Largest angle between a triangle and its plane, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = ExtractParams::default().angle_tolerance_deg)]
+    angle_tolerance: f64,
+    /// Largest distance of a vertex from its plane, as a fraction of the level diagonal.
+    #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().distance_tolerance)]
+    distance_tolerance: f64,
+    /// Gap bridged between triangles of one region, as a fraction of the level diagonal.
+    #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().gap_tolerance)]
+    gap_tolerance: f64,
+    /// How far in front of a reflector occluders are listed, metres [default: 0.25 × level diagonal].
+    #[arg(long, value_name = "METRES")]
+    reach: Option<f64>,
+    /// Split a non-convex region when each extra rectangle saves this fraction of its area.
+    #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().split_min_gain)]
+    split_min_gain: f64,
+    /// Most rectangles per region.
+    #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_region)]
+    max_shapes_per_region: usize,
+    /// No progress bar and no summary (errors still go to stderr).
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_USAGE } else { EXIT_OK };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(&cli) {
+        Ok(()) => ExitCode::from(EXIT_OK),
+        Err(failure) => {
+            eprintln!("ppr-extract: error: {:#}", failure.error);
+            ExitCode::from(failure.code)
+        }
+    }
+}
+
+struct Failure {
+    code: u8,
+    error: anyhow::Error,
+}
+
+fn fail(code: u8) -> impl FnOnce(anyhow::Error) -> Failure {
+    move |error| Failure { code, error }
+}
+
+fn params_from(cli: &Cli) -> ExtractParams {
+    ExtractParams {
+        candidates: if cli.all_planar { CandidateRule::AllPlanar } else { CandidateRule::Materials },
+        min_area_m2: cli.min_area,
+        angle_tolerance_deg: cli.angle_tolerance,
+        distance_tolerance: cli.distance_tolerance,
+        gap_tolerance: cli.gap_tolerance,
+        reach_m: cli.reach,
+        split_min_gain: cli.split_min_gain,
+        max_shapes_per_region: cli.max_shapes_per_region,
+        ..ExtractParams::default()
+    }
+}
+
+/// `<stem>.ppr.json` beside the input.
+fn default_output(input: &Path) -> PathBuf {
+    let stem = input.file_stem().map_or_else(|| "level".into(), |s| s.to_string_lossy().into_owned());
+    input.with_file_name(format!("{stem}.ppr.json"))
+}
+
+fn run(cli: &Cli) -> Result<(), Failure> {
+    let params = params_from(cli);
+    params.validate().map_err(|e| fail(EXIT_USAGE)(anyhow::anyhow!("bad parameter: {e}")))?;
+    let output = cli.output.clone().unwrap_or_else(|| default_output(&cli.input));
+
+    let started = Instant::now();
+    let level = load_level(&cli.input).map_err(|e| fail(EXIT_INPUT)(e.into()))?;
+    let load_time = started.elapsed();
+
+    let bar = progress_bar(cli.quiet || level.triangles.len() < PROGRESS_MIN_TRIANGLES);
+    let extraction = extract(&level, &params, &|stage, f| {
+        bar.set_message(stage.name());
+        bar.set_position((f.clamp(0.0, 1.0) * 100.0) as u64);
+    });
+    bar.finish_and_clear();
+
+    let started = Instant::now();
+    let text = extraction
+        .set
+        .to_json_string()
+        .context("the extracted set is invalid")
+        .map_err(fail(EXIT_INTERNAL))?;
+    ppr_format::write_atomically(&output, text.as_bytes())
+        .with_context(|| format!("{}: cannot write", output.display()))
+        .map_err(fail(EXIT_OUTPUT))?;
+    let write_time = started.elapsed();
+
+    if !cli.quiet {
+        let mut timings: Vec<(Stage, Duration)> = vec![(Stage::Load, load_time)];
+        timings.extend(extraction.timings.iter().copied());
+        timings.push((Stage::Write, write_time));
+        println!("ppr-extract: {} -> {}", cli.input.display(), output.display());
+        print!("{}", summary_table(&extraction, &timings));
+    }
+    Ok(())
+}
+
+fn progress_bar(hidden: bool) -> ProgressBar {
+    if hidden || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let bar = ProgressBar::with_draw_target(Some(100), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos:>3}%") {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}

@@ -1,0 +1,386 @@
+//! Splitting non-convex regions (L, U, ring shapes) into several rectangles.
+//!
+//! A region's polygons are rasterised (conservatively) into an occupancy grid aligned with
+//! its minimum-area rectangle. The largest empty grid rectangle is the biggest hole or
+//! notch; the region is cut along that hole's sides into up to four bands (two layouts are
+//! tried: full-width bands above and below the hole, or full-height bands left and right of
+//! it), every polygon is clipped exactly along the cuts, and each non-empty band gets its
+//! own minimum-area rectangle. The split is kept when every extra shape saves at least
+//! `split_min_gain` of the parent rectangle's area. Pieces are split again, most wasteful
+//! first, until no split pays or `max_shapes_per_region` is reached.
+
+use glam::DVec2;
+
+use crate::polygon::Polygon;
+use crate::rect_fit::{Rect2, min_area_rect};
+
+/// Part of a region with its rectangle.
+#[derive(Clone, Debug)]
+pub struct Piece {
+    /// The (clipped) polygons of the part.
+    pub polygons: Vec<Polygon>,
+    /// Minimum-area rectangle enclosing every vertex of `polygons`.
+    pub rect: Rect2,
+    /// Reflective area (sum of polygon areas, duplicates removed by the caller).
+    pub area: f64,
+}
+
+impl Piece {
+    /// Fits the rectangle of `polygons`; `None` when they have no vertex.
+    pub fn new(polygons: Vec<Polygon>) -> Option<Piece> {
+        let points: Vec<DVec2> = polygons.iter().flat_map(|p| p.flat.iter().copied()).collect();
+        let rect = min_area_rect(&points)?;
+        let area = polygons.iter().map(Polygon::area).sum();
+        Some(Piece { polygons, rect, area })
+    }
+
+    /// Rectangle area not covered by the region.
+    pub fn waste(&self) -> f64 {
+        (self.rect.area() - self.area).max(0.0)
+    }
+}
+
+/// Splitting settings (from [`crate::ExtractParams`]).
+#[derive(Clone, Copy, Debug)]
+pub struct SplitSettings {
+    /// Least area saved per extra shape, as a fraction of the parent rectangle's area.
+    pub min_gain: f64,
+    /// Most pieces per region.
+    pub max_pieces: usize,
+    /// Occupancy grid size (cells).
+    pub grid_cells: usize,
+}
+
+/// Splits `piece` while it pays; returns the pieces in a deterministic order.
+pub fn split_region(piece: Piece, s: &SplitSettings) -> Vec<Piece> {
+    let mut done: Vec<Piece> = Vec::new();
+    let mut open: Vec<Piece> = vec![piece];
+    while let Some(idx) = most_wasteful(&open) {
+        let p = open.swap_remove(idx);
+        let budget = s.max_pieces.saturating_sub(done.len() + open.len());
+        match try_split(&p, s, budget) {
+            Some(parts) => open.extend(parts),
+            None => done.push(p),
+        }
+    }
+    done.sort_by(|a, b| b.rect.area().total_cmp(&a.rect.area()).then(a.rect.center.x.total_cmp(&b.rect.center.x)));
+    done
+}
+
+fn most_wasteful(pieces: &[Piece]) -> Option<usize> {
+    (0..pieces.len()).max_by(|&a, &b| pieces[a].waste().total_cmp(&pieces[b].waste()).then(b.cmp(&a)))
+}
+
+/// The best band split of `p` into at most `budget` pieces, if it pays.
+fn try_split(p: &Piece, s: &SplitSettings, budget: usize) -> Option<Vec<Piece>> {
+    let parent = p.rect.area();
+    if budget < 2 || !(parent > 0.0) || p.waste() < s.min_gain * parent {
+        return None;
+    }
+    let grid = OccupancyGrid::rasterise(p, s.grid_cells);
+    let hole = grid.largest_empty()?;
+    if (hole.area_cells() as f64) * grid.cell_area() < s.min_gain * parent {
+        return None;
+    }
+    let bounds = grid.hole_bounds(&hole, &p.polygons);
+    let mut best: Option<(f64, Vec<Piece>)> = None;
+    for layout in [Layout::Rows, Layout::Columns] {
+        let parts: Vec<Piece> = grid
+            .bands(bounds, layout)
+            .into_iter()
+            .filter_map(|cuts| {
+                let polys: Vec<Polygon> = p.polygons.iter().filter_map(|poly| cuts.clip(poly)).collect();
+                let piece = Piece::new(polys)?;
+                (piece.area > 1e-12 * parent).then_some(piece)
+            })
+            .collect();
+        if parts.len() < 2 || parts.len() > budget {
+            continue;
+        }
+        let total: f64 = parts.iter().map(|q| q.rect.area()).sum();
+        let gain = parent - total;
+        if gain >= s.min_gain * parent * (parts.len() - 1) as f64 && best.as_ref().is_none_or(|(t, _)| total < *t) {
+            best = Some((total, parts));
+        }
+    }
+    best.map(|(_, parts)| parts)
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Layout {
+    /// Full-width bands below and above the hole, side bands beside it.
+    Rows,
+    /// Full-height bands left and right of the hole, short bands below and above it.
+    Columns,
+}
+
+/// Cell ranges `[i0, i1) × [j0, j1)`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct CellRect {
+    i0: usize,
+    i1: usize,
+    j0: usize,
+    j1: usize,
+}
+
+impl CellRect {
+    fn area_cells(&self) -> usize {
+        (self.i1 - self.i0) * (self.j1 - self.j0)
+    }
+}
+
+/// A band: the intersection of up to four half-planes of the rectangle's frame.
+struct Band {
+    rect: Rect2,
+    /// (axis index 0 = x / 1 = y, limit in local coordinates, keep_below).
+    limits: Vec<(usize, f64, bool)>,
+}
+
+impl Band {
+    fn clip(&self, poly: &Polygon) -> Option<Polygon> {
+        let mut out = poly.clone();
+        for &(axis, limit, below) in &self.limits {
+            out = clip_local(&out, &self.rect, axis, limit, below)?;
+        }
+        Some(out)
+    }
+}
+
+/// Which cells of the rectangle's grid any polygon touches.
+struct OccupancyGrid {
+    rect: Rect2,
+    nu: usize,
+    nv: usize,
+    cell: DVec2,
+    occupied: Vec<bool>,
+}
+
+impl OccupancyGrid {
+    fn rasterise(p: &Piece, cells: usize) -> Self {
+        let rect = p.rect;
+        let aspect = (rect.half.x / rect.half.y.max(1e-300)).clamp(1.0 / cells as f64, cells as f64);
+        let nu = ((cells as f64 * aspect).sqrt().round() as usize).clamp(1, cells);
+        let nv = (cells / nu).max(1);
+        let cell = DVec2::new(2.0 * rect.half.x / nu as f64, 2.0 * rect.half.y / nv as f64);
+        let mut grid = Self { rect, nu, nv, cell, occupied: vec![false; nu * nv] };
+        // Conservative: a cell counts as touched when the polygon comes within `eps` of it.
+        let eps = 1e-9 * (rect.half.x + rect.half.y);
+        for poly in &p.polygons {
+            // Local coordinates with the rectangle's corner at the origin.
+            let flat: Vec<DVec2> = poly.flat.iter().map(|&q| rect.local(q) + rect.half).collect();
+            let local = Polygon { flat, spatial: poly.spatial.clone() };
+            let (lo, hi) = local.flat.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
+            let j_lo = grid.row_of(lo - eps);
+            let j_hi = grid.row_of(hi + eps);
+            for j in j_lo..=j_hi {
+                let y0 = j as f64 * cell.y - eps;
+                let y1 = (j + 1) as f64 * cell.y + eps;
+                let Some(strip) = local.clip(DVec2::Y, y0, false).and_then(|q| q.clip(DVec2::Y, y1, true)) else {
+                    continue;
+                };
+                let (xl, xh) = strip.flat.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.x), h.max(q.x)));
+                for i in grid.col_of(xl - eps)..=grid.col_of(xh + eps) {
+                    grid.occupied[j * nu + i] = true;
+                }
+            }
+        }
+        grid
+    }
+
+    fn col_of(&self, x: f64) -> usize {
+        ((x / self.cell.x).floor().max(0.0) as usize).min(self.nu - 1)
+    }
+
+    fn row_of(&self, y: f64) -> usize {
+        if !(self.cell.y > 0.0) {
+            return 0;
+        }
+        ((y / self.cell.y).floor().max(0.0) as usize).min(self.nv - 1)
+    }
+
+    fn cell_area(&self) -> f64 {
+        self.cell.x * self.cell.y
+    }
+
+    /// The largest all-empty rectangle of cells (maximal rectangle in a histogram).
+    fn largest_empty(&self) -> Option<CellRect> {
+        let mut heights = vec![0usize; self.nu];
+        let mut best: Option<CellRect> = None;
+        for j in 0..self.nv {
+            for (i, h) in heights.iter_mut().enumerate() {
+                *h = if self.occupied[j * self.nu + i] { 0 } else { *h + 1 };
+            }
+            // Largest rectangle under the histogram, stack-based.
+            let mut stack: Vec<usize> = Vec::new();
+            for i in 0..=self.nu {
+                let h = if i < self.nu { heights[i] } else { 0 };
+                while let Some(&top) = stack.last() {
+                    if heights[top] < h {
+                        break;
+                    }
+                    stack.pop();
+                    let height = heights[top];
+                    let left = stack.last().map_or(0, |&s| s + 1);
+                    let r = CellRect { i0: left, i1: i, j0: j + 1 - height, j1: j + 1 };
+                    if height > 0 && best.is_none_or(|b| r.area_cells() > b.area_cells()) {
+                        best = Some(r);
+                    }
+                }
+                stack.push(i);
+            }
+        }
+        best
+    }
+
+    /// The hole in local coordinates (relative to the rectangle's centre), grown from cell
+    /// boundaries to the geometry around it so that the cuts fall exactly on its edges.
+    fn hole_bounds(&self, hole: &CellRect, polygons: &[Polygon]) -> [f64; 4] {
+        let (hx, hy) = (self.rect.half.x, self.rect.half.y);
+        let y0 = hole.j0 as f64 * self.cell.y - hy;
+        let y1 = hole.j1 as f64 * self.cell.y - hy;
+        let x0 = hole.i0 as f64 * self.cell.x - hx;
+        let x1 = hole.i1 as f64 * self.cell.x - hx;
+        let x0 = extreme(polygons, &self.rect, 0, (y0, y1), x0, true).unwrap_or(-hx);
+        let x1 = extreme(polygons, &self.rect, 0, (y0, y1), x1, false).unwrap_or(hx);
+        let y0 = extreme(polygons, &self.rect, 1, (x0, x1), y0, true).unwrap_or(-hy);
+        let y1 = extreme(polygons, &self.rect, 1, (x0, x1), y1, false).unwrap_or(hy);
+        [x0, x1, y0, y1]
+    }
+
+    /// The bands around `hole` for `layout`, as clipping limits in the rectangle's frame.
+    fn bands(&self, [x0, x1, y0, y1]: [f64; 4], layout: Layout) -> Vec<Band> {
+        let hx = self.rect.half.x;
+        let hy = self.rect.half.y;
+        let band = |limits: Vec<(usize, f64, bool)>| Band { rect: self.rect, limits };
+        let (across, along) = match layout {
+            Layout::Rows => (1, 0),
+            Layout::Columns => (0, 1),
+        };
+        let (a0, a1, b0, b1) = if layout == Layout::Rows { (y0, y1, x0, x1) } else { (x0, x1, y0, y1) };
+        let mut out = Vec::new();
+        if hole_edge_inside(a0, across, hx, hy) {
+            out.push(band(vec![(across, a0, true)]));
+        }
+        if hole_edge_inside(a1, across, hx, hy) {
+            out.push(band(vec![(across, a1, false)]));
+        }
+        if hole_edge_inside(b0, along, hx, hy) {
+            out.push(band(vec![(across, a0, false), (across, a1, true), (along, b0, true)]));
+        }
+        if hole_edge_inside(b1, along, hx, hy) {
+            out.push(band(vec![(across, a0, false), (across, a1, true), (along, b1, false)]));
+        }
+        out
+    }
+}
+
+/// Clips `poly` to `local(axis) <= limit` (`below`) or `>= limit` in `rect`'s centred frame.
+fn clip_local(poly: &Polygon, rect: &Rect2, axis: usize, limit: f64, below: bool) -> Option<Polygon> {
+    let dir = if axis == 0 { rect.axis } else { rect.perp() };
+    poly.clip(dir, dir.dot(rect.center) + limit, below)
+}
+
+/// The largest (`below`) or smallest local coordinate along `axis` of the geometry that lies
+/// on that side of `cut`, within the open window `other` on the other axis.
+fn extreme(polygons: &[Polygon], rect: &Rect2, axis: usize, other: (f64, f64), cut: f64, below: bool) -> Option<f64> {
+    let eps = 1e-9 * (rect.half.x + rect.half.y);
+    let mut best: Option<f64> = None;
+    for poly in polygons {
+        let Some(part) = clip_local(poly, rect, 1 - axis, other.0 + eps, false)
+            .and_then(|q| clip_local(&q, rect, 1 - axis, other.1 - eps, true))
+            .and_then(|q| clip_local(&q, rect, axis, cut, below))
+        else {
+            continue;
+        };
+        for &v in &part.flat {
+            let l = rect.local(v);
+            let c = if axis == 0 { l.x } else { l.y };
+            best = Some(match best {
+                None => c,
+                Some(b) if below => b.max(c),
+                Some(b) => b.min(c),
+            });
+        }
+    }
+    best
+}
+
+/// Whether a hole side at `limit` on `axis` is strictly inside the rectangle (else the band
+/// beyond it is empty).
+fn hole_edge_inside(limit: f64, axis: usize, hx: f64, hy: f64) -> bool {
+    let h = if axis == 0 { hx } else { hy };
+    limit.abs() < h * (1.0 - 1e-12)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::DVec3;
+
+    /// Unit-square cells `(x, y)` as two triangles each, rotated by `angle`.
+    fn region(cells: &[(i32, i32)], angle: f64) -> Piece {
+        let rot = DVec2::from_angle(angle);
+        let mut polys = Vec::new();
+        for &(x, y) in cells {
+            let c = [(0, 0), (1, 0), (1, 1), (0, 1)].map(|(dx, dy)| rot.rotate(DVec2::new((x + dx) as f64, (y + dy) as f64)));
+            for tri in [[c[0], c[1], c[2]], [c[0], c[2], c[3]]] {
+                polys.push(Polygon { flat: tri.to_vec(), spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect() });
+            }
+        }
+        Piece::new(polys).unwrap()
+    }
+
+    fn settings() -> SplitSettings {
+        SplitSettings { min_gain: 0.1, max_pieces: 8, grid_cells: 4096 }
+    }
+
+    fn check(cells: &[(i32, i32)], expected_pieces: usize) {
+        for angle in [0.0, 0.3, 1.0, 2.5] {
+            let p = region(cells, angle);
+            let pieces = split_region(p.clone(), &settings());
+            assert_eq!(pieces.len(), expected_pieces, "angle {angle}: {pieces:#?}");
+            let covered: f64 = pieces.iter().map(|q| q.area).sum();
+            assert!((covered - p.area).abs() < 1e-9 * p.area, "area lost: {covered} vs {}", p.area);
+            let total: f64 = pieces.iter().map(|q| q.rect.area()).sum();
+            assert!((total - p.area).abs() < 1e-6 * p.area, "rectangles not tight: {total} vs {}", p.area);
+            for q in &pieces {
+                for poly in &q.polygons {
+                    for v in &poly.flat {
+                        assert!(q.rect.contains(*v, 1e-9));
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn splits_l_u_and_ring_shapes_into_tight_rectangles() {
+        let l: Vec<(i32, i32)> = (0..4).map(|x| (x, 0)).chain((1..4).map(|y| (0, y))).collect();
+        check(&l, 2);
+        let u: Vec<(i32, i32)> = (0..5).map(|x| (x, 0)).chain((1..4).flat_map(|y| [(0, y), (4, y)])).collect();
+        check(&u, 3);
+        let ring: Vec<(i32, i32)> =
+            (0..6).flat_map(|x| (0..6).map(move |y| (x, y))).filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y)).collect();
+        check(&ring, 4);
+        let full: Vec<(i32, i32)> = (0..3).flat_map(|x| (0..2).map(move |y| (x, y))).collect();
+        check(&full, 1);
+    }
+
+    #[test]
+    fn small_notches_are_not_worth_a_shape() {
+        // A 10×10 square missing one corner cell: 1% waste.
+        let cells: Vec<(i32, i32)> = (0..10).flat_map(|x| (0..10).map(move |y| (x, y))).filter(|&c| c != (9, 9)).collect();
+        check(&cells, 1);
+    }
+
+    #[test]
+    fn respects_the_shape_budget() {
+        let ring: Vec<(i32, i32)> =
+            (0..6).flat_map(|x| (0..6).map(move |y| (x, y))).filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y)).collect();
+        let s = SplitSettings { max_pieces: 3, ..settings() };
+        let pieces = split_region(region(&ring, 0.0), &s);
+        assert!(pieces.len() <= 3, "{}", pieces.len());
+        let s = SplitSettings { max_pieces: 1, ..settings() };
+        assert_eq!(split_region(region(&ring, 0.0), &s).len(), 1);
+    }
+}
