@@ -51,9 +51,13 @@ pub enum FormatError {
     /// The file could not be written (nothing was left behind).
     #[error("{}: cannot write: {source}", path.display())]
     Write { path: PathBuf, source: std::io::Error },
-    /// The text is not JSON, or not shaped like a reflector set.
-    #[error("not a valid reflector set: {0}")]
+    /// The text is not JSON.
+    #[error("not JSON: {0}")]
     Json(#[from] serde_json::Error),
+    /// The JSON is not shaped like a reflector set: `path` names the field
+    /// (e.g. `reflectors[2].coverage`).
+    #[error("field `{path}`: {source}")]
+    Shape { path: String, source: serde_json::Error },
     /// The document's `format` field is missing or not [`crate::FORMAT_NAME`].
     #[error("not a reflector set: field `format` is {found}, expected \"ppr-reflector-set\"")]
     WrongFormat { found: String },
@@ -71,9 +75,23 @@ pub enum FormatError {
 impl FormatError {
     /// The invalid field, if that is what this error is about (looking through `InFile`).
     pub fn invalid_field(&self) -> Option<&InvalidField> {
+        // (`Shape` errors carry a path instead: see [`FormatError::field_path`].)
         match self {
             Self::Invalid(f) => Some(f),
             Self::InFile { source, .. } => source.invalid_field(),
+            _ => None,
+        }
+    }
+
+    /// The path of the offending field, for shape and invariant errors: `reflectors[2].coverage`.
+    pub fn field_path(&self) -> Option<String> {
+        match self {
+            Self::Shape { path, .. } => Some(path.clone()),
+            Self::Invalid(f) => Some(match &f.reflector {
+                Some(r) => format!("reflectors[{}].{}", r.index, f.field),
+                None => f.field.clone(),
+            }),
+            Self::InFile { source, .. } => source.field_path(),
             _ => None,
         }
     }

@@ -16,7 +16,8 @@ impl ReflectorSet {
     pub fn from_json_str(text: &str) -> Result<Self, FormatError> {
         let value: serde_json::Value = serde_json::from_str(text)?;
         check_header(&value)?;
-        let set: ReflectorSet = serde_json::from_value(value)?;
+        let set: ReflectorSet = serde_path_to_error::deserialize(value)
+            .map_err(|e| FormatError::Shape { path: e.path().to_string(), source: e.into_inner() })?;
         set.validate()?;
         Ok(set)
     }
