@@ -1,0 +1,51 @@
+//! `#[repr(C)]` mirrors of the WGSL structs in `shaders/ppr/common.wgsl`, sizes asserted.
+
+use crate::encoding::EncodingParams;
+
+/// Bit of [`FrameUniforms::flags`]: fill holes.
+pub const FLAG_HOLES: u32 = 1;
+/// Bit of [`FrameUniforms::flags`]: filtered colour sampling.
+pub const FLAG_FILTERING: u32 = 2;
+/// Bit of [`FrameUniforms::flags`]: anti-bleeding.
+pub const FLAG_ANTI_BLEEDING: u32 = 4;
+/// Bit of [`FrameUniforms::flags`]: occluder tests in the projection pass.
+pub const FLAG_OCCLUDER_TESTS: u32 = 8;
+
+/// Bit of [`GpuShape::flags`]: the shape blocks reflections of the main buffer behind it
+/// (opaque and water shapes do; glass does not).
+pub const SHAPE_OCCLUDES: u32 = 1;
+
+/// `FrameUniforms` of `common.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct FrameUniforms {
+    pub clip_from_rel: [[f32; 4]; 4],
+    pub rel_from_clip: [[f32; 4]; 4],
+    pub resolution: [f32; 4],
+    pub size: [u32; 2],
+    pub visible_count: u32,
+    pub flags: u32,
+    pub far_depth: f32,
+    pub _pad: [u32; 3],
+    pub encoding: EncodingParams,
+}
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 208);
+
+/// `Shape` of `common.wgsl`: one reflector rectangle, camera-relative.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuShape {
+    pub center: [f32; 3],
+    pub half_u: f32,
+    pub axis_u: [f32; 3],
+    pub half_v: f32,
+    pub axis_v: [f32; 3],
+    pub plane_dist: f32,
+    pub normal: [f32; 3],
+    pub flags: u32,
+    pub occluder_start: u32,
+    pub occluder_count: u32,
+    pub parallel_group: u32,
+    pub _pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuShape>() == 80);

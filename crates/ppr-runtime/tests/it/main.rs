@@ -1,0 +1,5 @@
+//! ppr-runtime integration tests (one binary): GPU parity and pass behaviour on the
+//! software adapter.
+
+mod encoding_parity;
+mod gpu;

@@ -1,0 +1,57 @@
+// Declarations shared by the PPR passes: frame uniforms, reflector shapes, flags.
+// Mirrors crates/ppr-runtime/src/gpu_types.rs byte for byte (sizes asserted there).
+
+const PPR_FLAG_HOLES: u32 = 1u;
+const PPR_FLAG_FILTERING: u32 = 2u;
+const PPR_FLAG_ANTI_BLEEDING: u32 = 4u;
+const PPR_FLAG_OCCLUDER_TESTS: u32 = 8u;
+
+// Shape flags.
+const PPR_SHAPE_OCCLUDES: u32 = 1u;
+
+struct FrameUniforms {
+    clip_from_rel: mat4x4<f32>,
+    rel_from_clip: mat4x4<f32>,
+    // width, height, 1 / width, 1 / height
+    resolution: vec4<f32>,
+    size: vec2<u32>,
+    visible_count: u32,
+    flags: u32,
+    far_depth: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+    encoding: EncodingParams,
+}
+
+// A reflector rectangle, camera-relative.
+struct Shape {
+    center: vec3<f32>,
+    half_u: f32,
+    axis_u: vec3<f32>,
+    half_v: f32,
+    axis_v: vec3<f32>,
+    // dot(center, normal), computed in f64 on the CPU.
+    plane_dist: f32,
+    normal: vec3<f32>,
+    flags: u32,
+    occluder_start: u32,
+    occluder_count: u32,
+    parallel_group: u32,
+    _pad: u32,
+}
+
+// Whether the ray from the camera (origin) to `p` crosses `s` before reaching `p`
+// (strictly between, so that a point on a coplanar neighbour is not occluded).
+fn ppr_segment_hits_shape(p: vec3<f32>, s: Shape) -> bool {
+    let dn = dot(p, s.normal);
+    if (abs(dn) <= 1e-20) {
+        return false;
+    }
+    let t = s.plane_dist / dn;
+    if (!(t > 0.0 && t < 0.9999)) {
+        return false;
+    }
+    let l = p * t - s.center;
+    return abs(dot(l, s.axis_u)) <= s.half_u && abs(dot(l, s.axis_v)) <= s.half_v;
+}

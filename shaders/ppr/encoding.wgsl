@@ -1,0 +1,135 @@
+// Intermediate-buffer encoding: four packing bases, mirrored fractions, atomicMin order.
+// The CPU reference is crates/ppr-runtime/src/encoding.rs; a GPU test holds the two
+// bit-for-bit equal. Read the Rust module's docs for the design; keep both in step.
+
+const PPR_CLEAR_VALUE: u32 = 0xffffffffu;
+const PPR_OFFSET_SUBPIXEL_BITS: u32 = 5u;
+const PPR_TANGENT_BITS: u32 = 8u;
+const PPR_FRACTION_SCALE_NUMERATOR: i32 = 181;
+
+// EncodingParams of encoding.rs, byte for byte.
+struct EncodingParams {
+    major_int_bits: u32,
+    major_frac_bits: u32,
+    minor_int_bits: u32,
+    minor_frac_bits: u32,
+    major_decode_scale: f32,
+    minor_decode_scale: f32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+// A decoded value in its packing basis: (minor, major).
+struct PprDecoded {
+    whole: vec2<i32>,
+    fract: vec2<f32>,
+    basis: u32,
+}
+
+fn ppr_basis_index(o: vec2<i32>) -> u32 {
+    if (abs(o.x) >= abs(o.y)) {
+        return select(1u, 0u, o.x >= 0);
+    }
+    return select(3u, 2u, o.y >= 0);
+}
+
+// Screen space -> packing basis (minor, major).
+fn ppr_to_basis(v: vec2<i32>, basis: u32) -> vec2<i32> {
+    switch basis {
+        case 0u: { return vec2<i32>(-v.y, v.x); }
+        case 1u: { return vec2<i32>(v.y, -v.x); }
+        case 2u: { return v; }
+        default: { return -v; }
+    }
+}
+
+// Packing basis (minor, major) -> screen space.
+fn ppr_to_screen(v: vec2<f32>, basis: u32) -> vec2<f32> {
+    switch basis {
+        case 0u: { return vec2<f32>(v.y, -v.x); }
+        case 1u: { return vec2<f32>(-v.y, v.x); }
+        case 2u: { return v; }
+        default: { return -v; }
+    }
+}
+
+fn ppr_div_round(a: i32, b: i32) -> i32 {
+    if (a >= 0) {
+        return (2 * a + b) / (2 * b);
+    }
+    return -((-2 * a + b) / (2 * b));
+}
+
+fn ppr_quantise_fraction(p: i32, den: i32, bits: u32) -> u32 {
+    let mult = 1u << bits;
+    let num = u32(PPR_FRACTION_SCALE_NUMERATOR * p + 4096 * den) + (4096u / mult) * u32(den);
+    let q = num / ((8192u / mult) * u32(den));
+    return min(q, mult - 1u);
+}
+
+fn ppr_encode(offset: vec2<f32>, enc: EncodingParams) -> u32 {
+    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
+    let half = one / 2;
+    // NaN fails both comparisons; infinities fail the second.
+    if (!(all(abs(offset) < vec2<f32>(65536.0)))) {
+        return PPR_CLEAR_VALUE;
+    }
+    let os = vec2<i32>(round(offset * f32(one)));
+    let basis = ppr_basis_index(os);
+    let whole_s = (os + vec2<i32>(half)) >> vec2<u32>(PPR_OFFSET_SUBPIXEL_BITS);
+    let fract_s = os - whole_s * one;
+    let o = ppr_to_basis(os, basis);
+    let whole = ppr_to_basis(whole_s, basis);
+    let fract = ppr_to_basis(fract_s, basis);
+    let max_major = (1 << enc.major_int_bits) - 1;
+    let minor_bias = 1 << (enc.minor_int_bits - 1u);
+    if (whole.y > max_major || whole.x < -minor_bias || whole.x >= minor_bias) {
+        return PPR_CLEAR_VALUE;
+    }
+    var t = 0;
+    if (o.y > 0) {
+        t = ppr_div_round(o.x << PPR_TANGENT_BITS, o.y);
+    }
+    let k = 1 << PPR_TANGENT_BITS;
+    let s = t * fract.x + k * fract.y;
+    let den = t * t + k * k;
+    let p_minor = fract.x * den - 2 * t * s;
+    let p_major = fract.y * den - 2 * k * s;
+    let q_minor = ppr_quantise_fraction(p_minor, den, enc.minor_frac_bits);
+    let q_major = ppr_quantise_fraction(p_major, den, enc.major_frac_bits);
+
+    let major_field = (u32(whole.y) << enc.major_frac_bits) | q_major;
+    let minor_field = (u32(whole.x + minor_bias) << enc.minor_frac_bits) | q_minor;
+    let minor_bits = enc.minor_int_bits + enc.minor_frac_bits;
+    return (((major_field << minor_bits) | minor_field) << 2u) | basis;
+}
+
+// Decodes a value that is not PPR_CLEAR_VALUE (check first).
+fn ppr_decode(value: u32, enc: EncodingParams) -> PprDecoded {
+    let basis = value & 3u;
+    let rest = value >> 2u;
+    let minor_bits = enc.minor_int_bits + enc.minor_frac_bits;
+    let minor_field = rest & ((1u << minor_bits) - 1u);
+    let major_field = rest >> minor_bits;
+    let minor_bias = 1 << (enc.minor_int_bits - 1u);
+    let q_minor = i32(minor_field & ((1u << enc.minor_frac_bits) - 1u));
+    let q_major = i32(major_field & ((1u << enc.major_frac_bits) - 1u));
+    var d: PprDecoded;
+    d.whole = vec2<i32>(i32(minor_field >> enc.minor_frac_bits) - minor_bias, i32(major_field >> enc.major_frac_bits));
+    d.fract = vec2<f32>(
+        f32(2 * q_minor + 1 - (1 << enc.minor_frac_bits)) * enc.minor_decode_scale,
+        f32(2 * q_major + 1 - (1 << enc.major_frac_bits)) * enc.major_decode_scale,
+    );
+    d.basis = basis;
+    return d;
+}
+
+// Screen-space offset with fractions (filtered sample).
+fn ppr_decoded_offset(d: PprDecoded) -> vec2<f32> {
+    return ppr_to_screen(vec2<f32>(d.whole) + d.fract, d.basis);
+}
+
+// Screen-space offset without fractions (unfiltered sample).
+fn ppr_decoded_whole_offset(d: PprDecoded) -> vec2<f32> {
+    return ppr_to_screen(vec2<f32>(d.whole), d.basis);
+}
