@@ -34,7 +34,8 @@ CANDIDATES:
   name containing mirror, glass, water, puddle, chrome or polished. With --all-planar
   every triangle is a candidate (for levels with one material for everything).
   Kind: extras {\"ppr\": {\"kind\": \"opaque|transparent|water\"}} wins; else a name
-  containing \"water\" gives water; else transmission > 0 gives transparent; else opaque.
+  containing \"water\" gives water; else transmission > 0 or a name containing \"glass\"
+  or \"window\" gives transparent; else opaque.
 
 EXAMPLES:
   ppr-extract level.glb                      writes level.ppr.json beside it

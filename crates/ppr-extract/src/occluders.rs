@@ -87,6 +87,16 @@ pub fn may_occlude(a: &Reflector, b: &Reflector, epsilon: f64, reach: f64) -> bo
     if corners.iter().all(|&p| a.signed_distance(p) <= epsilon) {
         return false;
     }
+    // Quick accept: a corner strictly in front and within reach is a witness by itself.
+    let within = |p: DVec3| {
+        let l = a.local(p);
+        let dx = (l.x.abs() - a.half_extents.x).max(0.0);
+        let dy = (l.y.abs() - a.half_extents.y).max(0.0);
+        dx * dx + dy * dy + l.z * l.z <= reach * reach
+    };
+    if corners.iter().any(|&p| a.signed_distance(p) > epsilon && within(p)) {
+        return true;
+    }
     let front = clip_front(&corners, a, epsilon);
     let rect = a.corners();
     let slack = 1e-9 * (reach + a.half_extents.length() + b.half_extents.length() + (a.center - b.center).length());

@@ -30,6 +30,9 @@ pub struct ExtractParams {
     pub name_patterns: Vec<String>,
     /// Lower-case substrings of material, mesh or node names that make the kind `water`.
     pub water_patterns: Vec<String>,
+    /// Lower-case substrings of names that make the kind `transparent` (glass modelled
+    /// without `KHR_materials_transmission`).
+    pub transparent_patterns: Vec<String>,
     /// Largest angle between a triangle's normal and its plane, degrees (usable: 0.1..5).
     /// Triangles smaller than [`Self::small_triangle_factor`] distance tolerances are
     /// judged by distance only, so noisy tessellation still merges.
@@ -67,6 +70,7 @@ impl Default for ExtractParams {
             metallic_max_roughness: 0.5,
             name_patterns: ["mirror", "glass", "water", "puddle", "chrome", "polished"].map(String::from).to_vec(),
             water_patterns: vec!["water".into()],
+            transparent_patterns: vec!["glass".into(), "window".into()],
             angle_tolerance_deg: 1.0,
             distance_tolerance: 5e-4,
             small_triangle_factor: 20.0,
@@ -152,6 +156,7 @@ impl ExtractParams {
         m.insert("metallic_max_roughness".into(), json!(self.metallic_max_roughness));
         m.insert("name_patterns".into(), json!(self.name_patterns));
         m.insert("water_patterns".into(), json!(self.water_patterns));
+        m.insert("transparent_patterns".into(), json!(self.transparent_patterns));
         m.insert("angle_tolerance_deg".into(), json!(self.angle_tolerance_deg));
         m.insert("distance_tolerance".into(), json!(self.distance_tolerance));
         m.insert("small_triangle_factor".into(), json!(self.small_triangle_factor));

@@ -11,8 +11,9 @@
 //!    polished).
 //!
 //! The kind: `extras.ppr.kind` (node, then mesh, then material) wins; else a material, mesh
-//! or node name containing a `water_patterns` entry gives `water`; else transmission > 0
-//! gives `transparent`; else `opaque`.
+//! or node name containing a `water_patterns` entry gives `water`; else transmission > 0,
+//! or a name containing a `transparent_patterns` entry (default glass, window), gives
+//! `transparent`; else `opaque`.
 //!
 //! Degenerate triangles (twice the area below 1e-10 of the longest edge squared, or a
 //! longest edge below 1e-9 of the level's diagonal) are skipped and counted.
@@ -71,7 +72,7 @@ pub fn classify(source: &TriangleSource, material: &MaterialInfo, params: &Extra
     }
     Some(over.kind.unwrap_or(if named(&params.water_patterns) {
         ReflectorKind::Water
-    } else if material.transmission > 0.0 {
+    } else if material.transmission > 0.0 || named(&params.transparent_patterns) {
         ReflectorKind::Transparent
     } else {
         ReflectorKind::Opaque
@@ -137,6 +138,7 @@ mod tests {
         check(source("n", none), material("Steel", 0.6, 0.9, 0.0), &p, None);
         check(source("n", none), material("Pane", 0.9, 0.0, 1.0), &p, Some(Transparent));
         check(source("n", none), material("Big MIRROR", 0.9, 0.0, 0.0), &p, Some(Opaque));
+        check(source("n", none), material("Red Glass", 0.5, 0.0, 0.0), &p, Some(Transparent));
         check(source("Pool_Water", none), material("Tiles", 0.9, 0.0, 0.0), &p, Some(Water));
         check(source("n", none), material("Water", 0.0, 0.0, 1.0), &p, Some(Water));
         let veto = ReflectorOverride { reflector: Some(false), kind: None };

@@ -13,7 +13,7 @@ pub fn summary_table(x: &Extraction, timings: &[(Stage, Duration)]) -> String {
     let mut s = String::new();
     let rs = &x.set.reflectors;
     let count = |k: ReflectorKind| rs.iter().filter(|r| r.kind == k).count();
-    let area: f64 = rs.iter().map(|r| r.area()).sum();
+    let area: f64 = rs.iter().map(|r| r.area()).fold(0.0, |a, b| a + b);
     let mean_cov = if rs.is_empty() { 0.0 } else { rs.iter().map(|r| r.coverage).sum::<f64>() / rs.len() as f64 };
     let weighted_cov = if area > 0.0 { rs.iter().map(|r| r.coverage * r.area()).sum::<f64>() / area } else { 0.0 };
     let st = &x.stats;

@@ -1,0 +1,80 @@
+//! The `ppr-extract` binary: output file, summary, exit codes and one-line errors.
+
+use std::path::Path;
+use std::process::Command;
+
+use crate::scenes::scenes_dir;
+
+fn run(args: &[&std::ffi::OsStr]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ppr-extract")).args(args).output().expect("run ppr-extract");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn os(s: &Path) -> &std::ffi::OsStr {
+    s.as_os_str()
+}
+
+/// Asserts exit `code` and a single error line containing `needle`.
+fn assert_error(args: &[&std::ffi::OsStr], code: i32, needle: &str) {
+    let (c, _, err) = run(args);
+    assert_eq!(c, code, "{args:?}: {err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+}
+
+#[test]
+fn writes_the_default_output_and_prints_a_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("small.glb");
+    std::fs::copy(scenes_dir().join("small.glb"), &input).unwrap();
+    let (code, out, err) = run(&[os(&input)]);
+    assert_eq!(code, 0, "{err}");
+    for needle in ["shapes", "total area", "mean coverage", "occluder pairs", "triangles/s", "occluders", "write"] {
+        assert!(out.contains(needle), "summary lacks {needle}: {out}");
+    }
+    let written = dir.path().join("small.ppr.json");
+    let set = ppr_format::ReflectorSet::load(&written).unwrap();
+    assert!(!set.reflectors.is_empty());
+    assert!(set.source.hash.starts_with("blake3:"));
+    assert_eq!(set.extractor.name, "ppr-extract");
+    // Same input, same bytes.
+    let first = std::fs::read(&written).unwrap();
+    let (code, _, _) = run(&[os(&input), "--quiet".as_ref()]);
+    assert_eq!(code, 0);
+    assert_eq!(std::fs::read(&written).unwrap(), first);
+}
+
+#[test]
+fn exit_codes_and_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    assert_error(&[os(&d.join("nope.glb"))], 2, "nope.glb: cannot read");
+    std::fs::write(d.join("photo.glb"), b"\x89PNG\r\n\x1a\n....").unwrap();
+    assert_error(&[os(&d.join("photo.glb"))], 2, "not a glTF file");
+    let glb = std::fs::read(scenes_dir().join("small.glb")).unwrap();
+    std::fs::write(d.join("cut.glb"), &glb[..glb.len() / 2]).unwrap();
+    assert_error(&[os(&d.join("cut.glb"))], 2, "truncated .glb");
+    std::fs::copy(scenes_dir().join("kitchen/kitchen.gltf"), d.join("kitchen.gltf")).unwrap();
+    assert_error(&[os(&d.join("kitchen.gltf"))], 2, "kitchen.bin");
+    let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(scenes_dir().join("kitchen/kitchen.gltf")).unwrap()).unwrap();
+    json["extensionsRequired"] = serde_json::json!(["KHR_draco_mesh_compression"]);
+    std::fs::write(d.join("draco.gltf"), serde_json::to_vec(&json).unwrap()).unwrap();
+    assert_error(&[os(&d.join("draco.gltf"))], 2, "KHR_draco_mesh_compression");
+    // Usage errors.
+    let (code, _, err) = run(&[]);
+    assert_eq!(code, 1, "{err}");
+    let (code, _, _) = run(&[os(&scenes_dir().join("small.glb")), "--angle-tolerance".as_ref(), "-3".as_ref()]);
+    assert_eq!(code, 1);
+    // Output that cannot be written: a directory that does not exist; nothing is left.
+    let target = d.join("missing-dir").join("out.ppr.json");
+    assert_error(&[os(&scenes_dir().join("small.glb")), "-o".as_ref(), os(&target)], 3, "cannot write");
+    assert!(!target.exists());
+    // --help documents the exit codes.
+    let (code, out, _) = run(&["--help".as_ref()]);
+    assert_eq!(code, 0);
+    assert!(out.contains("EXIT CODES") && out.contains("--all-planar") && out.contains("EXAMPLES"), "{out}");
+}

@@ -1,0 +1,153 @@
+//! Builds small glTF files in code (as `.glb`, or `.gltf` + `.bin`) for loader tests.
+
+use std::path::{Path, PathBuf};
+
+use serde_json::{Value, json};
+
+/// How positions are stored.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PositionFormat {
+    /// Plain f32.
+    F32,
+    /// `KHR_mesh_quantization`: normalized i16, the node scales by `range`.
+    NormalizedI16,
+}
+
+/// A glTF document under construction.
+pub struct GltfBuilder {
+    pub json: Value,
+    pub bin: Vec<u8>,
+}
+
+impl GltfBuilder {
+    pub fn new() -> Self {
+        Self {
+            json: json!({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0,
+                         "nodes": [], "meshes": [], "materials": [], "accessors": [], "bufferViews": [], "buffers": []}),
+            bin: Vec::new(),
+        }
+    }
+
+    fn push(&mut self, key: &str, v: Value) -> usize {
+        let arr = self.json[key].as_array_mut().expect("array");
+        arr.push(v);
+        arr.len() - 1
+    }
+
+    fn view(&mut self, bytes: &[u8]) -> usize {
+        while self.bin.len() % 4 != 0 {
+            self.bin.push(0);
+        }
+        let offset = self.bin.len();
+        self.bin.extend_from_slice(bytes);
+        self.push("bufferViews", json!({"buffer": 0, "byteOffset": offset, "byteLength": bytes.len()}))
+    }
+
+    /// Adds a material; returns its index.
+    pub fn material(&mut self, name: &str, roughness: f64, metallic: f64, extras: Option<Value>) -> usize {
+        let mut m = json!({"name": name, "pbrMetallicRoughness": {"roughnessFactor": roughness, "metallicFactor": metallic}});
+        if let Some(e) = extras {
+            m["extras"] = e;
+        }
+        self.push("materials", m)
+    }
+
+    /// Adds a triangle-list mesh; returns its index. With `NormalizedI16` the positions
+    /// must be within [-1, 1].
+    pub fn mesh(&mut self, name: &str, positions: &[[f32; 3]], indices: &[u32], material: usize, format: PositionFormat) -> usize {
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        for p in positions {
+            for k in 0..3 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let (bytes, component, normalized, min, max) = match format {
+            PositionFormat::F32 => {
+                (positions.iter().flatten().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>(), 5126, false, json!(lo), json!(hi))
+            }
+            PositionFormat::NormalizedI16 => {
+                let q = |f: f32| (f * 32767.0).round() as i16;
+                let mut b = Vec::new();
+                for p in positions {
+                    for k in 0..3 {
+                        b.extend(q(p[k]).to_le_bytes());
+                    }
+                    b.extend([0u8, 0]); // pad each element to 8 bytes (4-byte alignment)
+                }
+                let qlo: Vec<i16> = lo.iter().map(|&f| q(f)).collect();
+                let qhi: Vec<i16> = hi.iter().map(|&f| q(f)).collect();
+                (b, 5122, true, json!(qlo), json!(qhi))
+            }
+        };
+        let pview = self.view(&bytes);
+        if format == PositionFormat::NormalizedI16 {
+            self.json["bufferViews"][pview]["byteStride"] = json!(8);
+        }
+        let mut pacc = json!({"bufferView": pview, "componentType": component, "count": positions.len(), "type": "VEC3", "min": min, "max": max});
+        if normalized {
+            pacc["normalized"] = json!(true);
+        }
+        let pacc = self.push("accessors", pacc);
+        let ib: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
+        let iview = self.view(&ib);
+        let iacc = self.push("accessors", json!({"bufferView": iview, "componentType": 5125, "count": indices.len(), "type": "SCALAR"}));
+        self.push(
+            "meshes",
+            json!({"name": name, "primitives": [{"attributes": {"POSITION": pacc}, "indices": iacc, "material": material}]}),
+        )
+    }
+
+    /// Adds a root node with a mesh and a TRS; returns its index.
+    pub fn node(&mut self, name: &str, mesh: usize, translation: [f64; 3], rotation: [f64; 4], scale: [f64; 3]) -> usize {
+        let n = self.push("nodes", json!({"name": name, "mesh": mesh, "translation": translation, "rotation": rotation, "scale": scale}));
+        self.json["scenes"][0]["nodes"].as_array_mut().expect("array").push(json!(n));
+        n
+    }
+
+    fn finish_buffers(&mut self, uri: Option<&str>) {
+        while self.bin.len() % 4 != 0 {
+            self.bin.push(0);
+        }
+        let mut b = json!({"byteLength": self.bin.len()});
+        if let Some(u) = uri {
+            b["uri"] = json!(u);
+        }
+        self.json["buffers"] = json!([b]);
+    }
+
+    /// The `.glb` bytes.
+    pub fn glb(mut self) -> Vec<u8> {
+        self.finish_buffers(None);
+        let mut json = serde_json::to_vec(&self.json).expect("json");
+        while json.len() % 4 != 0 {
+            json.push(b' ');
+        }
+        let mut out = b"glTF".to_vec();
+        out.extend(2u32.to_le_bytes());
+        out.extend(((12 + 8 + json.len() + 8 + self.bin.len()) as u32).to_le_bytes());
+        out.extend((json.len() as u32).to_le_bytes());
+        out.extend(0x4E4F534Au32.to_le_bytes());
+        out.extend(&json);
+        out.extend((self.bin.len() as u32).to_le_bytes());
+        out.extend(0x004E4942u32.to_le_bytes());
+        out.extend(&self.bin);
+        out
+    }
+
+    /// Writes `<dir>/<stem>.gltf` and `<dir>/<stem>.bin`; returns the `.gltf` path.
+    pub fn write_gltf(mut self, dir: &Path, stem: &str) -> PathBuf {
+        let bin_name = format!("{stem}.bin");
+        self.finish_buffers(Some(&bin_name));
+        std::fs::write(dir.join(&bin_name), &self.bin).expect("write bin");
+        let path = dir.join(format!("{stem}.gltf"));
+        std::fs::write(&path, serde_json::to_vec_pretty(&self.json).expect("json")).expect("write gltf");
+        path
+    }
+}
+
+/// A unit quad in the XZ plane facing +Y (two triangles, counter-clockwise from above).
+pub fn quad_xz(x0: f32, z0: f32, x1: f32, z1: f32, y: f32) -> (Vec<[f32; 3]>, Vec<u32>) {
+    (vec![[x0, y, z0], [x0, y, z1], [x1, y, z1], [x1, y, z0]], vec![0, 1, 2, 0, 2, 3])
+}
