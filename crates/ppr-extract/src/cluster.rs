@@ -17,10 +17,10 @@ use std::collections::VecDeque;
 use glam::DVec3;
 use ppr_format::ReflectorKind;
 
+use crate::SceneScale;
 use crate::int_hash::{IntMap, cell_of};
 use crate::plane::{Plane, PlaneAccumulator};
 use crate::select::Candidate;
-use crate::SceneScale;
 
 /// A connected planar region: candidate indices, all of one kind.
 #[derive(Clone, Debug, PartialEq)]
@@ -49,25 +49,34 @@ impl Connectivity {
         let gap = scale.gap.max(1e-15 * scale.diagonal);
         let (welded, weld_points) = weld(candidates, gap);
         let nv = weld_points.len();
-        let (vertex_offsets, vertex_items) = csr(nv, welded.iter().enumerate().flat_map(|(t, w)| w.map(|v| (v, t as u32))));
+        let (vertex_offsets, vertex_items) =
+            csr(nv, welded.iter().enumerate().flat_map(|(t, w)| w.map(|v| (v, t as u32))));
         let contacts = contacts(candidates, &welded, &weld_points, gap);
         let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(contacts.len() * 4);
         for (v, t) in contacts {
-            for &a in &vertex_items[vertex_offsets[v as usize] as usize..vertex_offsets[v as usize + 1] as usize] {
+            for &a in
+                &vertex_items[vertex_offsets[v as usize] as usize..vertex_offsets[v as usize + 1] as usize]
+            {
                 pairs.push((a, t));
                 pairs.push((t, a));
             }
         }
-        let (extra_offsets, extra_items) = csr(candidates.len(), pairs.into_iter().map(|(a, b)| (a, b)));
+        let (extra_offsets, extra_items) = csr(candidates.len(), pairs.into_iter());
         Self { welded, vertex_offsets, vertex_items, extra_offsets, extra_items }
     }
 
     /// Every candidate connected to `t` (may repeat).
     pub fn neighbours(&self, t: u32) -> impl Iterator<Item = u32> + '_ {
         let via_vertices = self.welded[t as usize].into_iter().flat_map(move |v| {
-            self.vertex_items[self.vertex_offsets[v as usize] as usize..self.vertex_offsets[v as usize + 1] as usize].iter().copied()
+            self.vertex_items
+                [self.vertex_offsets[v as usize] as usize..self.vertex_offsets[v as usize + 1] as usize]
+                .iter()
+                .copied()
         });
-        let extra = self.extra_items[self.extra_offsets[t as usize] as usize..self.extra_offsets[t as usize + 1] as usize].iter().copied();
+        let extra = self.extra_items
+            [self.extra_offsets[t as usize] as usize..self.extra_offsets[t as usize + 1] as usize]
+            .iter()
+            .copied();
         via_vertices.chain(extra)
     }
 }
@@ -150,7 +159,8 @@ fn contacts(candidates: &[Candidate], welded: &[[u32; 3]], points: &[DVec3], gap
     for (t, c) in candidates.iter().enumerate() {
         let lo = c.positions[0].min(c.positions[1]).min(c.positions[2]) - DVec3::splat(gap);
         let hi = c.positions[0].max(c.positions[1]).max(c.positions[2]) + DVec3::splat(gap);
-        let (l, h) = ([lo.x, lo.y, lo.z].map(|x| cell_of(x, cell)), [hi.x, hi.y, hi.z].map(|x| cell_of(x, cell)));
+        let (l, h) =
+            ([lo.x, lo.y, lo.z].map(|x| cell_of(x, cell)), [hi.x, hi.y, hi.z].map(|x| cell_of(x, cell)));
         let span = (h[0] - l[0] + 1) as f64 * (h[1] - l[1] + 1) as f64 * (h[2] - l[2] + 1) as f64;
         let mut test = |list: &Vec<u32>| {
             for &v in list {
@@ -158,7 +168,10 @@ fn contacts(candidates: &[Candidate], welded: &[[u32; 3]], points: &[DVec3], gap
                     continue;
                 }
                 let p = points[v as usize];
-                if p.cmpge(lo).all() && p.cmple(hi).all() && point_triangle_distance_sq(p, c.positions) <= gap * gap {
+                if p.cmpge(lo).all()
+                    && p.cmple(hi).all()
+                    && point_triangle_distance_sq(p, c.positions) <= gap * gap
+                {
                     out.push((v, t as u32));
                 }
             }
@@ -231,7 +244,9 @@ pub fn grow_regions(
 ) -> Vec<GrownRegion> {
     let n = candidates.len();
     let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_by(|&a, &b| candidates[b as usize].area.total_cmp(&candidates[a as usize].area).then(a.cmp(&b)));
+    order.sort_by(|&a, &b| {
+        candidates[b as usize].area.total_cmp(&candidates[a as usize].area).then(a.cmp(&b))
+    });
     let mut assigned = vec![false; n];
     let mut regions = Vec::new();
     let mut done = 0usize;
@@ -288,7 +303,8 @@ mod tests {
     #[test]
     fn point_triangle_distances() {
         let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        let check = |p: DVec3, d: f64| assert!((point_triangle_distance_sq(p, t).sqrt() - d).abs() < 1e-12, "{p:?}");
+        let check =
+            |p: DVec3, d: f64| assert!((point_triangle_distance_sq(p, t).sqrt() - d).abs() < 1e-12, "{p:?}");
         check(DVec3::new(0.2, 0.2, 3.0), 3.0);
         check(DVec3::new(-1.0, -1.0, 0.0), 2f64.sqrt());
         check(DVec3::new(0.5, -2.0, 0.0), 2.0);

@@ -42,7 +42,8 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     clock.start(Stage::Cluster);
     let conn = Connectivity::build(&selection.candidates, &scale);
     clock.report(Stage::Cluster, 0.4);
-    let grown = grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.6 * f));
+    let grown =
+        grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.6 * f));
     clock.finish(Stage::Cluster);
 
     clock.start(Stage::Regions);
@@ -68,7 +69,8 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
         warnings.push(Warning::DuplicateTriangles(fit_stats.duplicate_triangles));
     }
     if fit_stats.small_regions_dropped > 0 {
-        warnings.push(Warning::SmallRegions { count: fit_stats.small_regions_dropped, min_area: scale.min_area });
+        warnings
+            .push(Warning::SmallRegions { count: fit_stats.small_regions_dropped, min_area: scale.min_area });
     }
     if fit_stats.regions_split > 0 {
         warnings.push(Warning::Splits {
@@ -145,7 +147,8 @@ fn build_set(
             r.normal = normal;
             r.coverage = (s.area / rect_area).clamp(0.0, 1.0);
             r.source = ReflectorSource { nodes: s.nodes, materials: s.materials };
-            let vertices = s.polygons.iter().flat_map(|p| p.spatial.iter().map(|&v| v + scale.center)).collect();
+            let vertices =
+                s.polygons.iter().flat_map(|p| p.spatial.iter().map(|&v| v + scale.center)).collect();
             (r, vertices, hash)
         })
         .collect();
@@ -155,7 +158,12 @@ fn build_set(
             .cmp(&(b.0.kind as u8))
             .then(b.0.area().total_cmp(&a.0.area()))
             .then(a.2.cmp(&b.2))
-            .then(a.0.center.to_array().partial_cmp(&b.0.center.to_array()).unwrap_or(std::cmp::Ordering::Equal))
+            .then(
+                a.0.center
+                    .to_array()
+                    .partial_cmp(&b.0.center.to_array())
+                    .unwrap_or(std::cmp::Ordering::Equal),
+            )
     });
     let ids = dedupe_ids(&drafts.iter().map(|d| d.2).collect::<Vec<_>>());
     let normals: Vec<glam::DVec3> = drafts.iter().map(|d| d.0.normal).collect();

@@ -26,8 +26,15 @@ pub enum Stage {
 
 impl Stage {
     /// Every stage, in order.
-    pub const ALL: [Stage; 7] =
-        [Stage::Load, Stage::Select, Stage::Cluster, Stage::Regions, Stage::Fit, Stage::Occluders, Stage::Write];
+    pub const ALL: [Stage; 7] = [
+        Stage::Load,
+        Stage::Select,
+        Stage::Cluster,
+        Stage::Regions,
+        Stage::Fit,
+        Stage::Occluders,
+        Stage::Write,
+    ];
 
     /// Lower-case name for tables.
     pub fn name(self) -> &'static str {
@@ -87,7 +94,9 @@ impl std::fmt::Display for Warning {
                 "split {regions} non-convex regions into {extra_shapes} more rectangles: rectangle area {area_before:.3} → {area_after:.3} m² ({:.1}% less)",
                 100.0 * (1.0 - area_after / area_before.max(f64::MIN_POSITIVE))
             ),
-            Warning::NoCandidates => f.write_str("no candidate triangles (levels without meaningful materials need --all-planar)"),
+            Warning::NoCandidates => {
+                f.write_str("no candidate triangles (levels without meaningful materials need --all-planar)")
+            }
             Warning::Loader(s) => f.write_str(s),
         }
     }

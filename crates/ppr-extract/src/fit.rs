@@ -112,10 +112,16 @@ pub fn prepare_regions(
             let source = &level.sources[level.triangles[c.triangle as usize].source as usize];
             *node_area.entry(&source.node).or_default() += c.area;
             *material_area.entry(&level.materials[source.material as usize].name).or_default() += c.area;
-            polygons.push(Polygon { flat: c.positions.iter().map(|&p| plane.project(p)).collect(), spatial: c.positions.to_vec() });
+            polygons.push(Polygon {
+                flat: c.positions.iter().map(|&p| plane.project(p)).collect(),
+                spatial: c.positions.to_vec(),
+            });
         }
         let heaviest = |m: &BTreeMap<&str, f64>| {
-            m.iter().max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(a.0))).map(|(k, _)| (*k).to_owned()).unwrap_or_default()
+            m.iter()
+                .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(a.0)))
+                .map(|(k, _)| (*k).to_owned())
+                .unwrap_or_default()
         };
         out.push(PreparedRegion {
             kind: region.kind,

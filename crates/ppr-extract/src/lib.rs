@@ -31,6 +31,9 @@
 //! assert!((r.area() - 8.0).abs() < 1e-9 && r.normal.y > 0.999);
 //! ```
 
+// `!(x > 0.0)` is deliberate throughout: unlike `x <= 0.0` it also rejects NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod cluster;
 mod extract;
 mod extraction;

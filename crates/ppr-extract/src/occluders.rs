@@ -69,7 +69,8 @@ pub fn occluder_lists(shapes: &[Reflector], origin: DVec3, epsilon: f64, reach: 
 /// The `f32` box around `points` grown by `grow`, relative to `origin`, rounded outwards.
 fn outward_aabb(points: &[DVec3], grow: f64, origin: DVec3) -> Aabb {
     let lo = points.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p)) - origin - DVec3::splat(grow);
-    let hi = points.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) - origin + DVec3::splat(grow);
+    let hi =
+        points.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) - origin + DVec3::splat(grow);
     let down = |x: f64| {
         let f = x as f32;
         if f64::from(f) > x { f.next_down() } else { f }
@@ -99,7 +100,8 @@ pub fn may_occlude(a: &Reflector, b: &Reflector, epsilon: f64, reach: f64) -> bo
     }
     let front = clip_front(&corners, a, epsilon);
     let rect = a.corners();
-    let slack = 1e-9 * (reach + a.half_extents.length() + b.half_extents.length() + (a.center - b.center).length());
+    let slack =
+        1e-9 * (reach + a.half_extents.length() + b.half_extents.length() + (a.center - b.center).length());
     polygon_distance(&front, b.normal, &rect, a.normal) <= reach + slack
 }
 
@@ -149,7 +151,9 @@ fn point_polygon_distance(x: DVec3, poly: &[DVec3], n: DVec3) -> f64 {
             return (x - poly[0]).dot(n).abs();
         }
     }
-    (0..poly.len()).map(|i| segment_distance(x, x, poly[i], poly[(i + 1) % poly.len()])).fold(f64::INFINITY, f64::min)
+    (0..poly.len())
+        .map(|i| segment_distance(x, x, poly[i], poly[(i + 1) % poly.len()]))
+        .fold(f64::INFINITY, f64::min)
 }
 
 /// Distance between segments `p1 p2` and `q1 q2` (Ericson, 5.1.9; points allowed).
@@ -220,7 +224,11 @@ mod tests {
     fn simple_cases() {
         let floor = shape(DVec3::ZERO, DQuat::IDENTITY, DVec2::new(2.0, 2.0));
         let shelf = shape(DVec3::new(0.0, 1.0, 0.0), DQuat::IDENTITY, DVec2::new(0.5, 0.5));
-        let wall = shape(DVec3::new(0.0, 1.0, -2.0), DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2), DVec2::new(2.0, 1.0));
+        let wall = shape(
+            DVec3::new(0.0, 1.0, -2.0),
+            DQuat::from_rotation_x(std::f64::consts::FRAC_PI_2),
+            DVec2::new(2.0, 1.0),
+        );
         let below = shape(DVec3::new(0.0, -1.0, 0.0), DQuat::IDENTITY, DVec2::ONE);
         let beside = shape(DVec3::new(4.5, 0.0, 0.0), DQuat::IDENTITY, DVec2::ONE);
         let far = shape(DVec3::new(0.0, 10.0, 0.0), DQuat::IDENTITY, DVec2::ONE);

@@ -68,7 +68,9 @@ impl Default for ExtractParams {
             max_roughness: 0.3,
             min_metallic: 0.8,
             metallic_max_roughness: 0.5,
-            name_patterns: ["mirror", "glass", "water", "puddle", "chrome", "polished"].map(String::from).to_vec(),
+            name_patterns: ["mirror", "glass", "water", "puddle", "chrome", "polished"]
+                .map(String::from)
+                .to_vec(),
             water_patterns: vec!["water".into()],
             transparent_patterns: vec!["glass".into(), "window".into()],
             angle_tolerance_deg: 1.0,
@@ -121,11 +123,15 @@ impl ExtractParams {
         if !(self.angle_tolerance_deg < 90.0) {
             return Err(format!("angle_tolerance_deg must be below 90, not {}", self.angle_tolerance_deg));
         }
-        for (name, v) in [("min_area_relative", Some(self.min_area_relative)), ("min_area_m2", self.min_area_m2), ("reach_m", self.reach_m)] {
-            if let Some(v) = v {
-                if !(v.is_finite() && v >= 0.0) {
-                    return Err(format!("{name} must be finite and not negative, not {v}"));
-                }
+        for (name, v) in [
+            ("min_area_relative", Some(self.min_area_relative)),
+            ("min_area_m2", self.min_area_m2),
+            ("reach_m", self.reach_m),
+        ] {
+            if let Some(v) = v
+                && !(v.is_finite() && v >= 0.0)
+            {
+                return Err(format!("{name} must be finite and not negative, not {v}"));
             }
         }
         if !(self.split_min_gain.is_finite() && self.split_min_gain > 0.0) {

@@ -72,7 +72,14 @@ pub struct PlaneAccumulator {
 impl PlaneAccumulator {
     /// An empty accumulator; `origin` should be near the triangles (e.g. the first one).
     pub fn new(origin: DVec3) -> Self {
-        Self { origin, area: 0.0, first: DVec3::ZERO, second: DMat3::ZERO, winding: DVec3::ZERO, winding_abs: 0.0 }
+        Self {
+            origin,
+            area: 0.0,
+            first: DVec3::ZERO,
+            second: DMat3::ZERO,
+            winding: DVec3::ZERO,
+            winding_abs: 0.0,
+        }
     }
 
     /// Total area added so far.
@@ -138,15 +145,15 @@ pub fn smallest_eigenvector(m: DMat3) -> DVec3 {
             let c = 1.0 / (t * t + 1.0).sqrt();
             let s = t * c;
             // A ← Jᵀ A J with J the rotation in the (p, q) plane.
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - s * akq;
-                a[k][q] = s * akp + c * akq;
+            for row in &mut a {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - s * akq;
+                row[q] = s * akp + c * akq;
             }
+            let (row_p, row_q) = (a[p], a[q]);
             for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - s * aqk;
-                a[q][k] = s * apk + c * aqk;
+                a[p][k] = c * row_p[k] - s * row_q[k];
+                a[q][k] = s * row_p[k] + c * row_q[k];
             }
             for row in &mut v {
                 let (vp, vq) = (row[p], row[q]);

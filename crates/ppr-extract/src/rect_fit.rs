@@ -93,7 +93,9 @@ fn calipers_best_axis(hull: &[DVec2]) -> DVec2 {
     let e0 = edge(0);
     let n0 = e0.perp();
     // Initial extremes for edge 0: max along e, max along n (height), min along e.
-    let argbest = |f: &dyn Fn(DVec2) -> f64| (0..n).max_by(|&a, &b| f(hull[a]).total_cmp(&f(hull[b])).then(b.cmp(&a))).unwrap_or(0);
+    let argbest = |f: &dyn Fn(DVec2) -> f64| {
+        (0..n).max_by(|&a, &b| f(hull[a]).total_cmp(&f(hull[b])).then(b.cmp(&a))).unwrap_or(0)
+    };
     let mut j = argbest(&|p| p.dot(e0));
     let mut k = argbest(&|p| p.dot(n0));
     let mut l = argbest(&|p| -p.dot(e0));
@@ -130,7 +132,8 @@ mod tests {
     fn brute_force_min_area(points: &[DVec2]) -> f64 {
         let hull = convex_hull(points);
         let mut best = f64::INFINITY;
-        let mut dirs: Vec<DVec2> = (0..hull.len()).map(|i| (hull[(i + 1) % hull.len()] - hull[i]).normalize()).collect();
+        let mut dirs: Vec<DVec2> =
+            (0..hull.len()).map(|i| (hull[(i + 1) % hull.len()] - hull[i]).normalize()).collect();
         dirs.extend((0..3600).map(|k| DVec2::from_angle(k as f64 * std::f64::consts::PI / 7200.0)));
         for d in dirs {
             if d.is_finite() {
@@ -169,7 +172,11 @@ mod tests {
                 let pts = rect_points(angle, w, h, c);
                 let r = min_area_rect(&pts).unwrap();
                 let truth = 4.0 * w * h;
-                assert!((r.area() - truth).abs() <= 1e-6 * truth, "angle {angle} {w}x{h}: {} vs {truth}", r.area());
+                assert!(
+                    (r.area() - truth).abs() <= 1e-6 * truth,
+                    "angle {angle} {w}x{h}: {} vs {truth}",
+                    r.area()
+                );
                 for p in &pts {
                     assert!(r.contains(*p, 1e-9 * (w + h + c.length())));
                 }

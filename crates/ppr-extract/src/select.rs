@@ -51,7 +51,11 @@ pub struct Selection {
 }
 
 /// The kind a source's triangles would give, or `None` when they are not candidates.
-pub fn classify(source: &TriangleSource, material: &MaterialInfo, params: &ExtractParams) -> Option<ReflectorKind> {
+pub fn classify(
+    source: &TriangleSource,
+    material: &MaterialInfo,
+    params: &ExtractParams,
+) -> Option<ReflectorKind> {
     let over = source.node_extras.or(source.mesh_extras).or(material.extras);
     let names = [material.name.to_lowercase(), source.mesh.to_lowercase(), source.node.to_lowercase()];
     let named = |patterns: &[String]| {
@@ -61,7 +65,8 @@ pub fn classify(source: &TriangleSource, material: &MaterialInfo, params: &Extra
         CandidateRule::AllPlanar => true,
         CandidateRule::Materials => {
             material.roughness <= params.max_roughness
-                || (material.metallic >= params.min_metallic && material.roughness <= params.metallic_max_roughness)
+                || (material.metallic >= params.min_metallic
+                    && material.roughness <= params.metallic_max_roughness)
                 || material.transmission > 0.0
                 || (material.clearcoat >= 0.5 && material.clearcoat_roughness <= params.max_roughness)
                 || named(&params.name_patterns)
@@ -81,11 +86,8 @@ pub fn classify(source: &TriangleSource, material: &MaterialInfo, params: &Extra
 
 /// Picks the candidate triangles of `level`.
 pub fn select(level: &Level, params: &ExtractParams, scale: &SceneScale) -> Selection {
-    let kinds: Vec<Option<ReflectorKind>> = level
-        .sources
-        .iter()
-        .map(|s| classify(s, &level.materials[s.material as usize], params))
-        .collect();
+    let kinds: Vec<Option<ReflectorKind>> =
+        level.sources.iter().map(|s| classify(s, &level.materials[s.material as usize], params)).collect();
     let mut out = Selection::default();
     let tiny_edge = 1e-9 * scale.diagonal;
     for (i, t) in level.triangles.iter().enumerate() {
@@ -116,14 +118,25 @@ mod tests {
     use crate::level::ReflectorOverride;
 
     fn source(node: &str, node_extras: ReflectorOverride) -> TriangleSource {
-        TriangleSource { node: node.into(), mesh: "m".into(), material: 0, node_extras, mesh_extras: ReflectorOverride::default() }
+        TriangleSource {
+            node: node.into(),
+            mesh: "m".into(),
+            material: 0,
+            node_extras,
+            mesh_extras: ReflectorOverride::default(),
+        }
     }
 
     fn material(name: &str, roughness: f64, metallic: f64, transmission: f64) -> MaterialInfo {
         MaterialInfo { name: name.into(), roughness, metallic, transmission, ..MaterialInfo::gltf_default() }
     }
 
-    fn check(src: TriangleSource, mat: MaterialInfo, params: &ExtractParams, expected: Option<ReflectorKind>) {
+    fn check(
+        src: TriangleSource,
+        mat: MaterialInfo,
+        params: &ExtractParams,
+        expected: Option<ReflectorKind>,
+    ) {
         assert_eq!(classify(&src, &mat, params), expected, "{src:?} {mat:?}");
     }
 
@@ -161,7 +174,8 @@ mod tests {
         let collinear = [DVec3::ZERO, DVec3::X, DVec3::X * 2.0];
         let point = [DVec3::ONE; 3];
         let sliver = [DVec3::ZERO, DVec3::X * 10.0, DVec3::new(5.0, 0.0, 1e-3)];
-        let level = Level::from_triangles("t", &[good, collinear, point, sliver], material("m", 0.0, 0.0, 0.0));
+        let level =
+            Level::from_triangles("t", &[good, collinear, point, sliver], material("m", 0.0, 0.0, 0.0));
         let p = ExtractParams::default();
         let s = select(&level, &p, &SceneScale::new(&level, &p));
         assert_eq!(s.degenerate, 2);

@@ -63,7 +63,9 @@ pub fn split_region(piece: Piece, s: &SplitSettings) -> Vec<Piece> {
             None => done.push(p),
         }
     }
-    done.sort_by(|a, b| b.rect.area().total_cmp(&a.rect.area()).then(a.rect.center.x.total_cmp(&b.rect.center.x)));
+    done.sort_by(|a, b| {
+        b.rect.area().total_cmp(&a.rect.area()).then(a.rect.center.x.total_cmp(&b.rect.center.x))
+    });
     done
 }
 
@@ -99,7 +101,9 @@ fn try_split(p: &Piece, s: &SplitSettings, budget: usize) -> Option<Vec<Piece>> 
         }
         let total: f64 = parts.iter().map(|q| q.rect.area()).sum();
         let gain = parent - total;
-        if gain >= s.min_gain * parent * (parts.len() - 1) as f64 && best.as_ref().is_none_or(|(t, _)| total < *t) {
+        if gain >= s.min_gain * parent * (parts.len() - 1) as f64
+            && best.as_ref().is_none_or(|(t, _)| total < *t)
+        {
             best = Some((total, parts));
         }
     }
@@ -169,16 +173,23 @@ impl OccupancyGrid {
             // Local coordinates with the rectangle's corner at the origin.
             let flat: Vec<DVec2> = poly.flat.iter().map(|&q| rect.local(q) + rect.half).collect();
             let local = Polygon { flat, spatial: poly.spatial.clone() };
-            let (lo, hi) = local.flat.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
+            let (lo, hi) = local
+                .flat
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
             let j_lo = grid.row_of(lo - eps);
             let j_hi = grid.row_of(hi + eps);
             for j in j_lo..=j_hi {
                 let y0 = j as f64 * cell.y - eps;
                 let y1 = (j + 1) as f64 * cell.y + eps;
-                let Some(strip) = local.clip(DVec2::Y, y0, false).and_then(|q| q.clip(DVec2::Y, y1, true)) else {
+                let Some(strip) = local.clip(DVec2::Y, y0, false).and_then(|q| q.clip(DVec2::Y, y1, true))
+                else {
                     continue;
                 };
-                let (xl, xh) = strip.flat.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.x), h.max(q.x)));
+                let (xl, xh) = strip
+                    .flat
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.x), h.max(q.x)));
                 for i in grid.col_of(xl - eps)..=grid.col_of(xh + eps) {
                     grid.occupied[j * nu + i] = true;
                 }
@@ -282,7 +293,14 @@ fn clip_local(poly: &Polygon, rect: &Rect2, axis: usize, limit: f64, below: bool
 
 /// The largest (`below`) or smallest local coordinate along `axis` of the geometry that lies
 /// on that side of `cut`, within the open window `other` on the other axis.
-fn extreme(polygons: &[Polygon], rect: &Rect2, axis: usize, other: (f64, f64), cut: f64, below: bool) -> Option<f64> {
+fn extreme(
+    polygons: &[Polygon],
+    rect: &Rect2,
+    axis: usize,
+    other: (f64, f64),
+    cut: f64,
+    below: bool,
+) -> Option<f64> {
     let eps = 1e-9 * (rect.half.x + rect.half.y);
     let mut best: Option<f64> = None;
     for poly in polygons {
@@ -322,9 +340,13 @@ mod tests {
         let rot = DVec2::from_angle(angle);
         let mut polys = Vec::new();
         for &(x, y) in cells {
-            let c = [(0, 0), (1, 0), (1, 1), (0, 1)].map(|(dx, dy)| rot.rotate(DVec2::new((x + dx) as f64, (y + dy) as f64)));
+            let c = [(0, 0), (1, 0), (1, 1), (0, 1)]
+                .map(|(dx, dy)| rot.rotate(DVec2::new((x + dx) as f64, (y + dy) as f64)));
             for tri in [[c[0], c[1], c[2]], [c[0], c[2], c[3]]] {
-                polys.push(Polygon { flat: tri.to_vec(), spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect() });
+                polys.push(Polygon {
+                    flat: tri.to_vec(),
+                    spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect(),
+                });
             }
         }
         Piece::new(polys).unwrap()
@@ -344,7 +366,10 @@ mod tests {
             let covered: f64 = pieces.iter().map(|q| q.area).sum();
             assert!((covered - p.area).abs() < 1e-9 * p.area, "area lost: {covered} vs {}", p.area);
             let total: f64 = pieces.iter().map(|q| q.rect.area()).sum();
-            assert!((total - expected_total).abs() < 1e-6 * p.area, "rectangle area {total}, expected {expected_total}");
+            assert!(
+                (total - expected_total).abs() < 1e-6 * p.area,
+                "rectangle area {total}, expected {expected_total}"
+            );
             for q in &pieces {
                 for poly in &q.polygons {
                     for v in &poly.flat {
@@ -359,10 +384,13 @@ mod tests {
     fn splits_l_u_and_ring_shapes_into_tight_rectangles() {
         let l: Vec<(i32, i32)> = (0..4).map(|x| (x, 0)).chain((1..4).map(|y| (0, y))).collect();
         check(&l, 2, 7.0);
-        let u: Vec<(i32, i32)> = (0..5).map(|x| (x, 0)).chain((1..4).flat_map(|y| [(0, y), (4, y)])).collect();
+        let u: Vec<(i32, i32)> =
+            (0..5).map(|x| (x, 0)).chain((1..4).flat_map(|y| [(0, y), (4, y)])).collect();
         check(&u, 3, 11.0);
-        let ring: Vec<(i32, i32)> =
-            (0..6).flat_map(|x| (0..6).map(move |y| (x, y))).filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y)).collect();
+        let ring: Vec<(i32, i32)> = (0..6)
+            .flat_map(|x| (0..6).map(move |y| (x, y)))
+            .filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y))
+            .collect();
         check(&ring, 4, 20.0);
         let full: Vec<(i32, i32)> = (0..3).flat_map(|x| (0..2).map(move |y| (x, y))).collect();
         check(&full, 1, 6.0);
@@ -371,14 +399,17 @@ mod tests {
     #[test]
     fn small_notches_are_not_worth_a_shape() {
         // A 10×10 square missing one corner cell: 1% waste.
-        let cells: Vec<(i32, i32)> = (0..10).flat_map(|x| (0..10).map(move |y| (x, y))).filter(|&c| c != (9, 9)).collect();
+        let cells: Vec<(i32, i32)> =
+            (0..10).flat_map(|x| (0..10).map(move |y| (x, y))).filter(|&c| c != (9, 9)).collect();
         check(&cells, 1, 100.0);
     }
 
     #[test]
     fn respects_the_shape_budget() {
-        let ring: Vec<(i32, i32)> =
-            (0..6).flat_map(|x| (0..6).map(move |y| (x, y))).filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y)).collect();
+        let ring: Vec<(i32, i32)> = (0..6)
+            .flat_map(|x| (0..6).map(move |y| (x, y)))
+            .filter(|&(x, y)| !(1..5).contains(&x) || !(1..5).contains(&y))
+            .collect();
         let s = SplitSettings { max_pieces: 3, ..settings() };
         let pieces = split_region(region(&ring, 0.0), &s);
         assert!(pieces.len() <= 3, "{}", pieces.len());

@@ -71,7 +71,14 @@ mod tests {
     use super::*;
 
     fn content(center: DVec3) -> IdContent<'static> {
-        IdContent { kind: ReflectorKind::Opaque, normal: DVec3::Y, center, diagonal: 10.0, node: "Floor", material: "Marble" }
+        IdContent {
+            kind: ReflectorKind::Opaque,
+            normal: DVec3::Y,
+            center,
+            diagonal: 10.0,
+            node: "Floor",
+            material: "Marble",
+        }
     }
 
     #[test]

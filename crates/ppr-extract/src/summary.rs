@@ -14,8 +14,10 @@ pub fn summary_table(x: &Extraction, timings: &[(Stage, Duration)]) -> String {
     let rs = &x.set.reflectors;
     let count = |k: ReflectorKind| rs.iter().filter(|r| r.kind == k).count();
     let area: f64 = rs.iter().map(|r| r.area()).fold(0.0, |a, b| a + b);
-    let mean_cov = if rs.is_empty() { 0.0 } else { rs.iter().map(|r| r.coverage).sum::<f64>() / rs.len() as f64 };
-    let weighted_cov = if area > 0.0 { rs.iter().map(|r| r.coverage * r.area()).sum::<f64>() / area } else { 0.0 };
+    let mean_cov =
+        if rs.is_empty() { 0.0 } else { rs.iter().map(|r| r.coverage).sum::<f64>() / rs.len() as f64 };
+    let weighted_cov =
+        if area > 0.0 { rs.iter().map(|r| r.coverage * r.area()).sum::<f64>() / area } else { 0.0 };
     let st = &x.stats;
     let degenerate = x
         .warnings
@@ -39,12 +41,17 @@ pub fn summary_table(x: &Extraction, timings: &[(Stage, Duration)]) -> String {
         "triangles         {:>10}   (candidates {}, degenerate skipped {degenerate})",
         st.triangles, st.candidates
     );
-    let _ = writeln!(s, "regions           {:>10}   (kept {}, level diagonal {:.3} m)", st.regions, st.regions_kept, st.diagonal);
+    let _ = writeln!(
+        s,
+        "regions           {:>10}   (kept {}, level diagonal {:.3} m)",
+        st.regions, st.regions_kept, st.diagonal
+    );
     let _ = writeln!(s);
     let _ = writeln!(s, "stage          time (ms)    triangles/s");
     let mut total = Duration::ZERO;
     for stage in Stage::ALL {
-        let Some(d) = timings.iter().filter(|(t, _)| *t == stage).map(|(_, d)| *d).reduce(|a, b| a + b) else {
+        let Some(d) = timings.iter().filter(|(t, _)| *t == stage).map(|(_, d)| *d).reduce(|a, b| a + b)
+        else {
             continue;
         };
         total += d;

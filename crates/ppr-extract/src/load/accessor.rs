@@ -105,7 +105,10 @@ pub(crate) fn read_accessor(
             return Err(LoadError::BadAccessor {
                 path: path.to_owned(),
                 field,
-                reason: format!("byteStride {stride} of bufferViews[{}] is smaller than an element ({elem_size} bytes)", view.index()),
+                reason: format!(
+                    "byteStride {stride} of bufferViews[{}] is smaller than an element ({elem_size} bytes)",
+                    view.index()
+                ),
             });
         }
         if count > 0 {

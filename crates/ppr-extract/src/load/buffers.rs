@@ -46,13 +46,13 @@ impl BufferData {
                 },
                 gltf::buffer::Source::Uri(uri) => Some(read_uri(path, index, uri, base_dir)?),
             };
-            if let Some(data) = &data {
-                if data.len() < declared {
-                    return Err(bad(format!(
-                        "byteLength is {declared} but only {} bytes are there (truncated?)",
-                        data.len()
-                    )));
-                }
+            if let Some(data) = &data
+                && data.len() < declared
+            {
+                return Err(bad(format!(
+                    "byteLength is {declared} but only {} bytes are there (truncated?)",
+                    data.len()
+                )));
             }
             buffers.push(data);
         }
@@ -67,7 +67,8 @@ impl BufferData {
     }
 
     fn buffer(&self, index: usize) -> Result<&[u8], LoadError> {
-        let bad = |reason: &str| LoadError::BadBuffer { path: self.path.clone(), index, reason: reason.into() };
+        let bad =
+            |reason: &str| LoadError::BadBuffer { path: self.path.clone(), index, reason: reason.into() };
         match self.buffers.get(index) {
             Some(Some(b)) => Ok(b),
             Some(None) => Err(bad("has no data (EXT_meshopt_compression fallback) but is read directly")),
@@ -127,12 +128,13 @@ fn percent_decode(uri: &str) -> String {
     let mut i = 0;
     while i < bytes.len() {
         let hex = |b: u8| (b as char).to_digit(16);
-        if bytes[i] == b'%' && i + 2 < bytes.len() {
-            if let (Some(h), Some(l)) = (hex(bytes[i + 1]), hex(bytes[i + 2])) {
-                out.push((h * 16 + l) as u8);
-                i += 3;
-                continue;
-            }
+        if bytes[i] == b'%'
+            && i + 2 < bytes.len()
+            && let (Some(h), Some(l)) = (hex(bytes[i + 1]), hex(bytes[i + 2]))
+        {
+            out.push((h * 16 + l) as u8);
+            i += 3;
+            continue;
         }
         out.push(bytes[i]);
         i += 1;

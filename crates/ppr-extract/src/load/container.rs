@@ -19,7 +19,8 @@ pub(crate) fn split_container<'a>(path: &Path, bytes: &'a [u8]) -> Result<Contai
     if bytes.starts_with(GLB_MAGIC) {
         return split_glb(path, bytes);
     }
-    let first = bytes.iter().copied().find(|b| !b.is_ascii_whitespace() && *b != 0xEF && *b != 0xBB && *b != 0xBF);
+    let first =
+        bytes.iter().copied().find(|b| !b.is_ascii_whitespace() && *b != 0xEF && *b != 0xBB && *b != 0xBF);
     if first != Some(b'{') {
         let reason = if bytes.is_empty() {
             "the file is empty".to_owned()
@@ -49,7 +50,10 @@ fn split_glb<'a>(path: &Path, bytes: &'a [u8]) -> Result<Container<'a>, LoadErro
     }
     let declared = word(8).unwrap_or(0) as usize;
     if declared > bytes.len() {
-        return Err(truncated(format!("the header declares {declared} bytes but the file has {}", bytes.len())));
+        return Err(truncated(format!(
+            "the header declares {declared} bytes but the file has {}",
+            bytes.len()
+        )));
     }
     let body = &bytes[..declared];
     let mut at = 12;

@@ -15,7 +15,8 @@ pub(crate) fn read_override(
     extras: &gltf::json::Extras,
 ) -> Result<ReflectorOverride, LoadError> {
     let Some(raw) = extras else { return Ok(ReflectorOverride::default()) };
-    let bad = |reason: String| LoadError::BadExtras { path: path.to_owned(), owner: owner.to_owned(), reason };
+    let bad =
+        |reason: String| LoadError::BadExtras { path: path.to_owned(), owner: owner.to_owned(), reason };
     let value: serde_json::Value =
         serde_json::from_str(raw.get()).map_err(|e| bad(format!("extras are not JSON: {e}")))?;
     let Some(ppr) = value.get("ppr") else { return Ok(ReflectorOverride::default()) };
@@ -24,7 +25,9 @@ pub(crate) fn read_override(
     for (key, v) in obj {
         match key.as_str() {
             "reflector" => {
-                out.reflector = Some(v.as_bool().ok_or_else(|| bad(format!("`reflector` must be true or false, not {v}")))?)
+                out.reflector = Some(
+                    v.as_bool().ok_or_else(|| bad(format!("`reflector` must be true or false, not {v}")))?,
+                )
             }
             "kind" => {
                 let s = v.as_str().ok_or_else(|| bad(format!("`kind` must be a string, not {v}")))?;
@@ -89,7 +92,10 @@ mod tests {
         let none = ReflectorOverride::default();
         check("{}", Ok(none));
         check(r#"{"other": 1}"#, Ok(none));
-        check(r#"{"ppr": {"reflector": false}}"#, Ok(ReflectorOverride { reflector: Some(false), kind: None }));
+        check(
+            r#"{"ppr": {"reflector": false}}"#,
+            Ok(ReflectorOverride { reflector: Some(false), kind: None }),
+        );
         check(
             r#"{"ppr": {"reflector": true, "kind": "water"}}"#,
             Ok(ReflectorOverride { reflector: Some(true), kind: Some(ReflectorKind::Water) }),

@@ -31,14 +31,19 @@ pub(crate) fn decode_meshopt_view<'a>(
             data.len()
         ))
     })?;
-    let size = count.checked_mul(stride).filter(|&s| s <= 1 << 31).ok_or_else(|| fail("count × byteStride is too large".into()))?;
+    let size = count
+        .checked_mul(stride)
+        .filter(|&s| s <= 1 << 31)
+        .ok_or_else(|| fail("count × byteStride is too large".into()))?;
     // u32 storage keeps the output 4-byte aligned, as the filters require.
     let mut words = vec![0u32; size.div_ceil(4)];
     let dst = words.as_mut_ptr().cast::<std::ffi::c_void>();
     let code = match mode {
         "ATTRIBUTES" => {
             if stride % 4 != 0 || stride > 256 || stride == 0 {
-                return Err(fail(format!("ATTRIBUTES byteStride {stride} is not a multiple of 4 in 4..=256")));
+                return Err(fail(format!(
+                    "ATTRIBUTES byteStride {stride} is not a multiple of 4 in 4..=256"
+                )));
             }
             // SAFETY: `dst` holds `count * stride` bytes; the decoder reads `src.len()` bytes of `src`.
             unsafe { meshopt::ffi::meshopt_decodeVertexBuffer(dst, count, stride, src.as_ptr(), src.len()) }
@@ -62,7 +67,9 @@ pub(crate) fn decode_meshopt_view<'a>(
         other => return Err(fail(format!("unknown mode `{other}`"))),
     };
     if code != 0 {
-        return Err(fail(format!("the {mode} decoder refused the data (code {code}); corrupted or truncated")));
+        return Err(fail(format!(
+            "the {mode} decoder refused the data (code {code}); corrupted or truncated"
+        )));
     }
     match (filter, mode) {
         ("NONE", _) => {}
@@ -82,7 +89,9 @@ pub(crate) fn decode_meshopt_view<'a>(
             // SAFETY: as above.
             unsafe { meshopt::ffi::meshopt_decodeFilterColor(dst, count, stride) }
         }
-        (f, m) => return Err(fail(format!("filter `{f}` is not valid for mode {m} with byteStride {stride}"))),
+        (f, m) => {
+            return Err(fail(format!("filter `{f}` is not valid for mode {m} with byteStride {stride}")));
+        }
     }
     let mut bytes: Vec<u8> = words.iter().flat_map(|w| w.to_ne_bytes()).collect();
     bytes.truncate(size);
@@ -100,7 +109,10 @@ mod tests {
         let ext = serde_json::json!({"buffer": 0, "byteLength": encoded.len(), "byteStride": 12, "count": 100, "mode": "ATTRIBUTES"});
         let bytes = decode_meshopt_view(Path::new("m.glb"), 0, &ext, |_| Ok(&encoded[..])).unwrap();
         assert_eq!(bytes.len(), 1200);
-        assert_eq!(&bytes[12..24], [1.0f32, 2.0, 0.5].iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<_>>());
+        assert_eq!(
+            &bytes[12..24],
+            [1.0f32, 2.0, 0.5].iter().flat_map(|f| f.to_le_bytes()).collect::<Vec<_>>()
+        );
 
         let indices: Vec<u32> = vec![0, 1, 2, 2, 1, 3, 3, 1, 4];
         let encoded = meshopt::encode_index_buffer(&indices, 5).unwrap();

@@ -21,7 +21,8 @@ pub use error::LoadError;
 use crate::level::Level;
 
 /// Extensions that change how geometry is stored and that this build decodes.
-const GEOMETRY_EXTENSIONS: &[&str] = &["KHR_mesh_quantization", "EXT_meshopt_compression", "EXT_mesh_gpu_instancing"];
+const GEOMETRY_EXTENSIONS: &[&str] =
+    &["KHR_mesh_quantization", "EXT_meshopt_compression", "EXT_mesh_gpu_instancing"];
 
 /// Extensions that only concern shading, textures, lights or metadata: geometry reads the same.
 const HARMLESS_EXTENSIONS: &[&str] = &[
@@ -37,7 +38,9 @@ const HARMLESS_EXTENSIONS: &[&str] = &[
 
 /// Whether this build can read a level that requires `name`.
 pub fn can_read_extension(name: &str) -> bool {
-    GEOMETRY_EXTENSIONS.contains(&name) || HARMLESS_EXTENSIONS.contains(&name) || name.starts_with("KHR_materials_")
+    GEOMETRY_EXTENSIONS.contains(&name)
+        || HARMLESS_EXTENSIONS.contains(&name)
+        || name.starts_with("KHR_materials_")
 }
 
 /// Reads and flattens the level at `path`.
@@ -86,7 +89,11 @@ fn parse_json(path: &Path, json: &[u8]) -> Result<gltf::json::Root, LoadError> {
             Category::Syntax | Category::Eof | Category::Io => {
                 LoadError::NotGltf { path: path.to_owned(), reason: format!("the JSON does not parse: {e}") }
             }
-            Category::Data => LoadError::Invalid { path: path.to_owned(), field: "(document)".into(), reason: e.to_string() },
+            Category::Data => LoadError::Invalid {
+                path: path.to_owned(),
+                field: "(document)".into(),
+                reason: e.to_string(),
+            },
         }
     })
 }
@@ -106,7 +113,11 @@ fn validate(path: &Path, root: &gltf::json::Root) -> Result<(), LoadError> {
                     return Err(LoadError::Invalid {
                         path: path.to_owned(),
                         field: format!("meshes[{m}].primitives[{p}].attributes.{name}"),
-                        reason: format!("accessor {} does not exist ({} accessors)", index.value(), root.accessors.len()),
+                        reason: format!(
+                            "accessor {} does not exist ({} accessors)",
+                            index.value(),
+                            root.accessors.len()
+                        ),
                     });
                 }
             }
@@ -120,6 +131,8 @@ fn validate(path: &Path, root: &gltf::json::Root) -> Result<(), LoadError> {
     });
     match first {
         None => Ok(()),
-        Some((field, e)) => Err(LoadError::Invalid { path: path.to_owned(), field, reason: e.to_string().to_lowercase() }),
+        Some((field, e)) => {
+            Err(LoadError::Invalid { path: path.to_owned(), field, reason: e.to_string().to_lowercase() })
+        }
     }
 }

@@ -14,12 +14,15 @@ use super::buffers::BufferData;
 use super::materials::{display_name, read_override};
 use crate::level::{Level, LevelTriangle, TriangleSource};
 
+/// Per vertex, the (joint, weight) pairs of a skinned primitive.
+type SkinWeights = Vec<Vec<(usize, f64)>>;
+
 /// One primitive's geometry in its mesh's space, shared by every instance.
 struct PrimitiveGeometry {
     positions: Vec<DVec3>,
     triangles: Vec<[u32; 3]>,
     /// Per vertex, (joint, weight) pairs when the primitive is skinned.
-    skin: Option<Vec<Vec<(usize, f64)>>>,
+    skin: Option<SkinWeights>,
 }
 
 /// Everything needed to flatten the scene.
@@ -48,16 +51,22 @@ impl SceneReader<'_> {
         while let Some(i) = stack.pop() {
             visits += 1;
             if visits > 1_000_000 {
-                return Err(self.invalid("nodes", "the node hierarchy is too deep or shared too often".into()));
+                return Err(
+                    self.invalid("nodes", "the node hierarchy is too deep or shared too often".into())
+                );
             }
             let node = &nodes[i];
             stack.extend(node.children().map(|c| c.index()).collect::<Vec<_>>().into_iter().rev());
             let Some(mesh) = node.mesh() else { continue };
             let node_name = display_name(node.name(), i);
-            let node_extras = read_override(self.path, &format!("nodes[{i}] ({node_name:?})"), node.extras())?;
+            let node_extras =
+                read_override(self.path, &format!("nodes[{i}] ({node_name:?})"), node.extras())?;
             let mesh_name = display_name(mesh.name(), mesh.index());
-            let mesh_extras =
-                read_override(self.path, &format!("meshes[{}] ({mesh_name:?})", mesh.index()), mesh.extras())?;
+            let mesh_extras = read_override(
+                self.path,
+                &format!("meshes[{}] ({mesh_name:?})", mesh.index()),
+                mesh.extras(),
+            )?;
             let instances = self.instances(node, worlds[i])?;
             for prim in mesh.primitives() {
                 let geometry = match cache.get(&(mesh.index(), prim.index())) {
@@ -112,7 +121,8 @@ impl SceneReader<'_> {
                     continue;
                 }
                 if state[i] == 1 {
-                    return Err(self.invalid(&format!("nodes[{i}].children"), "the node hierarchy has a cycle".into()));
+                    return Err(self
+                        .invalid(&format!("nodes[{i}].children"), "the node hierarchy has a cycle".into()));
                 }
                 if state[i] == 2 {
                     continue; // a node with two parents: keep its first world matrix
@@ -130,7 +140,10 @@ impl SceneReader<'_> {
                 stack.push((i, parent, true));
                 for c in nodes[i].children() {
                     if state[c.index()] == 1 {
-                        return Err(self.invalid(&format!("nodes[{i}].children"), "the node hierarchy has a cycle".into()));
+                        return Err(self.invalid(
+                            &format!("nodes[{i}].children"),
+                            "the node hierarchy has a cycle".into(),
+                        ));
                     }
                     stack.push((c.index(), world[i], false));
                 }
@@ -139,7 +152,9 @@ impl SceneReader<'_> {
         if let Some(i) = state.iter().position(|&s| s == 0) {
             // Every node of a cycle has a parent, so no root reaches it.
             if nodes[i].children().next().is_some() {
-                return Err(self.invalid(&format!("nodes[{i}].children"), "the node hierarchy has a cycle".into()));
+                return Err(
+                    self.invalid(&format!("nodes[{i}].children"), "the node hierarchy has a cycle".into())
+                );
             }
         }
         Ok(world)
@@ -255,10 +270,11 @@ impl SceneReader<'_> {
         Ok(Some(PrimitiveGeometry { positions, triangles, skin }))
     }
 
-    fn read_skin_weights(&self, prim: &gltf::Primitive, n: usize) -> Result<Option<Vec<Vec<(usize, f64)>>>, LoadError> {
-        let mut out: Option<Vec<Vec<(usize, f64)>>> = None;
+    fn read_skin_weights(&self, prim: &gltf::Primitive, n: usize) -> Result<Option<SkinWeights>, LoadError> {
+        let mut out: Option<SkinWeights> = None;
         for set in 0.. {
-            let (Some(j), Some(w)) = (prim.get(&gltf::Semantic::Joints(set)), prim.get(&gltf::Semantic::Weights(set)))
+            let (Some(j), Some(w)) =
+                (prim.get(&gltf::Semantic::Joints(set)), prim.get(&gltf::Semantic::Weights(set)))
             else {
                 break;
             };
@@ -283,7 +299,14 @@ impl SceneReader<'_> {
         Ok(out)
     }
 
-    fn emit(&self, level: &mut Level, g: &PrimitiveGeometry, m: DMat4, source: u32, node: usize) -> Result<(), LoadError> {
+    fn emit(
+        &self,
+        level: &mut Level,
+        g: &PrimitiveGeometry,
+        m: DMat4,
+        source: u32,
+        node: usize,
+    ) -> Result<(), LoadError> {
         let world: Vec<DVec3> = g.positions.iter().map(|&p| m.transform_point3(p)).collect();
         self.check_finite(&world, node)?;
         let flip = m.determinant() < 0.0;
@@ -306,7 +329,10 @@ impl SceneReader<'_> {
             let mut m = DMat4::ZERO;
             for &(j, w) in &weights[k] {
                 let joint = joints.get(j).ok_or_else(|| {
-                    self.invalid(&format!("nodes[{node}].skin"), format!("vertex {k} uses joint {j}, which the skin does not have"))
+                    self.invalid(
+                        &format!("nodes[{node}].skin"),
+                        format!("vertex {k} uses joint {j}, which the skin does not have"),
+                    )
                 })?;
                 m += *joint * w;
             }
@@ -330,7 +356,13 @@ impl SceneReader<'_> {
     }
 }
 
-fn push_triangles(level: &mut Level, world: &[DVec3], tris: &[[u32; 3]], flip: impl Fn(u32) -> bool, source: u32) {
+fn push_triangles(
+    level: &mut Level,
+    world: &[DVec3],
+    tris: &[[u32; 3]],
+    flip: impl Fn(u32) -> bool,
+    source: u32,
+) {
     level.triangles.extend(tris.iter().map(|&[a, b, c]| {
         let (pa, pb, pc) = (world[a as usize], world[b as usize], world[c as usize]);
         let positions = if flip(a) { [pa, pc, pb] } else { [pa, pb, pc] };
@@ -342,9 +374,17 @@ fn push_triangles(level: &mut Level, world: &[DVec3], tris: &[[u32; 3]], flip: i
 fn assemble_triangles(mode: gltf::mesh::Mode, idx: &[u32]) -> Vec<[u32; 3]> {
     use gltf::mesh::Mode;
     match mode {
-        Mode::TriangleStrip => (0..idx.len().saturating_sub(2))
-            .map(|i| if i % 2 == 0 { [idx[i], idx[i + 1], idx[i + 2]] } else { [idx[i], idx[i + 2], idx[i + 1]] })
-            .collect(),
+        Mode::TriangleStrip => {
+            (0..idx.len().saturating_sub(2))
+                .map(|i| {
+                    if i % 2 == 0 {
+                        [idx[i], idx[i + 1], idx[i + 2]]
+                    } else {
+                        [idx[i], idx[i + 2], idx[i + 1]]
+                    }
+                })
+                .collect()
+        }
         Mode::TriangleFan => (1..idx.len().saturating_sub(1)).map(|i| [idx[i], idx[i + 1], idx[0]]).collect(),
         _ => idx.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect(),
     }

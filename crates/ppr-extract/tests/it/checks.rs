@@ -15,8 +15,15 @@ pub fn assert_encloses_regions(x: &Extraction, plane_tol_rel: f64, what: &str) {
     // serde_json parses floats to within one ulp (no `float_roundtrip`), so compare closely.
     assert_eq!(back.reflectors.len(), x.set.reflectors.len(), "{what}: JSON round trip");
     for (a, b) in back.reflectors.iter().zip(&x.set.reflectors) {
-        assert_eq!((a.id, &a.name, a.kind, &a.occluders), (b.id, &b.name, b.kind, &b.occluders), "{what}: JSON round trip");
-        assert!((a.center - b.center).length() <= 1e-12 * (1.0 + b.center.length()), "{what}: JSON round trip");
+        assert_eq!(
+            (a.id, &a.name, a.kind, &a.occluders),
+            (b.id, &b.name, b.kind, &b.occluders),
+            "{what}: JSON round trip"
+        );
+        assert!(
+            (a.center - b.center).length() <= 1e-12 * (1.0 + b.center.length()),
+            "{what}: JSON round trip"
+        );
     }
     assert_eq!(x.regions.len(), x.set.reflectors.len(), "{what}: one region per reflector");
     for (r, verts) in x.set.reflectors.iter().zip(&x.regions) {

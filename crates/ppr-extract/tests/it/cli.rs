@@ -33,7 +33,9 @@ fn writes_the_default_output_and_prints_a_summary() {
     std::fs::copy(scenes_dir().join("small.glb"), &input).unwrap();
     let (code, out, err) = run(&[os(&input)]);
     assert_eq!(code, 0, "{err}");
-    for needle in ["shapes", "total area", "mean coverage", "occluder pairs", "triangles/s", "occluders", "write"] {
+    for needle in
+        ["shapes", "total area", "mean coverage", "occluder pairs", "triangles/s", "occluders", "write"]
+    {
         assert!(out.contains(needle), "summary lacks {needle}: {out}");
     }
     let written = dir.path().join("small.ppr.json");
@@ -60,14 +62,16 @@ fn exit_codes_and_errors() {
     assert_error(&[os(&d.join("cut.glb"))], 2, "truncated .glb");
     std::fs::copy(scenes_dir().join("kitchen/kitchen.gltf"), d.join("kitchen.gltf")).unwrap();
     assert_error(&[os(&d.join("kitchen.gltf"))], 2, "kitchen.bin");
-    let mut json: serde_json::Value = serde_json::from_slice(&std::fs::read(scenes_dir().join("kitchen/kitchen.gltf")).unwrap()).unwrap();
+    let mut json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(scenes_dir().join("kitchen/kitchen.gltf")).unwrap()).unwrap();
     json["extensionsRequired"] = serde_json::json!(["KHR_draco_mesh_compression"]);
     std::fs::write(d.join("draco.gltf"), serde_json::to_vec(&json).unwrap()).unwrap();
     assert_error(&[os(&d.join("draco.gltf"))], 2, "KHR_draco_mesh_compression");
     // Usage errors.
     let (code, _, err) = run(&[]);
     assert_eq!(code, 1, "{err}");
-    let (code, _, _) = run(&[os(&scenes_dir().join("small.glb")), "--angle-tolerance".as_ref(), "-3".as_ref()]);
+    let (code, _, _) =
+        run(&[os(&scenes_dir().join("small.glb")), "--angle-tolerance".as_ref(), "-3".as_ref()]);
     assert_eq!(code, 1);
     // Output that cannot be written: a directory that does not exist; nothing is left.
     let target = d.join("missing-dir").join("out.ppr.json");

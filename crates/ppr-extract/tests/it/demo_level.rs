@@ -27,13 +27,16 @@ fn matches(r: &Reflector, rect: &Value, kind: &str, tol: f64) -> bool {
         && (r.center - vec3(&rect["center"])).length() <= tol
         && (r.normal - vec3(&rect["normal"])).length() <= tol
         && (r.half_extents - DVec2::new(hu, hv)).abs().max_element() <= tol
-        && (r.area() - rect["area"].as_f64().expect("area")).abs() <= tol * rect["area"].as_f64().expect("area")
+        && (r.area() - rect["area"].as_f64().expect("area")).abs()
+            <= tol * rect["area"].as_f64().expect("area")
 }
 
 #[test]
 fn demo_room_gives_exactly_the_expected_shapes() {
-    let expected: Value =
-        serde_json::from_slice(&std::fs::read(assets().join("demo_room.expected.json")).expect("expected file")).expect("json");
+    let expected: Value = serde_json::from_slice(
+        &std::fs::read(assets().join("demo_room.expected.json")).expect("expected file"),
+    )
+    .expect("json");
     let tol = expected["conventions"]["suggested_position_tolerance_m"].as_f64().expect("tolerance");
     let level = load_level(assets().join("demo_room.glb")).expect("demo level");
     let x = extract(&level, &ExtractParams::default(), &|_, _| {});
@@ -58,7 +61,11 @@ fn demo_room_gives_exactly_the_expected_shapes() {
             if picks.iter().all(Option::is_some) {
                 for p in picks.into_iter().flatten() {
                     used[p] = true;
-                    assert!(rs[p].source.nodes.iter().any(|n| n == e["node"].as_str().expect("node")), "{name}: sources {:?}", rs[p].source);
+                    assert!(
+                        rs[p].source.nodes.iter().any(|n| n == e["node"].as_str().expect("node")),
+                        "{name}: sources {:?}",
+                        rs[p].source
+                    );
                 }
                 true
             } else {
@@ -73,12 +80,20 @@ fn demo_room_gives_exactly_the_expected_shapes() {
         assert!(rs.iter().all(|r| !r.source.nodes.iter().any(|s| s == node)), "{node} became a reflector");
     }
     // Parallel groups: members of one expected group share a group number, others differ.
-    let group_of = |name: &str| rs.iter().find(|r| r.source.nodes.iter().any(|n| n == name)).map(|r| r.parallel_group);
+    let group_of =
+        |name: &str| rs.iter().find(|r| r.source.nodes.iter().any(|n| n == name)).map(|r| r.parallel_group);
     let groups: Vec<Vec<Option<u32>>> = expected["parallel_groups"]
         .as_array()
         .expect("groups")
         .iter()
-        .map(|g| g["members"].as_array().expect("members").iter().map(|m| group_of(m.as_str().expect("member"))).collect())
+        .map(|g| {
+            g["members"]
+                .as_array()
+                .expect("members")
+                .iter()
+                .map(|m| group_of(m.as_str().expect("member")))
+                .collect()
+        })
         .collect();
     for g in &groups {
         assert!(g.iter().all(|x| x.is_some() && *x == g[0]), "group {g:?}");

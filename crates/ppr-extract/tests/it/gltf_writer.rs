@@ -35,7 +35,7 @@ impl GltfBuilder {
     }
 
     fn view(&mut self, bytes: &[u8]) -> usize {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let offset = self.bin.len();
@@ -54,7 +54,14 @@ impl GltfBuilder {
 
     /// Adds a triangle-list mesh; returns its index. With `NormalizedI16` the positions
     /// must be within [-1, 1].
-    pub fn mesh(&mut self, name: &str, positions: &[[f32; 3]], indices: &[u32], material: usize, format: PositionFormat) -> usize {
+    pub fn mesh(
+        &mut self,
+        name: &str,
+        positions: &[[f32; 3]],
+        indices: &[u32],
+        material: usize,
+        format: PositionFormat,
+    ) -> usize {
         let mut lo = [f32::INFINITY; 3];
         let mut hi = [f32::NEG_INFINITY; 3];
         for p in positions {
@@ -64,15 +71,19 @@ impl GltfBuilder {
             }
         }
         let (bytes, component, normalized, min, max) = match format {
-            PositionFormat::F32 => {
-                (positions.iter().flatten().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>(), 5126, false, json!(lo), json!(hi))
-            }
+            PositionFormat::F32 => (
+                positions.iter().flatten().flat_map(|f| f.to_le_bytes()).collect::<Vec<u8>>(),
+                5126,
+                false,
+                json!(lo),
+                json!(hi),
+            ),
             PositionFormat::NormalizedI16 => {
                 let q = |f: f32| (f * 32767.0).round() as i16;
                 let mut b = Vec::new();
                 for p in positions {
-                    for k in 0..3 {
-                        b.extend(q(p[k]).to_le_bytes());
+                    for &c in p {
+                        b.extend(q(c).to_le_bytes());
                     }
                     b.extend([0u8, 0]); // pad each element to 8 bytes (4-byte alignment)
                 }
@@ -92,7 +103,10 @@ impl GltfBuilder {
         let pacc = self.push("accessors", pacc);
         let ib: Vec<u8> = indices.iter().flat_map(|i| i.to_le_bytes()).collect();
         let iview = self.view(&ib);
-        let iacc = self.push("accessors", json!({"bufferView": iview, "componentType": 5125, "count": indices.len(), "type": "SCALAR"}));
+        let iacc = self.push(
+            "accessors",
+            json!({"bufferView": iview, "componentType": 5125, "count": indices.len(), "type": "SCALAR"}),
+        );
         self.push(
             "meshes",
             json!({"name": name, "primitives": [{"attributes": {"POSITION": pacc}, "indices": iacc, "material": material}]}),
@@ -100,14 +114,21 @@ impl GltfBuilder {
     }
 
     /// Adds a root node with a mesh and a TRS; returns its index.
-    pub fn node(&mut self, name: &str, mesh: usize, translation: [f64; 3], rotation: [f64; 4], scale: [f64; 3]) -> usize {
+    pub fn node(
+        &mut self,
+        name: &str,
+        mesh: usize,
+        translation: [f64; 3],
+        rotation: [f64; 4],
+        scale: [f64; 3],
+    ) -> usize {
         let n = self.push("nodes", json!({"name": name, "mesh": mesh, "translation": translation, "rotation": rotation, "scale": scale}));
         self.json["scenes"][0]["nodes"].as_array_mut().expect("array").push(json!(n));
         n
     }
 
     fn finish_buffers(&mut self, uri: Option<&str>) {
-        while self.bin.len() % 4 != 0 {
+        while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
         let mut b = json!({"byteLength": self.bin.len()});
@@ -121,7 +142,7 @@ impl GltfBuilder {
     pub fn glb(mut self) -> Vec<u8> {
         self.finish_buffers(None);
         let mut json = serde_json::to_vec(&self.json).expect("json");
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
         let mut out = b"glTF".to_vec();

@@ -41,7 +41,9 @@ fn hierarchy_mirroring_and_instancing() {
     assert_eq!(level.triangles.len(), 8);
     let x = extract(&level, &ExtractParams::default(), &|_, _| {});
     assert_encloses_regions(&x, 1e-6, "hierarchy");
-    let find = |node: &str| x.set.reflectors.iter().find(|r| r.source.nodes == [node]).unwrap_or_else(|| panic!("{node}"));
+    let find = |node: &str| {
+        x.set.reflectors.iter().find(|r| r.source.nodes == [node]).unwrap_or_else(|| panic!("{node}"))
+    };
     assert!(find("plain").normal.dot(DVec3::Y) > 0.999_999);
     assert!(find("mirrored").normal.dot(DVec3::Y) > 0.999_999);
     assert!(find("flipped").normal.dot(DVec3::NEG_Y) > 0.999_999);
@@ -121,14 +123,35 @@ fn mutated(f: impl FnOnce(&mut serde_json::Value)) -> Result<ppr_extract::Level,
 
 #[test]
 fn bad_input_gives_errors_that_name_the_culprit() {
-    let cases: Vec<(&str, Box<dyn FnOnce(&mut serde_json::Value)>, &str)> = vec![
-        ("required extension", Box::new(|j| j["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])), "`KHR_draco_mesh_compression`"),
-        ("accessor out of range", Box::new(|j| j["accessors"][0]["count"] = json!(4000)), "accessors[0] is out of range"),
-        ("index out of range", Box::new(|j| j["accessors"][0]["count"] = json!(3)), "is not below the vertex count 3"),
-        ("missing accessor", Box::new(|j| j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99)), "attributes.POSITION"),
+    type Mutation = Box<dyn FnOnce(&mut serde_json::Value)>;
+    let cases: Vec<(&str, Mutation, &str)> = vec![
+        (
+            "required extension",
+            Box::new(|j| j["extensionsRequired"] = json!(["KHR_draco_mesh_compression"])),
+            "`KHR_draco_mesh_compression`",
+        ),
+        (
+            "accessor out of range",
+            Box::new(|j| j["accessors"][0]["count"] = json!(4000)),
+            "accessors[0] is out of range",
+        ),
+        (
+            "index out of range",
+            Box::new(|j| j["accessors"][0]["count"] = json!(3)),
+            "is not below the vertex count 3",
+        ),
+        (
+            "missing accessor",
+            Box::new(|j| j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = json!(99)),
+            "attributes.POSITION",
+        ),
         ("bad node index", Box::new(|j| j["scenes"][0]["nodes"] = json!([42])), "scenes[0].nodes[0]"),
         ("cycle", Box::new(|j| j["nodes"][0]["children"] = json!([0])), "cycle"),
-        ("NaN transform", Box::new(|j| j["nodes"][0]["matrix"] = json!([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])), ""),
+        (
+            "NaN transform",
+            Box::new(|j| j["nodes"][0]["matrix"] = json!([1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1])),
+            "",
+        ),
     ];
     for (what, f, expected) in cases {
         match mutated(f) {
@@ -142,7 +165,10 @@ fn bad_input_gives_errors_that_name_the_culprit() {
     b.node("n", mesh, [0.0; 3], IDENTITY_ROTATION, [1.0; 3]);
     b.bin[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
     let err = load_bytes(&b.glb()).unwrap_err();
-    assert!(matches!(err, LoadError::NonFinitePosition { .. }) && err.to_string().contains("accessors[0]"), "{err}");
+    assert!(
+        matches!(err, LoadError::NonFinitePosition { .. }) && err.to_string().contains("accessors[0]"),
+        "{err}"
+    );
     // Truncated and foreign files.
     let (mut b, mesh) = floor_builder(PositionFormat::F32);
     b.node("n", mesh, [0.0; 3], IDENTITY_ROTATION, [1.0; 3]);

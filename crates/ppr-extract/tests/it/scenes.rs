@@ -19,8 +19,13 @@ pub fn scenes_dir() -> PathBuf {
     dir
 }
 
-const SCENES: [&str; 5] =
-    ["collision-world.glb", "kitchen/kitchen.gltf", "pool_day_baked.glb", "small.glb", "fps_mine_sketch_compressed.glb"];
+const SCENES: [&str; 5] = [
+    "collision-world.glb",
+    "kitchen/kitchen.gltf",
+    "pool_day_baked.glb",
+    "small.glb",
+    "fps_mine_sketch_compressed.glb",
+];
 
 #[test]
 fn every_shared_scene_extracts_a_valid_enclosing_set() {
@@ -57,5 +62,9 @@ fn scene_specifics() {
     let level = load_level(dir.join("fps_mine_sketch_compressed.glb")).unwrap();
     let (lo, hi) = level.bounds().unwrap();
     let diag = (hi - lo).length();
-    assert!(level.triangles.len() > 9_000 && diag > 0.1 && diag < 100.0, "{} triangles, diagonal {diag}", level.triangles.len());
+    assert!(
+        level.triangles.len() > 9_000 && diag > 0.1 && diag < 100.0,
+        "{} triangles, diagonal {diag}",
+        level.triangles.len()
+    );
 }

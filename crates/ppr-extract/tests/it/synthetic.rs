@@ -40,7 +40,10 @@ fn grid(
         .map(|i| {
             (0..=ny)
                 .map(|j| {
-                    center + u * (w * (i as f64 / nx as f64 - 0.5)) + v * (h * (j as f64 / ny as f64 - 0.5)) + n * (noise * rng.next())
+                    center
+                        + u * (w * (i as f64 / nx as f64 - 0.5))
+                        + v * (h * (j as f64 / ny as f64 - 0.5))
+                        + n * (noise * rng.next())
                 })
                 .collect()
         })
@@ -49,7 +52,8 @@ fn grid(
     for i in 0..nx {
         for j in 0..ny {
             if keep(i, j) {
-                let (a, b, c, d) = (corners[i][j], corners[i + 1][j], corners[i + 1][j + 1], corners[i][j + 1]);
+                let (a, b, c, d) =
+                    (corners[i][j], corners[i + 1][j], corners[i + 1][j + 1], corners[i][j + 1]);
                 out.push([a, b, c]);
                 out.push([a, c, d]);
             }
@@ -69,8 +73,16 @@ fn assert_single(x: &Extraction, w: f64, h: f64, normal: DVec3, tol: f64) {
     assert_eq!(x.set.reflectors.len(), 1, "{:#?}", x.set.reflectors);
     let r = &x.set.reflectors[0];
     let (long, short) = (w.max(h), w.min(h));
-    assert!((2.0 * r.half_extents.x - long).abs() <= tol * long, "long side {} vs {long}", 2.0 * r.half_extents.x);
-    assert!((2.0 * r.half_extents.y - short).abs() <= tol * long, "short side {} vs {short}", 2.0 * r.half_extents.y);
+    assert!(
+        (2.0 * r.half_extents.x - long).abs() <= tol * long,
+        "long side {} vs {long}",
+        2.0 * r.half_extents.x
+    );
+    assert!(
+        (2.0 * r.half_extents.y - short).abs() <= tol * long,
+        "short side {} vs {short}",
+        2.0 * r.half_extents.y
+    );
     assert!(r.normal.dot(normal) > 1.0 - 1e-6, "normal {:?} vs {normal:?}", r.normal);
 }
 
@@ -88,7 +100,8 @@ fn noisy_coplanar_triangles_make_one_rectangle() {
 fn slivers_and_duplicated_vertices() {
     // A 4 × 1 rectangle triangulated as a fan of 200 slivers from one corner, plus a second
     // copy of every triangle with the opposite winding (double-sided export).
-    let (a, b, c, d) = (DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(4.0, 0.0, -1.0), DVec3::new(0.0, 0.0, -1.0));
+    let (a, b, c, d) =
+        (DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0), DVec3::new(4.0, 0.0, -1.0), DVec3::new(0.0, 0.0, -1.0));
     let mut tris = Vec::new();
     let steps = 200;
     for k in 0..steps {
@@ -122,7 +135,8 @@ fn l_and_ring_regions_split_into_tight_rectangles() {
         assert_eq!(x.set.reflectors.len(), 2, "L at {angle}");
         let total: f64 = x.set.reflectors.iter().map(|r| r.area()).sum();
         assert!((total - 28.0).abs() < 1e-6, "L rectangles {total}");
-        let ring = grid(DVec3::ZERO, rot, 8.0, 8.0, 8, 8, 0.0, |i, j| !(1..7).contains(&i) || !(1..7).contains(&j));
+        let ring =
+            grid(DVec3::ZERO, rot, 8.0, 8.0, 8, 8, 0.0, |i, j| !(1..7).contains(&i) || !(1..7).contains(&j));
         let x = run(&ring, &ExtractParams::default());
         assert_eq!(x.set.reflectors.len(), 4, "ring at {angle}");
         let total: f64 = x.set.reflectors.iter().map(|r| r.area()).sum();
@@ -157,11 +171,23 @@ fn far_from_the_origin_and_at_extreme_scales() {
         let rot = DQuat::from_euler(glam::EulerRot::XYZ, 0.1, 0.5, 0.2);
         // Two parallel planes a tenth of the size apart, so the scene is not one plane only.
         let mut tris = grid(center, rot, size, size * 0.5, 4, 4, 0.0, |_, _| true);
-        tris.extend(grid(center + rot * DVec3::Y * (0.1 * size), rot, size * 0.5, size * 0.25, 2, 2, 0.0, |_, _| true));
+        tris.extend(grid(
+            center + rot * DVec3::Y * (0.1 * size),
+            rot,
+            size * 0.5,
+            size * 0.25,
+            2,
+            2,
+            0.0,
+            |_, _| true,
+        ));
         let x = run(&tris, &ExtractParams::default());
         assert_eq!(x.set.reflectors.len(), 2, "at {center:?} size {size}");
         let r = &x.set.reflectors[0];
-        assert!((2.0 * r.half_extents.x - size).abs() < 1e-9 * size.max(center.length()), "size {size}: {r:?}");
+        assert!(
+            (2.0 * r.half_extents.x - size).abs() < 1e-9 * size.max(center.length()),
+            "size {size}: {r:?}"
+        );
         assert!(r.normal.dot(rot * DVec3::Y) > 1.0 - 1e-9);
         // The upper one occludes the lower one, not the other way round.
         assert_eq!(x.set.reflectors[0].occluders, vec![1], "at {center:?} size {size}");
@@ -174,7 +200,12 @@ fn t_junctions_connect_regions() {
     // A 2 × 1 quad and, beside it, two 1 × 0.5 quads whose shared corner sits on the
     // middle of the big quad's edge (a T-junction, no shared vertex there).
     let q = |x0: f64, z0: f64, x1: f64, z1: f64| {
-        let (a, b, c, d) = (DVec3::new(x0, 0.0, z0), DVec3::new(x0, 0.0, z1), DVec3::new(x1, 0.0, z1), DVec3::new(x1, 0.0, z0));
+        let (a, b, c, d) = (
+            DVec3::new(x0, 0.0, z0),
+            DVec3::new(x0, 0.0, z1),
+            DVec3::new(x1, 0.0, z1),
+            DVec3::new(x1, 0.0, z0),
+        );
         vec![[a, b, c], [a, c, d]]
     };
     let mut tris = q(0.0, 0.0, 2.0, 1.0);
@@ -196,7 +227,8 @@ fn coplanar_pieces_apart_are_separate_regions() {
 
 #[test]
 fn extraction_is_deterministic_and_ids_are_stable() {
-    let mut tris = grid(DVec3::ZERO, DQuat::from_rotation_y(0.3), 8.0, 8.0, 8, 8, 1e-4, |i, j| i < 2 || j < 2);
+    let mut tris =
+        grid(DVec3::ZERO, DQuat::from_rotation_y(0.3), 8.0, 8.0, 8, 8, 1e-4, |i, j| i < 2 || j < 2);
     tris.extend(grid(DVec3::new(0.0, 1.0, 0.0), DQuat::IDENTITY, 2.0, 2.0, 3, 3, 0.0, |_, _| true));
     let a = run(&tris, &ExtractParams::default()).set.to_json_string().unwrap();
     let b = run(&tris, &ExtractParams::default()).set.to_json_string().unwrap();
@@ -207,7 +239,11 @@ fn extraction_is_deterministic_and_ids_are_stable() {
         v
     };
     let base = ids(&ExtractParams::default());
-    assert_eq!(base, ids(&ExtractParams { reach: 0.9, ..ExtractParams::default() }), "ids survive a parameter change");
+    assert_eq!(
+        base,
+        ids(&ExtractParams { reach: 0.9, ..ExtractParams::default() }),
+        "ids survive a parameter change"
+    );
     let mut unique = base.clone();
     unique.dedup();
     assert_eq!(unique, base, "ids are unique");
