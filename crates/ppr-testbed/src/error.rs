@@ -1,0 +1,54 @@
+//! Errors of the testbed library: loading levels, talking to the GPU, reading and writing images.
+
+use std::path::PathBuf;
+
+/// Why a testbed operation failed.
+#[derive(Debug, thiserror::Error)]
+pub enum TestbedError {
+    /// No wgpu adapter could be found: GPU tests cannot run.
+    #[error(
+        "NO GPU ADAPTER FOUND ({0}). The testbed needs a wgpu adapter; on a machine without a GPU \
+         install Mesa (llvmpipe, reached through wgpu's GL backend via EGL: Debian packages \
+         libegl1 libegl-mesa0 libgl1-mesa-dri) or set WGPU_BACKEND to a backend that exists here"
+    )]
+    NoAdapter(String),
+    /// The adapter refused to create a device.
+    #[error("the adapter {adapter:?} refused to create a device: {reason}")]
+    NoDevice { adapter: String, reason: String },
+    /// A GPU buffer could not be mapped for reading.
+    #[error("reading back {what} from the GPU failed: {reason}")]
+    Readback { what: String, reason: String },
+    /// A texture format the testbed cannot read back or convert.
+    #[error("{what}: texture format {format:?} is not supported here")]
+    UnsupportedFormat { what: String, format: wgpu::TextureFormat },
+    /// The glTF file could not be read or parsed.
+    #[error("{}: cannot load glTF: {source}", path.display())]
+    Gltf { path: PathBuf, source: gltf::Error },
+    /// The glTF file uses something the testbed does not handle.
+    #[error("{}: {what}", path.display())]
+    UnsupportedGltf { path: PathBuf, what: String },
+    /// A glTF file was read but a field in it is not usable.
+    #[error("{}: {field}: {reason}", path.display())]
+    InvalidGltf { path: PathBuf, field: String, reason: String },
+    /// An image could not be encoded or written.
+    #[error("{}: cannot write image: {source}", path.display())]
+    ImageWrite { path: PathBuf, source: image::ImageError },
+    /// An image could not be read or decoded.
+    #[error("{}: cannot read image: {source}", path.display())]
+    ImageRead { path: PathBuf, source: image::ImageError },
+    /// Two images that must have the same size do not.
+    #[error("{what}: sizes differ ({a:?} vs {b:?})")]
+    SizeMismatch { what: String, a: [u32; 2], b: [u32; 2] },
+    /// The reflector set could not be loaded.
+    #[error("reflector set: {0}")]
+    ReflectorSet(Box<ppr_format::FormatError>),
+    /// A camera description could not be parsed.
+    #[error("camera {text:?}: {reason}")]
+    CameraSpec { text: String, reason: String },
+}
+
+impl From<ppr_format::FormatError> for TestbedError {
+    fn from(e: ppr_format::FormatError) -> Self {
+        Self::ReflectorSet(Box::new(e))
+    }
+}

@@ -1,0 +1,264 @@
+//! Renders a level: the main G-buffer and the exact mirrored reference, for any camera.
+
+use ppr_format::ReflectorSet;
+use ppr_runtime::Camera;
+
+use crate::gbuffer::{GBufferDraw, GBufferPass, ViewKind};
+use crate::gbuffer_targets::GBuffer;
+use crate::level::Level;
+use crate::mesh::LevelMeshes;
+use crate::mirror_camera::{MirrorClipping, mirrored_view};
+use crate::reference::{MirrorReference, OnScreenTolerance, ReferenceBindings, ReferenceTargets};
+use crate::reflector_planes::{ReflectorPlane, group_by_plane, may_be_visible};
+use crate::scene_layouts::SceneLayouts;
+use crate::view::{Lighting, ReflectorMaskParams, ReflectorShape, ViewBindings, ViewUniform};
+
+/// Linear background colour of the testbed (what a view shows where nothing is drawn).
+pub const DEFAULT_BACKGROUND: [f64; 4] = [0.05, 0.07, 0.11, 1.0];
+
+/// Everything that decides how a frame looks, apart from the camera.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// The light.
+    pub lighting: Lighting,
+    /// How reflector pixels are recognised.
+    pub mask: ReflectorMaskParams,
+    /// Linear colour where nothing is drawn, in the main and the mirrored views.
+    pub background: [f64; 4],
+    /// Tolerances of the reference's on-screen test.
+    pub on_screen: OnScreenTolerance,
+    /// Near plane of the mirrored views; [`MirrorClipping::Oblique`] for the exact reference.
+    pub mirror_clipping: MirrorClipping,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            lighting: Lighting::default(),
+            mask: ReflectorMaskParams::default(),
+            background: DEFAULT_BACKGROUND,
+            on_screen: OnScreenTolerance::default(),
+            mirror_clipping: MirrorClipping::Oblique,
+        }
+    }
+}
+
+/// What [`LevelRenderer::prepare`] decided for a frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FrameSummary {
+    /// Width and height in pixels.
+    pub size: [u32; 2],
+    /// Plane groups of the reflector set.
+    pub planes: usize,
+    /// Indices of the plane groups whose mirrored view is rendered this frame.
+    pub rendered_planes: Vec<usize>,
+}
+
+struct FrameTargets {
+    main: GBuffer,
+    reference: ReferenceTargets,
+    bindings: ReferenceBindings,
+}
+
+/// A level on the GPU with the passes that render it: G-buffer and exact reference.
+pub struct LevelRenderer {
+    layouts: SceneLayouts,
+    gbuffer_pass: GBufferPass,
+    reference_pass: MirrorReference,
+    meshes: LevelMeshes,
+    reflectors: ReflectorSet,
+    planes: Vec<ReflectorPlane>,
+    views: ViewBindings,
+    frame: Option<FrameTargets>,
+    summary: FrameSummary,
+    camera: Option<Camera>,
+    /// How frames look; read at the next [`LevelRenderer::prepare`].
+    pub settings: RenderSettings,
+}
+
+impl LevelRenderer {
+    /// Uploads `level` and builds the passes.
+    ///
+    /// # Panics
+    /// If `level` breaks the invariants of [`Level::validate`].
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, level: &Level, reflectors: &ReflectorSet) -> Self {
+        let layouts = SceneLayouts::new(device);
+        let gbuffer_pass = GBufferPass::new(device, &layouts);
+        let reference_pass = MirrorReference::new(device);
+        let meshes = LevelMeshes::new(device, queue, &layouts, level);
+        let views = ViewBindings::new(device, &layouts, 1, 1);
+        let mut renderer = Self {
+            layouts,
+            gbuffer_pass,
+            reference_pass,
+            meshes,
+            reflectors: ReflectorSet::new(""),
+            planes: Vec::new(),
+            views,
+            frame: None,
+            summary: FrameSummary { size: [0, 0], planes: 0, rendered_planes: Vec::new() },
+            camera: None,
+            settings: RenderSettings::default(),
+        };
+        renderer.set_reflectors(device, reflectors);
+        renderer
+    }
+
+    /// Replaces the reflector set (the mask and the reference follow it from the next frame).
+    pub fn set_reflectors(&mut self, device: &wgpu::Device, reflectors: &ReflectorSet) {
+        self.reflectors = reflectors.clone();
+        self.planes = group_by_plane(reflectors);
+        let slots = 1 + u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+        self.views = ViewBindings::new(device, &self.layouts, slots, reflectors.reflectors.len());
+        self.frame = None;
+    }
+
+    /// The reflector set in use.
+    pub fn reflectors(&self) -> &ReflectorSet {
+        &self.reflectors
+    }
+
+    /// The plane groups of the reflector set.
+    pub fn planes(&self) -> &[ReflectorPlane] {
+        &self.planes
+    }
+
+    /// Allocates targets for `size` if needed and uploads everything the frame seen by
+    /// `camera` needs: camera-relative transforms and shapes, view and resolve uniforms.
+    pub fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        size: [u32; 2],
+    ) -> &FrameSummary {
+        let size = [size[0].max(1), size[1].max(1)];
+        if self.frame.as_ref().is_none_or(|f| f.main.size != size) {
+            let main = GBuffer::new(device, size, "main gbuffer");
+            let reference = ReferenceTargets::new(device, size);
+            let planes = u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+            let bindings = self.reference_pass.bindings(
+                device,
+                &main,
+                &reference,
+                planes,
+                self.reflectors.reflectors.len(),
+            );
+            self.frame = Some(FrameTargets { main, reference, bindings });
+        }
+        let frame = self.frame.as_ref().expect("allocated above");
+        let aspect = f64::from(size[0]) / f64::from(size[1]);
+        let s = &self.settings;
+        self.meshes.update_camera(queue, camera.position);
+        self.views.write_shapes(queue, &ReflectorShape::from_set(&self.reflectors, camera.position));
+        let shape_count =
+            u32::try_from(self.reflectors.reflectors.len()).expect("fewer than 2^32 reflectors");
+        let main_view =
+            ViewUniform::new(camera.clip_from_relative(aspect as f32), &s.lighting, &s.mask, shape_count);
+        self.views.write_view(queue, 0, &main_view);
+
+        let mut plane_of = vec![u32::MAX; self.reflectors.reflectors.len()];
+        let mut rendered = Vec::new();
+        for (k, group) in self.planes.iter().enumerate() {
+            let slot = u32::try_from(k).expect("fewer than 2^32 planes");
+            for &m in &group.members {
+                plane_of[m] = slot;
+            }
+            if !may_be_visible(&self.reflectors, group, camera, aspect) {
+                continue;
+            }
+            let Some(mirrored) = mirrored_view(camera, aspect, &group.plane, s.mirror_clipping) else {
+                continue;
+            };
+            let view = ViewUniform::new(mirrored.clip_from_rel.as_mat4(), &s.lighting, &s.mask, 0);
+            self.views.write_view(queue, 1 + slot, &view);
+            frame.bindings.write_plane(queue, slot, camera, size, &mirrored, &s.on_screen);
+            rendered.push(k);
+        }
+        frame.bindings.write_plane_of_reflector(queue, &plane_of);
+        self.camera = Some(*camera);
+        self.summary = FrameSummary { size, planes: self.planes.len(), rendered_planes: rendered };
+        &self.summary
+    }
+
+    /// Records the main G-buffer pass of the prepared frame.
+    ///
+    /// # Panics
+    /// If [`LevelRenderer::prepare`] was never called.
+    pub fn encode_gbuffer(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (frame, camera) = self.prepared();
+        let draw = GBufferDraw {
+            targets: &frame.main,
+            slot: 0,
+            kind: ViewKind::Direct,
+            depth: camera.projection.depth,
+            background: self.settings.background,
+        };
+        self.gbuffer_pass.encode(encoder, &self.meshes, &self.views, &draw);
+    }
+
+    /// Records the exact reference of the prepared frame (after [`Self::encode_gbuffer`]):
+    /// one mirrored G-buffer pass and one resolve per rendered plane.
+    ///
+    /// # Panics
+    /// If [`LevelRenderer::prepare`] was never called.
+    pub fn encode_reference(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (frame, camera) = self.prepared();
+        if self.summary.rendered_planes.is_empty() {
+            self.reference_pass.encode_clear(encoder, &frame.reference);
+            return;
+        }
+        for (n, &k) in self.summary.rendered_planes.iter().enumerate() {
+            let slot = u32::try_from(k).expect("fewer than 2^32 planes");
+            let draw = GBufferDraw {
+                targets: &frame.reference.mirror,
+                slot: 1 + slot,
+                kind: ViewKind::Mirrored,
+                depth: camera.projection.depth,
+                background: self.settings.background,
+            };
+            self.gbuffer_pass.encode(encoder, &self.meshes, &self.views, &draw);
+            self.reference_pass.encode_resolve(encoder, &frame.reference, &frame.bindings, slot, n == 0);
+        }
+    }
+
+    /// Prepares, records and submits the G-buffer and the reference for `camera`.
+    pub fn render(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        size: [u32; 2],
+    ) -> FrameSummary {
+        let summary = self.prepare(device, queue, camera, size).clone();
+        let mut encoder = device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("level renderer frame") });
+        self.encode_gbuffer(&mut encoder);
+        self.encode_reference(&mut encoder);
+        queue.submit([encoder.finish()]);
+        summary
+    }
+
+    /// The main view's G-buffer of the prepared frame.
+    ///
+    /// # Panics
+    /// If [`LevelRenderer::prepare`] was never called.
+    pub fn gbuffer(&self) -> &GBuffer {
+        &self.prepared().0.main
+    }
+
+    /// The reference outputs of the prepared frame.
+    ///
+    /// # Panics
+    /// If [`LevelRenderer::prepare`] was never called.
+    pub fn reference(&self) -> &ReferenceTargets {
+        &self.prepared().0.reference
+    }
+
+    fn prepared(&self) -> (&FrameTargets, &Camera) {
+        match (&self.frame, &self.camera) {
+            (Some(f), Some(c)) => (f, c),
+            _ => panic!("LevelRenderer::prepare must be called before encoding or reading targets"),
+        }
+    }
+}

@@ -1,0 +1,9 @@
+//! Integration tests of ppr-testbed (one binary). GPU tests run on whatever adapter wgpu
+//! finds (llvmpipe through GL on CI) and fail when there is none.
+
+mod common;
+mod composite_tests;
+mod gltf_tests;
+mod image_tests;
+mod reference_tests;
+mod render_tests;

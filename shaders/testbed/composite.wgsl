@@ -1,0 +1,30 @@
+// Composite (testbed): scene colour mixed with a reflection over reflector pixels.
+// out = mix(scene, reflection.rgb, reflectivity * saturate(reflection.a)) where the
+// reflector id is non-zero; the reflection's alpha says whether it is valid.
+
+struct Composite {
+    params: vec4<f32>,  // x: reflectivity in [0, 1]
+}
+
+@group(0) @binding(0) var<uniform> u: Composite;
+@group(0) @binding(1) var scene_color: texture_2d<f32>;
+@group(0) @binding(2) var reflection: texture_2d<f32>;
+@group(0) @binding(3) var reflector_id: texture_2d<u32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
+    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+@fragment
+fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {
+    let px = vec2<i32>(frag.xy);
+    let scene = textureLoad(scene_color, px, 0);
+    if (textureLoad(reflector_id, px, 0).x == 0u) {
+        return scene;
+    }
+    let r = textureLoad(reflection, px, 0);
+    let weight = u.params.x * clamp(r.a, 0.0, 1.0);
+    return vec4<f32>(mix(scene.rgb, r.rgb, weight), scene.a);
+}
