@@ -154,10 +154,30 @@ pub fn run(
     let level = Level::load_gltf(&job.level)?;
     let reflectors = ReflectorSet::load(&job.reflectors)?;
     let camera = pick_camera(&level, job.camera.as_deref(), job.projection)?;
+    let mut report = run_level(job, &level, &reflectors, &camera, gpu, technique)?;
+    report.seconds = start.elapsed().as_secs_f64();
+    Ok(report)
+}
+
+/// Like [`run`] with the level, the set and the camera already in memory (`job.level`,
+/// `job.reflectors`, `job.camera` and `job.projection` are not read).
+///
+/// # Errors
+/// Reading back or writing an image.
+pub fn run_level(
+    job: &RenderJob,
+    level: &Level,
+    reflectors: &ReflectorSet,
+    camera: &Camera,
+    gpu: &GpuContext,
+    technique: Option<&mut dyn ReflectionTechnique>,
+) -> Result<RenderReport, TestbedError> {
+    let start = Instant::now();
+    let camera = *camera;
     let (device, queue) = (&gpu.device, &gpu.queue);
     let size = [job.size[0].max(1), job.size[1].max(1)];
 
-    let mut renderer = LevelRenderer::new(device, queue, &level, &reflectors);
+    let mut renderer = LevelRenderer::new(device, queue, level, reflectors);
     let frame = renderer.prepare(device, queue, &camera, size).clone();
     let usage = wgpu::TextureUsages::STORAGE_BINDING
         | wgpu::TextureUsages::TEXTURE_BINDING

@@ -3,7 +3,9 @@
 
 mod common;
 mod composite_tests;
+mod demo_level_tests;
 mod gltf_tests;
 mod image_tests;
+mod ppr_tests;
 mod reference_tests;
 mod render_tests;

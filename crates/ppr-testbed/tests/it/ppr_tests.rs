@@ -1,0 +1,54 @@
+//! End to end: `ppr-runtime`'s reflections measured against the exact reference.
+
+use ppr_runtime::ReflectionSettings;
+use ppr_testbed::camera_spec::ProjectionChoice;
+use ppr_testbed::render_job::{OutputFiles, RenderJob, run_level};
+use ppr_testbed::{CompositeParams, FloorMirrorParams, PprTechnique, SyntheticScene, ToneMap};
+
+use crate::common::{gpu, timed};
+
+/// PPR on the floor mirror scene through the whole `ppr-render` job: the runtime runs, every
+/// output file is written, the metrics are finite. The quality numbers are printed; their
+/// thresholds belong to the runtime's own tests (at this commit the runtime projects the
+/// floor's own pixels, `dist` ≈ +1e-6, onto themselves, so it is not close yet).
+#[test]
+fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
+    timed("ppr_render_job_runs_the_runtime_and_writes_every_file", || {
+        let scene = SyntheticScene::floor_mirror(&FloorMirrorParams::default());
+        let dir = tempfile::tempdir().expect("tempdir");
+        let job = RenderJob {
+            level: "synthetic".into(),
+            reflectors: "synthetic".into(),
+            camera: None,
+            size: [192, 144],
+            projection: ProjectionChoice::default(),
+            // PPR_TESTBED_ARTIFACTS=dir keeps the images to look at.
+            output: std::env::var_os("PPR_TESTBED_ARTIFACTS")
+                .map_or_else(|| dir.path().to_owned(), std::path::PathBuf::from)
+                .join("ppr_floor_mirror.png"),
+            composite: CompositeParams::default(),
+            tone_map: ToneMap::Clamp,
+        };
+        let g = gpu();
+        let _guard = g.lock();
+        let mut ppr =
+            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::ALL);
+        let report = run_level(&job, &scene.level, &scene.reflectors, &scene.camera, &g.ctx, Some(&mut ppr))
+            .expect("render job");
+        eprintln!("{report}");
+        let files = OutputFiles::for_output(&job.output);
+        for f in [&files.frame, &files.reflection_png, &files.reflection_exr, &files.reference, &files.diff] {
+            assert!(f.is_file(), "{} not written", f.display());
+        }
+        let on = report.on_screen.expect("PPR ran");
+        let off = report.off_screen.expect("PPR ran");
+        assert!(on.pixels > 1000 && off.pixels > 1000, "{on} / {off}");
+        assert_eq!(on.pixels, report.reflector_pixels.1);
+        for c in [on, off] {
+            assert!(c.psnr_db.is_finite() && c.psnr_db > 0.0, "{c}");
+            assert!((0.0..=1.0).contains(&c.flip_mean) && c.mean_abs_error.is_finite(), "{c}");
+        }
+        let holes = report.on_screen_holes.expect("PPR ran");
+        assert!(holes < 1.0, "PPR wrote no reflection on any on-screen pixel");
+    });
+}
