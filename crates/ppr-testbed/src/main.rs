@@ -15,7 +15,7 @@ use ppr_format::ReflectorSet;
 use ppr_runtime::{DepthMode, ReflectionSettings};
 use ppr_testbed::camera_spec::ProjectionChoice;
 use ppr_testbed::render_job::{RenderJob, run};
-use ppr_testbed::{CompositeParams, GpuContext, PprTechnique, ToneMap};
+use ppr_testbed::{CompositeParams, GpuContext, PprTechnique, RenderSettings, ToneMap};
 
 /// Render a level with PPR and with the exact reference; write frame, reflection,
 /// reference and difference images; print PSNR and FLIP over on-screen reflector pixels.
@@ -55,6 +55,10 @@ struct Args {
     /// Tone map the PNG files and the metrics with Reinhard instead of clamping.
     #[arg(long)]
     reinhard: bool,
+    /// Any surface on a reflector's plane inside its rectangle is a reflector pixel, not
+    /// only reflective materials (use with sets extracted with `--all-planar`).
+    #[arg(long)]
+    mask_any_surface: bool,
     /// Output frame (PNG); the other files are named after it (frame.reflection.png, ...).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -75,7 +79,7 @@ fn main() -> anyhow::Result<()> {
     if !(0.0..=1.0).contains(&args.reflectivity) {
         bail!("--reflectivity must be in [0, 1], got {}", args.reflectivity);
     }
-    let job = RenderJob {
+    let mut job = RenderJob {
         level: args.level.clone(),
         reflectors: args.set.clone(),
         camera: args.camera.clone(),
@@ -87,7 +91,9 @@ fn main() -> anyhow::Result<()> {
         output: args.output.clone(),
         composite: CompositeParams { reflectivity: args.reflectivity },
         tone_map: if args.reinhard { ToneMap::Reinhard } else { ToneMap::Clamp },
+        render: RenderSettings::default(),
     };
+    job.render.mask.require_reflective_material = !args.mask_any_surface;
     let gpu = GpuContext::new_headless().context("creating the GPU context")?;
     let reflectors = ReflectorSet::load(&args.set)?;
     let settings = ReflectionSettings {

@@ -2,7 +2,6 @@
 //! camera (see [`crate::mirror_camera`]), resolved into main-view pixels with the reflected
 //! point's position and whether the main view shows that point.
 
-use glam::Mat4;
 use ppr_runtime::Camera;
 
 use crate::gbuffer_targets::{GBuffer, Target};
@@ -333,9 +332,4 @@ fn begin_output_pass<'e>(
         occlusion_query_set: None,
         multiview_mask: None,
     })
-}
-
-/// The main view's clip-from-relative matrix for a viewport of `size` (shared by tests).
-pub fn main_clip_from_rel(camera: &Camera, size: [u32; 2]) -> Mat4 {
-    camera.clip_from_relative(size[0] as f32 / size[1] as f32)
 }

@@ -19,7 +19,7 @@ use crate::level::Level;
 use crate::metrics::{ImageComparison, compare};
 use crate::pixel_mask::PixelMask;
 use crate::readback::read_rgba_f32;
-use crate::renderer::{FrameSummary, LevelRenderer};
+use crate::renderer::{FrameSummary, LevelRenderer, RenderSettings};
 use crate::technique::{REFLECTION_FORMAT, ReflectionInputs, ReflectionTechnique};
 
 /// Everything `ppr-render` was asked to do.
@@ -41,6 +41,8 @@ pub struct RenderJob {
     pub composite: CompositeParams,
     /// Tone mapping of the PNG files and the metrics.
     pub tone_map: ToneMap,
+    /// Lighting, reflector mask and reference tolerances.
+    pub render: RenderSettings,
 }
 
 /// The files a job writes, named after its output path `frame.png`.
@@ -178,6 +180,7 @@ pub fn run_level(
     let size = [job.size[0].max(1), job.size[1].max(1)];
 
     let mut renderer = LevelRenderer::new(device, queue, level, reflectors);
+    renderer.settings = job.render;
     let frame = renderer.prepare(device, queue, &camera, size).clone();
     let usage = wgpu::TextureUsages::STORAGE_BINDING
         | wgpu::TextureUsages::TEXTURE_BINDING

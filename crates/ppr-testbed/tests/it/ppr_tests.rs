@@ -3,7 +3,9 @@
 use ppr_runtime::ReflectionSettings;
 use ppr_testbed::camera_spec::ProjectionChoice;
 use ppr_testbed::render_job::{OutputFiles, RenderJob, run_level};
-use ppr_testbed::{CompositeParams, FloorMirrorParams, PprTechnique, SyntheticScene, ToneMap};
+use ppr_testbed::{
+    CompositeParams, FloorMirrorParams, PprTechnique, RenderSettings, SyntheticScene, ToneMap,
+};
 
 use crate::common::{gpu, timed};
 
@@ -28,6 +30,7 @@ fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
                 .join("ppr_floor_mirror.png"),
             composite: CompositeParams::default(),
             tone_map: ToneMap::Clamp,
+            render: RenderSettings::default(),
         };
         let g = gpu();
         let _guard = g.lock();

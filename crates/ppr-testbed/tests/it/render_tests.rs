@@ -93,3 +93,24 @@ fn negative_scale_instances_render_like_their_twins() {
         assert!(differ <= 10, "{differ} pixels differ between the box and its mirrored twin");
     });
 }
+
+/// A level without reflectors (or with only disabled ones) renders; nothing is marked and
+/// the reference is empty.
+#[test]
+fn sets_without_enabled_reflectors_give_an_empty_reference() {
+    timed("sets_without_enabled_reflectors_give_an_empty_reference", || {
+        let mut scene = SyntheticScene::floor_mirror(&FloorMirrorParams::default());
+        for set_up in [0, 1] {
+            if set_up == 0 {
+                scene.reflectors.reflectors.clear();
+            } else {
+                scene = SyntheticScene::floor_mirror(&FloorMirrorParams::default());
+                scene.reflectors.reflectors[0].enabled = false;
+            }
+            let frame = render(&scene, &scene.camera, SIZE);
+            assert_eq!(frame.reflector_mask().count(), 0);
+            assert!(frame.reference.pixels().all(|p| p.0 == [0.0; 4]), "reference must be cleared");
+            assert!(frame.reference_class.data.iter().all(|&c| c == 0));
+        }
+    });
+}
