@@ -5,6 +5,8 @@ const PPR_FLAG_HOLES: u32 = 1u;
 const PPR_FLAG_FILTERING: u32 = 2u;
 const PPR_FLAG_ANTI_BLEEDING: u32 = 4u;
 const PPR_FLAG_OCCLUDER_TESTS: u32 = 8u;
+const PPR_FLAG_WRITE_LAST: u32 = 16u;
+const PPR_FLAG_WRITE_MAX: u32 = 32u;
 
 // Shape flags.
 const PPR_SHAPE_OCCLUDES: u32 = 1u;
@@ -18,7 +20,9 @@ struct FrameUniforms {
     visible_count: u32,
     flags: u32,
     far_depth: f32,
-    _pad0: u32,
+    // Points closer to a reflector's plane than this times their distance from the
+    // camera are taken as lying on it (they would reflect onto themselves).
+    plane_epsilon: f32,
     _pad1: u32,
     _pad2: u32,
     encoding: EncodingParams,

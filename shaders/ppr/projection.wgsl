@@ -4,7 +4,7 @@
 // Seed: PPR_ProjectionPassWrite.
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
-@group(0) @binding(1) var depth_tex: texture_depth_2d;
+@group(0) @binding(1) var depth_tex: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> shapes: array<Shape>;
 @group(0) @binding(3) var<storage, read> visible: array<u32>;
 @group(0) @binding(4) var<storage, read> occluders: array<u32>;
@@ -37,7 +37,26 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) {
         return;
     }
     let t = min(vec2<u32>(target_crd), frame.size - 1u);
-    atomicMin(&intermediate[t.x + t.y * frame.size.x], value);
+    let index = t.x + t.y * frame.size.x;
+    if ((frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u) {
+        atomicMin(&intermediate[index], value);
+    } else if ((frame.flags & PPR_FLAG_WRITE_LAST) != 0u) {
+        atomicStore(&intermediate[index], value);
+    } else {
+        // The largest offset wins; the clear value counts as empty, so plain atomicMax
+        // would never write: a compare-exchange loop instead (debug path only).
+        var old = atomicLoad(&intermediate[index]);
+        loop {
+            if (old != PPR_CLEAR_VALUE && old >= value) {
+                break;
+            }
+            let r = atomicCompareExchangeWeak(&intermediate[index], old, value);
+            if (r.exchanged) {
+                break;
+            }
+            old = r.old_value;
+        }
+    }
 }
 
 @compute @workgroup_size(16, 16)
@@ -45,7 +64,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     if (any(gid.xy >= frame.size)) {
         return;
     }
-    let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0);
+    let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
     // Nothing rendered here (far plane), or a depth that is not a number.
     if (!(depth >= 0.0 && depth <= 1.0) || depth == frame.far_depth) {
         return;
@@ -58,10 +77,11 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let occluder_tests = (frame.flags & PPR_FLAG_OCCLUDER_TESTS) != 0u;
+    let min_dist = frame.plane_epsilon * length(p);
     for (var i = 0u; i < frame.visible_count; i++) {
         let s = shapes[visible[i]];
         let dist = dot(p, s.normal) - s.plane_dist;
-        if (!(dist > 0.0)) {
+        if (!(dist > min_dist)) {
             continue;
         }
         // Mirror against the plane; cast from the camera (origin) to the mirrored point.

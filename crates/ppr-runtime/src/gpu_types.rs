@@ -11,6 +11,11 @@ pub const FLAG_ANTI_BLEEDING: u32 = 4;
 /// Bit of [`FrameUniforms::flags`]: occluder tests in the projection pass.
 pub const FLAG_OCCLUDER_TESTS: u32 = 8;
 
+/// Bit of [`FrameUniforms::flags`]: plain stores instead of `atomicMin` (debug).
+pub const FLAG_WRITE_LAST: u32 = 16;
+/// Bit of [`FrameUniforms::flags`]: `atomicMax` instead of `atomicMin` (debug).
+pub const FLAG_WRITE_MAX: u32 = 32;
+
 /// Bit of [`GpuShape::flags`]: the shape blocks reflections of the main buffer behind it
 /// (opaque and water shapes do; glass does not).
 pub const SHAPE_OCCLUDES: u32 = 1;
@@ -26,7 +31,8 @@ pub struct FrameUniforms {
     pub visible_count: u32,
     pub flags: u32,
     pub far_depth: f32,
-    pub _pad: [u32; 3],
+    pub plane_epsilon: f32,
+    pub _pad: [u32; 2],
     pub encoding: EncodingParams,
 }
 const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 208);

@@ -11,9 +11,14 @@ use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
 use crate::passes::{ClearPass, ProjectionPass, ReflectionPass};
 use crate::plan::FramePlan;
-use crate::settings::ReflectionSettings;
+use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings};
+
+/// Pixels within this fraction of their camera distance from a reflector's plane count as
+/// lying on it and are not reflected by it (else a reflector reflects itself). 1e-4 covers
+/// the position error of an f32 depth buffer at 1000× the near-plane distance.
+pub const PLANE_EPSILON: f32 = 1e-4;
 
 /// How a renderer is created.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -68,6 +73,8 @@ pub struct ReflectionRenderer {
     queue: wgpu::Queue,
     /// Steps of the reflection pass; change at any time.
     pub settings: ReflectionSettings,
+    /// How the projection pass writes (debug: shows the write-order artefact).
+    pub write_mode: WriteMode,
     clear: ClearPass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
@@ -85,6 +92,7 @@ impl ReflectionRenderer {
             device: device.clone(),
             queue: queue.clone(),
             settings: ReflectionSettings::default(),
+            write_mode: WriteMode::default(),
             clear: ClearPass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
@@ -149,9 +157,12 @@ impl ReflectionRenderer {
             resolution: [w as f32, h as f32, 1.0 / w as f32, 1.0 / h as f32],
             size: [w, h],
             visible_count: plan.visible.len() as u32,
-            flags: self.settings.flags() | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 },
+            flags: self.settings.flags()
+                | self.write_mode.flags()
+                | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 },
             far_depth: camera.projection.far_depth(),
-            _pad: [0; 3],
+            plane_epsilon: PLANE_EPSILON,
+            _pad: [0; 2],
             encoding: plan.encoding.gpu_params(),
         };
         queue.write_buffer(&b.uniforms, 0, bytemuck::bytes_of(&uniforms));

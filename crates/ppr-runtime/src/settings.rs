@@ -32,3 +32,28 @@ impl ReflectionSettings {
             | (if self.anti_bleeding { FLAG_ANTI_BLEEDING } else { 0 })
     }
 }
+
+/// How the projection pass writes the intermediate buffer. Only [`WriteMode::AtomicMin`]
+/// is correct; the others exist to show the artefact the seed's flowerpot slide shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum WriteMode {
+    /// `atomicMin`: the smallest offset, i.e. the closest reflected surface, wins.
+    #[default]
+    AtomicMin,
+    /// Plain stores: whichever write the GPU schedules last wins.
+    LastWriter,
+    /// `atomicMax`: the worst case of an unordered write, the farthest surface wins.
+    AtomicMax,
+}
+
+impl WriteMode {
+    /// The mode as shader flag bits.
+    pub fn flags(self) -> u32 {
+        use crate::gpu_types::{FLAG_WRITE_LAST, FLAG_WRITE_MAX};
+        match self {
+            Self::AtomicMin => 0,
+            Self::LastWriter => FLAG_WRITE_LAST,
+            Self::AtomicMax => FLAG_WRITE_MAX,
+        }
+    }
+}

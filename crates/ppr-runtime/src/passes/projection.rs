@@ -27,7 +27,9 @@ impl ProjectionPass {
             binding: 1,
             visibility: wgpu::ShaderStages::COMPUTE,
             ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Depth,
+                // A depth texture bound as unfilterable float: naga's GLSL output cannot
+                // `textureLoad` from depth textures, and the pass only loads.
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
                 view_dimension: wgpu::TextureViewDimension::D2,
                 multisampled: false,
             },

@@ -3,3 +3,6 @@
 
 mod encoding_parity;
 mod gpu;
+mod harness;
+mod reflection;
+mod scene;

@@ -1,0 +1,248 @@
+//! An analytic test scene: quads and boxes ray-cast on the CPU (f64), giving the colour and
+//! depth buffers the runtime reads and the exact reflection to compare it with.
+
+use glam::{DVec3, Vec3};
+use ppr_format::{Reflector, ReflectorKind, ReflectorSet};
+use ppr_runtime::Camera;
+
+/// How a quad is coloured (linear RGB as a function of the hit point's quad coordinates).
+#[derive(Clone, Copy, Debug)]
+pub enum Albedo {
+    Solid(Vec3),
+    /// Smooth two-axis gradient between two colours.
+    Gradient(Vec3, Vec3),
+    /// Stripes of two colours along u with the given period (in quad coordinates, 0..1).
+    Stripes(Vec3, Vec3, f64),
+    /// A smooth sinusoidal pattern with the given period (quad coordinates).
+    Waves(f64),
+}
+
+impl Albedo {
+    fn at(&self, s: f64, t: f64) -> Vec3 {
+        match *self {
+            Albedo::Solid(c) => c,
+            Albedo::Gradient(a, b) => {
+                let k = (0.5 * (s + t)).clamp(0.0, 1.0) as f32;
+                a.lerp(b, k) * (0.8 + 0.2 * (t as f32).clamp(0.0, 1.0))
+            }
+            Albedo::Waves(period) => {
+                let k = std::f64::consts::TAU / period;
+                Vec3::new(
+                    (0.5 + 0.35 * (k * s).sin()) as f32,
+                    (0.5 + 0.35 * (k * t * 0.7).cos()) as f32,
+                    (0.5 + 0.3 * (k * (s + t) * 0.5).sin()) as f32,
+                )
+            }
+            Albedo::Stripes(a, b, period) => {
+                if (s / period).floor().rem_euclid(2.0) < 1.0 {
+                    a
+                } else {
+                    b
+                }
+            }
+        }
+    }
+}
+
+/// A double-sided rectangle.
+#[derive(Clone, Copy, Debug)]
+pub struct Quad {
+    pub center: DVec3,
+    pub u: DVec3,
+    pub v: DVec3,
+    pub half: [f64; 2],
+    pub albedo: Albedo,
+    /// Index of the reflector this quad is, if it is one.
+    pub mirror: Option<usize>,
+}
+
+impl Quad {
+    fn normal(&self) -> DVec3 {
+        self.u.cross(self.v).normalize()
+    }
+
+    /// Distance along the ray and quad coordinates in [0, 1]².
+    fn intersect(&self, o: DVec3, d: DVec3) -> Option<(f64, f64, f64)> {
+        let n = self.normal();
+        let dn = d.dot(n);
+        if dn.abs() < 1e-12 {
+            return None;
+        }
+        let t = (self.center - o).dot(n) / dn;
+        if t <= 1e-9 {
+            return None;
+        }
+        let l = o + d * t - self.center;
+        let (a, b) = (l.dot(self.u), l.dot(self.v));
+        (a.abs() <= self.half[0] && b.abs() <= self.half[1])
+            .then(|| (t, 0.5 + 0.5 * a / self.half[0], 0.5 + 0.5 * b / self.half[1]))
+    }
+}
+
+/// A scene of quads; some are mirrors.
+#[derive(Clone, Debug, Default)]
+pub struct AnalyticScene {
+    pub quads: Vec<Quad>,
+    /// The reflectors, index = `Quad::mirror`.
+    pub set: Vec<Reflector>,
+}
+
+pub const SKY: Vec3 = Vec3::new(0.02, 0.02, 0.05);
+
+impl AnalyticScene {
+    pub fn quad(&mut self, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2], albedo: Albedo) -> &mut Self {
+        self.quads.push(Quad { center, u: u.normalize(), v: v.normalize(), half, albedo, mirror: None });
+        self
+    }
+
+    /// A mirror quad; its reflecting side is `u × v`.
+    pub fn mirror(&mut self, name: &str, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2]) -> &mut Self {
+        let (u, v) = (u.normalize(), v.normalize());
+        let index = self.set.len();
+        self.quads.push(Quad {
+            center,
+            u,
+            v,
+            half,
+            albedo: Albedo::Solid(Vec3::splat(0.1)),
+            mirror: Some(index),
+        });
+        self.set.push(Reflector::new(
+            index as u32,
+            name,
+            ReflectorKind::Opaque,
+            center,
+            u,
+            v,
+            glam::DVec2::new(half[0], half[1]),
+        ));
+        self
+    }
+
+    /// An axis-aligned box of six quads with slightly different shades per face.
+    pub fn cuboid(&mut self, min: DVec3, max: DVec3, colour: Vec3) -> &mut Self {
+        let c = (min + max) * 0.5;
+        let h = (max - min) * 0.5;
+        let faces = [
+            (DVec3::X, DVec3::Y, DVec3::Z, [h.z, h.y], 0.8),
+            (DVec3::NEG_X, DVec3::Y, DVec3::NEG_Z, [h.z, h.y], 0.7),
+            (DVec3::Y, DVec3::Z, DVec3::X, [h.x, h.z], 1.0),
+            (DVec3::NEG_Y, DVec3::X, DVec3::Z, [h.x, h.z], 0.5),
+            (DVec3::Z, DVec3::X, DVec3::Y, [h.x, h.y], 0.9),
+            (DVec3::NEG_Z, DVec3::NEG_X, DVec3::Y, [h.x, h.y], 0.75),
+        ];
+        for (n, u, v, half, shade) in faces {
+            let offset = n * h.dot(n.abs());
+            self.quad(c + offset, u, v, half, Albedo::Solid(colour * shade));
+        }
+        self
+    }
+
+    pub fn reflector_set(&self) -> ReflectorSet {
+        let mut set = ReflectorSet::new("analytic scene");
+        set.reflectors = self.set.clone();
+        set.validate().expect("the test scene's reflectors are valid");
+        set
+    }
+
+    /// Nearest hit along a ray: (distance, colour, quad index).
+    fn cast(&self, o: DVec3, d: DVec3) -> Option<(f64, Vec3, usize)> {
+        let mut best: Option<(f64, Vec3, usize)> = None;
+        for (i, q) in self.quads.iter().enumerate() {
+            if let Some((t, s, u)) = q.intersect(o, d)
+                && best.is_none_or(|b| t < b.0)
+            {
+                best = Some((t, q.albedo.at(s, u), i));
+            }
+        }
+        best
+    }
+
+    /// Renders the colour and depth buffers and the exact reflection.
+    pub fn render(&self, camera: &Camera, [w, h]: [u32; 2]) -> Frame {
+        let aspect = w as f64 / h as f64;
+        let clip_from_rel = camera.clip_from_relative(aspect as f32).as_dmat4();
+        let rel_from_clip = clip_from_rel.inverse();
+        let eye = camera.position;
+        let n = (w * h) as usize;
+        let mut f = Frame {
+            size: [w, h],
+            color: vec![SKY; n],
+            depth: vec![camera.projection.far_depth(); n],
+            mirror: vec![None; n],
+            reference: vec![Vec3::ZERO; n],
+            on_screen: vec![false; n],
+            source_px: vec![glam::Vec2::ZERO; n],
+        };
+        let project = |p_rel: DVec3| {
+            let c = clip_from_rel * p_rel.extend(1.0);
+            (c.x / c.w, c.y / c.w, c.z / c.w, c.w)
+        };
+        for y in 0..h {
+            for x in 0..w {
+                let i = (y * w + x) as usize;
+                let ndc = glam::DVec4::new(
+                    (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
+                    1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
+                    0.5,
+                    1.0,
+                );
+                let p = rel_from_clip * ndc;
+                let dir = (p.truncate() / p.w).normalize();
+                let Some((t, colour, qi)) = self.cast(eye, dir) else { continue };
+                f.color[i] = colour;
+                f.depth[i] = project(dir * t).2 as f32;
+                let quad = &self.quads[qi];
+                let Some(m) = quad.mirror else { continue };
+                // Seen from the reflecting side only.
+                if dir.dot(quad.normal()) >= 0.0 {
+                    continue;
+                }
+                f.mirror[i] = Some(m);
+                let hit = eye + dir * t;
+                let n = quad.normal();
+                let r = dir - 2.0 * dir.dot(n) * n;
+                match self.cast(hit + n * 1e-9, r) {
+                    None => f.reference[i] = SKY,
+                    Some((tr, c, _)) => {
+                        f.reference[i] = c;
+                        // On screen: inside the viewport and the nearest surface there.
+                        let q_rel = hit + r * tr - eye;
+                        let (nx, ny, _, cw) = project(q_rel);
+                        let inside = cw > 0.0 && nx.abs() < 1.0 && ny.abs() < 1.0;
+                        let visible = self.cast(eye, q_rel.normalize()).is_some_and(|(tq, _, _)| {
+                            (tq - q_rel.length()).abs() <= 1e-6 * q_rel.length().max(1.0)
+                        });
+                        f.on_screen[i] = inside && visible;
+                        f.source_px[i] = glam::Vec2::new(
+                            ((nx * 0.5 + 0.5) * w as f64) as f32,
+                            ((0.5 - 0.5 * ny) * h as f64) as f32,
+                        );
+                    }
+                }
+            }
+        }
+        f
+    }
+}
+
+/// CPU images of one frame (row-major, top row first).
+pub struct Frame {
+    pub size: [u32; 2],
+    pub color: Vec<Vec3>,
+    pub depth: Vec<f32>,
+    /// Reflector index seen at each pixel (reflecting side only).
+    pub mirror: Vec<Option<usize>>,
+    /// The exact reflected colour at mirror pixels.
+    pub reference: Vec<Vec3>,
+    /// Mirror pixels whose reflected point is visible on screen.
+    pub on_screen: Vec<bool>,
+    /// Where the reflected point of each on-screen mirror pixel is on screen (pixels).
+    pub source_px: Vec<glam::Vec2>,
+}
+
+impl Frame {
+    pub fn on_screen_count(&self) -> usize {
+        self.on_screen.iter().filter(|&&b| b).count()
+    }
+}
