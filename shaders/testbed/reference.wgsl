@@ -16,6 +16,7 @@ struct Resolve {
     plane: vec4<u32>,                   // x: plane index resolved by this pass
     depth: vec4<f32>,                   // x: far depth (cleared value), y: plane tolerance (m),
                                         // z: plane tolerance per metre, w: distance tolerance per metre
+    normals: vec4<f32>,                 // x: smallest cosine between the two surfaces' normals
 }
 
 @group(0) @binding(0) var<uniform> u: Resolve;
@@ -25,6 +26,7 @@ struct Resolve {
 @group(0) @binding(4) var main_normal: texture_2d<f32>;
 @group(0) @binding(5) var mirror_color: texture_2d<f32>;
 @group(0) @binding(6) var mirror_depth: texture_2d<f32>;
+@group(0) @binding(7) var mirror_normal: texture_2d<f32>;
 
 @vertex
 fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
@@ -46,8 +48,9 @@ fn unproject(m: mat4x4<f32>, ndc: vec2<f32>, depth: f32) -> vec3<f32> {
     return h.xyz / h.w;
 }
 
-// Whether the camera-relative point x is what the main view shows (within tolerance).
-fn on_screen(x: vec3<f32>) -> bool {
+// Whether the camera-relative point x, on a surface of normal nx, is what the main view
+// shows (within tolerance): same surface plane, nearby, same facing.
+fn on_screen(x: vec3<f32>, nx: vec3<f32>) -> bool {
     let c = u.main_clip_from_rel * vec4<f32>(x, 1.0);
     if (c.w <= 0.0) {
         return false;
@@ -66,7 +69,9 @@ fn on_screen(x: vec3<f32>) -> bool {
     let n = textureLoad(main_normal, qp, 0).xyz;
     let dist = length(x);
     let off_plane = abs(dot(x - p, n));
-    return off_plane <= u.depth.y + u.depth.z * dist && length(x - p) <= 0.05 + u.depth.w * dist;
+    return off_plane <= u.depth.y + u.depth.z * dist
+        && length(x - p) <= u.depth.y + u.depth.w * dist
+        && dot(n, nx) >= u.normals.x;
 }
 
 @fragment
@@ -87,6 +92,7 @@ fn fs_main(@builtin(position) frag: vec4<f32>) -> ResolveOut {
         return out;
     }
     let x = unproject(u.rel_from_mirror_clip, ndc_of(frag.xy), md);
-    out.point = vec4<u32>(bitcast<vec3<u32>>(x), select(2u, 1u, on_screen(x)));
+    let nx = textureLoad(mirror_normal, px, 0).xyz;
+    out.point = vec4<u32>(bitcast<vec3<u32>>(x), select(2u, 1u, on_screen(x, nx)));
     return out;
 }

@@ -50,6 +50,12 @@ pub struct MirroredView {
     pub rel_from_clip: DMat4,
 }
 
+/// Geometry closer than this to the mirror plane (metres, on the reflected side) is not
+/// drawn in the mirrored view: the mirror's own surface must not hide its reflection.
+pub const MIRROR_SURFACE_MARGIN: f64 = 1e-3;
+/// Added to [`MIRROR_SURFACE_MARGIN`] per metre between the camera and the plane.
+pub const MIRROR_SURFACE_MARGIN_PER_METRE: f64 = 1e-4;
+
 /// What the near plane of a mirrored view is.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MirrorClipping {
@@ -78,9 +84,12 @@ pub fn mirrored_view(
         return None;
     }
     let view = camera.view_from_relative().as_dmat4();
-    // Keep mirrored geometry on the far side of the plane: (−n)·r + d_rel ≥ 0.
+    // Keep mirrored geometry on the far side of the plane: (−n)·r + d_rel ≥ ε. The margin
+    // ε clips the mirror's own surface (and anything lying on it, like a double-sided
+    // pane) which would otherwise cover the reflection.
     // The view matrix is a pure rotation, so planes transform like points.
-    let clip_plane = (view.transform_vector3(-n)).extend(d_rel);
+    let margin = MIRROR_SURFACE_MARGIN + MIRROR_SURFACE_MARGIN_PER_METRE * -d_rel;
+    let clip_plane = (view.transform_vector3(-n)).extend(d_rel - margin);
     let oblique = oblique_projection(camera, aspect, clip_plane)?;
     let projection = match clipping {
         MirrorClipping::Oblique => oblique,
@@ -165,11 +174,16 @@ mod tests {
                 let view =
                     mirrored_view(&cam, 1.5, &floor(), MirrorClipping::Oblique).expect("floor is visible");
                 let near = if depth == DepthMode::Standard { 0.0 } else { 1.0 };
-                // Points on the plane (seen through the mirror they are on the plane too).
-                for p in [DVec3::new(1e5, 0.0, 0.0), DVec3::new(1e5 + 1.0, 0.0, -2.0)] {
+                // Points just beyond the margin are at the near plane (seen through the
+                // mirror they are on the plane too); points on the mirror are clipped.
+                let margin = MIRROR_SURFACE_MARGIN + MIRROR_SURFACE_MARGIN_PER_METRE * 2.0;
+                for p in [DVec3::new(1e5, margin, 0.0), DVec3::new(1e5 + 1.0, margin, -2.0)] {
                     let z = depth_of(&view, &cam, p);
                     assert!((z - near).abs() < 1e-6, "{depth:?} {far:?}: plane point depth {z}");
                 }
+                let on_mirror = depth_of(&view, &cam, DVec3::new(1e5, 0.0, -1.0));
+                let clipped = if depth == DepthMode::Standard { on_mirror < 0.0 } else { on_mirror > 1.0 };
+                assert!(clipped, "{depth:?} {far:?}: the mirror's own surface is drawn ({on_mirror})");
                 // A point above the floor is reflected below it: inside the depth range.
                 let above = depth_of(&view, &cam, DVec3::new(1e5, 1.0, -1.0));
                 assert!((0.0..=1.0).contains(&above) && (above - near).abs() > 1e-4, "{depth:?}: {above}");

@@ -41,21 +41,25 @@ impl ReflectedPointClass {
     }
 }
 
-/// Tolerances of the on-screen test: the main view's surface at the reflected point's
-/// pixel must pass within these of the reflected point.
+/// Tolerances of the on-screen test: the main view's surface at the pixel where the
+/// reflected point projects must be the reflected point's surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OnScreenTolerance {
-    /// Largest distance of the reflected point from the main view's surface plane, metres.
+    /// Largest distance of the reflected point from the main view's surface plane, metres
+    /// (also added to the distance test below).
     pub plane: f32,
-    /// Added to `plane` per metre of distance from the camera.
+    /// Added to `plane` per metre of distance from the camera (depth precision).
     pub plane_per_metre: f32,
-    /// Largest distance to the main view's surface point, per metre of distance (plus 5 cm).
-    pub distance_per_metre: f32,
+    /// Largest distance to the main view's surface point at that pixel, in pixel
+    /// footprints at the point's distance.
+    pub distance_pixels: f32,
+    /// Smallest cosine between the reflected surface's normal and the main view's normal.
+    pub min_normal_cos: f32,
 }
 
 impl Default for OnScreenTolerance {
     fn default() -> Self {
-        Self { plane: 0.01, plane_per_metre: 0.01, distance_per_metre: 0.05 }
+        Self { plane: 0.005, plane_per_metre: 0.005, distance_pixels: 3.0, min_normal_cos: 0.7 }
     }
 }
 
@@ -68,8 +72,9 @@ struct ResolveUniform {
     size: [f32; 4],
     plane: [u32; 4],
     depth: [f32; 4],
+    normals: [f32; 4],
 }
-const _: () = assert!(size_of::<ResolveUniform>() == 240);
+const _: () = assert!(size_of::<ResolveUniform>() == 256);
 
 /// The outputs of the reference for one frame size, and the mirrored view's scratch G-buffer.
 pub struct ReferenceTargets {
@@ -137,8 +142,9 @@ impl ReferenceBindings {
                 camera.projection.far_depth(),
                 tolerance.plane,
                 tolerance.plane_per_metre,
-                tolerance.distance_per_metre,
+                tolerance.distance_pixels * footprint_per_metre(camera, size),
             ],
+            normals: [tolerance.min_normal_cos, 0.0, 0.0, 0.0],
         };
         queue.write_buffer(&self.uniforms, u64::from(slot) * self.stride, bytemuck::bytes_of(&u));
     }
@@ -204,6 +210,7 @@ impl MirrorReference {
                 tex(4, float),
                 tex(5, float),
                 tex(6, float),
+                tex(7, float),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -282,6 +289,7 @@ impl MirrorReference {
                 view(4, &main.normal.view),
                 view(5, &targets.mirror.color.view),
                 view(6, &targets.mirror.depth.view),
+                view(7, &targets.mirror.normal.view),
             ],
         });
         ReferenceBindings { uniforms, stride, slots, plane_of_reflector, reflector_capacity, bind_group }
@@ -332,4 +340,10 @@ fn begin_output_pass<'e>(
         occlusion_query_set: None,
         multiview_mask: None,
     })
+}
+
+/// Size of one pixel per metre of distance from the camera (vertical field of view over
+/// the height in pixels).
+pub fn footprint_per_metre(camera: &Camera, size: [u32; 2]) -> f32 {
+    2.0 * (camera.projection.fov_y * 0.5).tan() / size[1].max(1) as f32
 }

@@ -27,13 +27,16 @@ pub struct FloorMirrorParams {
     pub floor_half_size: f64,
     /// Put a bright red box entirely below the floor (the reference must never show it).
     pub red_box_below: bool,
+    /// Add a double-sided polished pane standing at z = −2.2 (x ∈ [−2.5, 2.5], y ∈ [0, 2.5],
+    /// facing +Z, reflector 1) between the boxes and the pillar, like a glass panel.
+    pub wall_pane: bool,
     /// Everything (geometry, reflectors, camera) is moved by this offset.
     pub offset: DVec3,
 }
 
 impl Default for FloorMirrorParams {
     fn default() -> Self {
-        Self { floor_half_size: 4.0, red_box_below: true, offset: DVec3::ZERO }
+        Self { floor_half_size: 4.0, red_box_below: true, wall_pane: false, offset: DVec3::ZERO }
     }
 }
 
@@ -82,6 +85,21 @@ impl SyntheticScene {
             level.add_instance("below_floor", below, DMat4::from_translation(DVec3::new(0.0, -0.6, -0.5)));
         }
 
+        if params.wall_pane {
+            let pane = level.add_material(Material {
+                double_sided: true,
+                ..Material::polished("pane", [0.6, 0.62, 0.65])
+            });
+            let mut quad = floor_quad(2.5, 1.25, 1.0, pane);
+            for v in &mut quad.vertices {
+                // Stand the floor quad up: (x, 0, z) -> (x, -z, 0), normal +Y -> +Z.
+                v.position = [v.position[0], -v.position[2], 0.0];
+                v.normal = [0.0, 0.0, 1.0];
+            }
+            let mesh = level.add_mesh(Mesh { name: "pane".into(), primitives: vec![quad] });
+            level.add_instance("pane", mesh, DMat4::from_translation(DVec3::new(0.0, 1.25, -2.2)));
+        }
+
         let eye = DVec3::new(0.3, 2.0, 5.0);
         let target = DVec3::new(0.0, 0.0, -0.5);
         let camera =
@@ -104,6 +122,17 @@ impl SyntheticScene {
             DVec3::NEG_Z,
             DVec2::splat(params.floor_half_size),
         ));
+        if params.wall_pane {
+            reflectors.reflectors.push(Reflector::new(
+                1,
+                "pane",
+                ReflectorKind::Transparent,
+                DVec3::new(0.0, 1.25, -2.2),
+                DVec3::X,
+                DVec3::Y,
+                DVec2::new(2.5, 1.25),
+            ));
+        }
         Self { level, reflectors, camera }.translated(params.offset)
     }
 

@@ -49,7 +49,7 @@ pub fn render(scene: &SyntheticScene, camera: &Camera, size: [u32; 2]) -> FrameI
 
 /// With `PPR_TESTBED_ARTIFACTS=dir`, writes the colour and reference of every rendered
 /// frame there (named after the test thread and a counter) to look at by eye.
-fn save_artifacts(frame: &FrameImages) {
+pub fn save_artifacts(frame: &FrameImages) {
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     let Some(dir) = std::env::var_os("PPR_TESTBED_ARTIFACTS") else { return };
     let dir = std::path::PathBuf::from(dir);
