@@ -10,9 +10,9 @@ use ppr_testbed::{
 use crate::common::{gpu, timed};
 
 /// PPR on the floor mirror scene through the whole `ppr-render` job: the runtime runs, every
-/// output file is written, the metrics are finite. The quality numbers are printed; their
-/// thresholds belong to the runtime's own tests (at this commit the runtime projects the
-/// floor's own pixels, `dist` ≈ +1e-6, onto themselves, so it is not close yet).
+/// output file is written, and where the reflected point is on screen PPR is close to the
+/// exact reference. Loose bars (measured 25.7 dB, FLIP 0.058, no holes on llvmpipe and the
+/// same scene on an H100): the runtime's own tests hold the tight ones.
 #[test]
 fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
     timed("ppr_render_job_runs_the_runtime_and_writes_every_file", || {
@@ -51,7 +51,9 @@ fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
             assert!(c.psnr_db.is_finite() && c.psnr_db > 0.0, "{c}");
             assert!((0.0..=1.0).contains(&c.flip_mean) && c.mean_abs_error.is_finite(), "{c}");
         }
+        assert!(on.psnr_db >= 20.0, "on-screen PSNR too low: {on}");
+        assert!(on.flip_mean <= 0.15, "on-screen FLIP too high: {on}");
         let holes = report.on_screen_holes.expect("PPR ran");
-        assert!(holes < 1.0, "PPR wrote no reflection on any on-screen pixel");
+        assert!(holes < 0.05, "{:.1}% of the on-screen pixels have no reflection", holes * 100.0);
     });
 }
