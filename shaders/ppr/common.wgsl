@@ -28,6 +28,21 @@ struct FrameUniforms {
     encoding: EncodingParams,
 }
 
+// The tiles that show a visible reflector (written by tile_classify.wgsl, whose own view
+// of the buffer has an atomic count): tile index = x + y * tiles_x.
+struct ActiveTileList {
+    count: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+    tiles: array<u32>,
+}
+
+// Active tile `slot` of an indirect dispatch in rows of 65535 workgroups.
+fn ppr_active_slot(wid: vec3<u32>) -> u32 {
+    return wid.x + wid.y * 65535u;
+}
+
 // A reflector rectangle, camera-relative.
 struct Shape {
     center: vec3<f32>,

@@ -1,7 +1,29 @@
-// Projection pass: for every pixel, mirror its position against each visible reflector,
+// Projection pass: for every pixel, mirror its position against the candidate reflectors,
 // test the reflection point against the rectangle and its occluders, and atomicMin the
 // encoded screen offset into the intermediate buffer where the pixel is reflected.
-// Seed: PPR_ProjectionPassWrite.
+// Seed: PPR_ProjectionPassWrite, and the bonus slides' "multiple parallel shapes".
+//
+// Variants (pipeline-overridable constants, chosen by the FramePlan):
+// - TILE_CULLING: each 16x16 workgroup first builds, in workgroup memory, the list of
+//   visible shapes that may reflect some pixel of its tile (one thread per shape; a
+//   conservative test of the tile's mirrored world-space bounds against the rectangle);
+//   a tile without candidates does nothing more. Otherwise every pixel loops over all
+//   visible shapes.
+// - PARALLEL_RULE: among shapes of one parallel group that reflect a pixel, only the one
+//   with the smallest plane distance writes (each pixel reflected at most once per
+//   orientation). The visible list is sorted by group, and so are the tile lists.
+// - OCCLUDER_TESTS: test the ray to the reflection point against the shape's occluders.
+// - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
+
+override TILE_CULLING: bool = false;
+override PARALLEL_RULE: bool = false;
+override OCCLUDER_TESTS: bool = false;
+override DEBUG_WRITES: bool = false;
+
+const TILE_SIZE: u32 = 16u;
+const GROUP_THREADS: u32 = 256u;
+// Capacity of a tile's shape list; a tile with more candidates loops over all shapes.
+const TILE_LIST_CAPACITY: u32 = 256u;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
@@ -9,6 +31,13 @@
 @group(0) @binding(3) var<storage, read> visible: array<u32>;
 @group(0) @binding(4) var<storage, read> occluders: array<u32>;
 @group(0) @binding(5) var<storage, read_write> intermediate: array<atomic<u32>>;
+@group(0) @binding(6) var<storage, read_write> debug_writes: array<u32>;
+
+var<workgroup> tile_depth_min: atomic<u32>;
+var<workgroup> tile_depth_max: atomic<u32>;
+var<workgroup> tile_list: array<u32, TILE_LIST_CAPACITY>;
+var<workgroup> tile_list_len: u32;
+var<workgroup> scan: array<u32, GROUP_THREADS>;
 
 fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     for (var k = 0u; k < s.occluder_count; k++) {
@@ -21,20 +50,20 @@ fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
 }
 
 // Writes the reflection of `pixel` (camera-relative position `mirrored` once mirrored).
-fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) {
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
     let clip = frame.clip_from_rel * vec4<f32>(mirrored, 1.0);
     if (!(clip.w > 0.0)) {
-        return;
+        return false;
     }
     let ndc = clip.xy / clip.w;
     if (!all(abs(ndc) < vec2<f32>(1.0))) {
-        return;
+        return false;
     }
     let target_crd = (ndc * vec2<f32>(0.5, -0.5) + 0.5) * frame.resolution.xy;
     let offset = target_crd - (vec2<f32>(pixel) + 0.5);
     let value = ppr_encode(offset, frame.encoding);
     if (value == PPR_CLEAR_VALUE) {
-        return;
+        return false;
     }
     let t = min(vec2<u32>(target_crd), frame.size - 1u);
     let index = t.x + t.y * frame.size.x;
@@ -57,43 +86,210 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) {
             old = r.old_value;
         }
     }
+    return true;
+}
+
+// The per-pixel test of shape `s`: the pixel is in front of its plane and its reflection
+// point lies in the rectangle. Returns the plane distance, or -1 when the test fails.
+fn reflecting_distance(p: vec3<f32>, min_dist: f32, s: Shape) -> f32 {
+    let dist = dot(p, s.normal) - s.plane_dist;
+    if (!(dist > min_dist)) {
+        return -1.0;
+    }
+    let mirrored = p - 2.0 * dist * s.normal;
+    let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+    let l = hit - s.center;
+    if (abs(dot(l, s.axis_u)) > s.half_u || abs(dot(l, s.axis_v)) > s.half_v) {
+        return -1.0;
+    }
+    return dist;
+}
+
+// Occluder tests and the write, for a shape that passed `reflecting_distance`.
+fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
+    let mirrored = p - 2.0 * dist * s.normal;
+    if (OCCLUDER_TESTS) {
+        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+        if (is_occluded(hit, s)) {
+            return false;
+        }
+    }
+    return write_projection(pixel, mirrored);
+}
+
+// Conservative tile test: may any point of the tile's world-space bounds (the convex hull
+// of `corners`) be reflected by `s` into its rectangle? Mirroring is affine and the
+// central projection from the camera onto the plane keeps convexity for points behind the
+// plane, so the rectangle of the projected corners bounds every pixel's reflection point.
+fn tile_may_reflect(s: Shape, corners: array<vec3<f32>, 8>) -> bool {
+    var any_front = false;
+    var all_front = true;
+    var lo = vec2<f32>(3.0e38);
+    var hi = vec2<f32>(-3.0e38);
+    var reach = 0.0;
+    for (var i = 0u; i < 8u; i++) {
+        let c = corners[i];
+        let d = dot(c, s.normal) - s.plane_dist;
+        any_front = any_front || d > 0.0;
+        all_front = all_front && d > 0.0;
+        let m = c - 2.0 * d * s.normal;
+        let hit = m * (s.plane_dist / dot(m, s.normal));
+        let l = hit - s.center;
+        let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
+        lo = min(lo, uv);
+        hi = max(hi, uv);
+        reach = max(reach, length(c));
+    }
+    if (!any_front) {
+        return false;
+    }
+    if (!all_front) {
+        // The tile straddles the plane: its front part's reflection is unbounded here.
+        return true;
+    }
+    // Margin for the f32 error of per-pixel positions against the corners'.
+    let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
+    let half = vec2<f32>(s.half_u, s.half_v) + margin;
+    return all(hi >= -half) && all(lo <= half);
+}
+
+fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
+    let uv = pixel * frame.resolution.zw;
+    let h = frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+    return h.xyz / h.w;
+}
+
+fn is_valid_depth(depth: f32) -> bool {
+    // Nothing rendered here (far plane), or a depth that is not a number.
+    return depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth;
+}
+
+// Builds the tile's candidate list in workgroup memory (ordered like `visible`).
+// Returns the list length, or TILE_LIST_CAPACITY + 1 when it overflowed.
+fn build_tile_list(lid: u32, tile_origin: vec2<u32>, depth_ok: bool, depth: f32) -> u32 {
+    if (lid == 0u) {
+        atomicStore(&tile_depth_min, 0x7f800000u);
+        atomicStore(&tile_depth_max, 0u);
+        tile_list_len = 0u;
+    }
+    workgroupBarrier();
+    if (depth_ok) {
+        // Non-negative floats order like their bits.
+        atomicMin(&tile_depth_min, bitcast<u32>(depth));
+        atomicMax(&tile_depth_max, bitcast<u32>(depth));
+    }
+    workgroupBarrier();
+    let dmin_bits = atomicLoad(&tile_depth_min);
+    let dmax_bits = atomicLoad(&tile_depth_max);
+    var corners: array<vec3<f32>, 8>;
+    let lo = vec2<f32>(tile_origin);
+    let hi = min(lo + f32(TILE_SIZE), frame.resolution.xy);
+    let dmin = bitcast<f32>(dmin_bits);
+    let dmax = bitcast<f32>(dmax_bits);
+    for (var i = 0u; i < 8u; i++) {
+        let x = select(lo.x, hi.x, (i & 1u) != 0u);
+        let y = select(lo.y, hi.y, (i & 2u) != 0u);
+        corners[i] = unproject(vec2<f32>(x, y), select(dmin, dmax, (i & 4u) != 0u));
+    }
+    let empty_tile = dmin_bits > dmax_bits;
+    var count = 0u;
+    for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
+        let k = base + lid;
+        var passes = 0u;
+        if (!empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], corners)) {
+            passes = 1u;
+        }
+        // Inclusive prefix sum of the pass flags (Hillis-Steele) keeps the list ordered.
+        scan[lid] = passes;
+        workgroupBarrier();
+        for (var step = 1u; step < GROUP_THREADS; step <<= 1u) {
+            var add = 0u;
+            if (lid >= step) {
+                add = scan[lid - step];
+            }
+            workgroupBarrier();
+            scan[lid] += add;
+            workgroupBarrier();
+        }
+        let slot = count + scan[lid] - passes;
+        if (passes == 1u && slot < TILE_LIST_CAPACITY) {
+            tile_list[slot] = k;
+        }
+        count += scan[GROUP_THREADS - 1u];
+        workgroupBarrier();
+    }
+    return min(count, TILE_LIST_CAPACITY + 1u);
 }
 
 @compute @workgroup_size(16, 16)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if (any(gid.xy >= frame.size)) {
+fn main(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(workgroup_id) wid: vec3<u32>,
+) {
+    let in_view = all(gid.xy < frame.size);
+    var depth = 1.0;
+    var depth_ok = false;
+    if (in_view) {
+        depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
+        depth_ok = is_valid_depth(depth);
+    }
+
+    // In the tiled variant, the candidates are the tile's list (visible positions);
+    // otherwise, or when the list overflowed, every visible shape.
+    var count = frame.visible_count;
+    var use_list = false;
+    if (TILE_CULLING) {
+        let listed = build_tile_list(lid, wid.xy * TILE_SIZE, depth_ok, depth);
+        if (listed <= TILE_LIST_CAPACITY) {
+            count = listed;
+            use_list = true;
+        }
+    }
+    if (!depth_ok || count == 0u) {
         return;
     }
-    let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
-    // Nothing rendered here (far plane), or a depth that is not a number.
-    if (!(depth >= 0.0 && depth <= 1.0) || depth == frame.far_depth) {
-        return;
-    }
-    let uv = (vec2<f32>(gid.xy) + 0.5) * frame.resolution.zw;
-    let ndc = vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    let h = frame.rel_from_clip * ndc;
-    let p = h.xyz / h.w;
+
+    let p = unproject(vec2<f32>(gid.xy) + 0.5, depth);
     if (!all(abs(p) < vec3<f32>(1e30))) {
         return;
     }
-    let occluder_tests = (frame.flags & PPR_FLAG_OCCLUDER_TESTS) != 0u;
     let min_dist = frame.plane_epsilon * length(p);
-    for (var i = 0u; i < frame.visible_count; i++) {
-        let s = shapes[visible[i]];
-        let dist = dot(p, s.normal) - s.plane_dist;
-        if (!(dist > min_dist)) {
+    var written = 0u;
+    // Parallel rule: the best (smallest distance) shape of the current group so far.
+    var group = 0xffffffffu;
+    var best_k = 0xffffffffu;
+    var best_dist = 0.0;
+    for (var i = 0u; i < count; i++) {
+        var k = i;
+        if (use_list) {
+            k = tile_list[i];
+        }
+        let s = shapes[visible[k]];
+        if (PARALLEL_RULE && s.parallel_group != group) {
+            if (best_k != 0xffffffffu && reflect_pixel(gid.xy, p, best_dist, shapes[visible[best_k]])) {
+                written |= 1u << (best_k & 31u);
+            }
+            group = s.parallel_group;
+            best_k = 0xffffffffu;
+        }
+        let dist = reflecting_distance(p, min_dist, s);
+        if (dist < 0.0) {
             continue;
         }
-        // Mirror against the plane; cast from the camera (origin) to the mirrored point.
-        let mirrored = p - 2.0 * dist * s.normal;
-        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-        let l = hit - s.center;
-        if (abs(dot(l, s.axis_u)) > s.half_u || abs(dot(l, s.axis_v)) > s.half_v) {
-            continue;
+        if (PARALLEL_RULE) {
+            if (best_k == 0xffffffffu || dist < best_dist) {
+                best_k = k;
+                best_dist = dist;
+            }
+        } else if (reflect_pixel(gid.xy, p, dist, s)) {
+            written |= 1u << (k & 31u);
         }
-        if (occluder_tests && is_occluded(hit, s)) {
-            continue;
-        }
-        write_projection(gid.xy, mirrored);
+    }
+    if (PARALLEL_RULE && best_k != 0xffffffffu && reflect_pixel(gid.xy, p, best_dist, shapes[visible[best_k]])) {
+        written |= 1u << (best_k & 31u);
+    }
+    if (DEBUG_WRITES) {
+        debug_writes[gid.x + gid.y * frame.size.x] = written;
     }
 }

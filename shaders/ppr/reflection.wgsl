@@ -9,10 +9,25 @@
 @group(0) @binding(3) var linear_sampler: sampler;
 @group(0) @binding(4) var output: texture_storage_2d<rgba16float, write>;
 
-// Reads the intermediate buffer; outside the viewport reads as "no data".
+@group(0) @binding(5) var<storage, read> active_tiles: ActiveTileList;
+
+@group(0) @binding(6) var<storage, read> tile_flags: array<u32>;
+
+// When set, the pass is dispatched indirectly with one workgroup per active tile, and
+// only active tiles of the intermediate buffer were cleared this frame.
+override INDIRECT: bool = false;
+
+// Reads the intermediate buffer; outside the viewport, and (with indirect dispatch) in
+// a tile that was not cleared this frame, reads as "no data".
 fn read_value(p: vec2<i32>) -> u32 {
     if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(frame.size))) {
         return PPR_CLEAR_VALUE;
+    }
+    if (INDIRECT) {
+        let tiles_x = (frame.size.x + 15u) / 16u;
+        if (tile_flags[u32(p.x) / 16u + u32(p.y) / 16u * tiles_x] == 0u) {
+            return PPR_CLEAR_VALUE;
+        }
     }
     return intermediate[u32(p.x) + u32(p.y) * frame.size.x];
 }
@@ -43,11 +58,25 @@ fn fix_color_bleeding(filtered: vec3<f32>, unfiltered: vec3<f32>) -> vec3<f32> {
 }
 
 @compute @workgroup_size(16, 16)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
-    if (any(gid.xy >= frame.size)) {
+fn main(
+    @builtin(global_invocation_id) global_id: vec3<u32>,
+    @builtin(local_invocation_id) lid: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+) {
+    var gid = global_id.xy;
+    if (INDIRECT) {
+        let slot = ppr_active_slot(wid);
+        if (slot >= active_tiles.count) {
+            return;
+        }
+        let tiles_x = (frame.size.x + 15u) / 16u;
+        let tile = active_tiles.tiles[slot];
+        gid = vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy;
+    }
+    if (any(gid >= frame.size)) {
         return;
     }
-    let vpos = vec2<i32>(gid.xy);
+    let vpos = vec2<i32>(gid);
     var vposread = vpos;
     var holes_offset = vec2<f32>(0.0);
 

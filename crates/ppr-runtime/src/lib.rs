@@ -10,6 +10,7 @@
 
 pub mod camera;
 pub mod encoding;
+mod frame_buffers;
 pub mod gpu_types;
 pub mod passes;
 pub mod plan;
@@ -22,7 +23,7 @@ pub mod timestamps;
 pub use camera::{Camera, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
 pub use passes::reflection::OUTPUT_FORMAT;
-pub use plan::{FramePlan, ScreenRect};
+pub use plan::{Choice, FramePlan, PlanParams, ScreenRect};
 pub use renderer::{FrameInputs, ReflectionRenderer, RendererDesc};
 pub use settings::{ReflectionSettings, WriteMode};
 pub use timestamps::PassTimings;

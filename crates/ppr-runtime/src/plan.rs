@@ -10,10 +10,72 @@ use crate::encoding::EncodingLayout;
 use crate::shapes::ShapeTable;
 
 /// A reflector's rectangle on screen, in pixels (inclusive min, exclusive max).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct ScreenRect {
     pub min: [u32; 2],
     pub max: [u32; 2],
+}
+
+impl ScreenRect {
+    /// Pixels covered.
+    pub fn area(&self) -> u64 {
+        u64::from(self.max[0].saturating_sub(self.min[0]))
+            * u64::from(self.max[1].saturating_sub(self.min[1]))
+    }
+}
+
+/// A decision the plan makes by itself unless told.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Choice {
+    /// Let the plan decide from the frame (the thresholds of [`PlanParams`]).
+    #[default]
+    Auto,
+    /// Always on (when anything runs at all).
+    On,
+    /// Always off.
+    Off,
+}
+
+impl Choice {
+    fn decide(self, auto: bool) -> bool {
+        match self {
+            Self::Auto => auto,
+            Self::On => true,
+            Self::Off => false,
+        }
+    }
+}
+
+/// How the frame plan chooses passes and shader variants.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PlanParams {
+    /// Per-tile shape lists in the projection pass (seed's "multiple parallel shapes").
+    pub tile_culling: Choice,
+    /// With `Auto`, tile culling runs from this many visible shapes on. Measured on an
+    /// H100 at 3840×2160 (docs/perf/scaling.md).
+    pub tile_culling_min_shapes: usize,
+    /// Among parallel shapes, only the nearest plane reflects a pixel. `Auto`: with tile
+    /// culling.
+    pub parallel_rule: Choice,
+    /// Classify tiles and run the clear and reflection passes only over tiles that show
+    /// a visible reflector (indirect dispatch).
+    pub indirect: Choice,
+    /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
+    /// at most this share of the screen.
+    pub indirect_max_coverage: f32,
+}
+
+impl Default for PlanParams {
+    fn default() -> Self {
+        Self {
+            tile_culling: Choice::Auto,
+            tile_culling_min_shapes: 16,
+            parallel_rule: Choice::Auto,
+            indirect: Choice::Auto,
+            indirect_max_coverage: 0.5,
+        }
+    }
 }
 
 /// What one frame will do, and why.
@@ -36,13 +98,21 @@ pub struct FramePlan {
     pub transparent_skipped: usize,
     /// Whether the projection pass tests occluders (some visible shape has one).
     pub occluder_tests: bool,
+    /// Whether the projection pass builds per-tile shape lists.
+    pub tile_culling: bool,
+    /// Whether only the nearest of parallel shapes reflects a pixel.
+    pub parallel_rule: bool,
+    /// Whether tiles are classified and the clear and reflection passes run indirectly.
+    pub indirect: bool,
+    /// Share of the screen the visible shapes' screen rectangles cover (summed, at most 1).
+    pub coverage: f32,
     /// The encoding layout for this viewport.
     pub encoding: EncodingLayout,
 }
 
 impl FramePlan {
     /// Culls the table's shapes for `camera` and decides the passes.
-    pub fn build(table: &ShapeTable, camera: &Camera, viewport: [u32; 2]) -> Self {
+    pub fn build(table: &ShapeTable, camera: &Camera, viewport: [u32; 2], params: &PlanParams) -> Self {
         let [w, h] = viewport;
         let clip_from_rel = camera.clip_from_relative(w as f32 / h.max(1) as f32);
         let mut plan = FramePlan {
@@ -54,6 +124,10 @@ impl FramePlan {
             culled_frustum: 0,
             transparent_skipped: 0,
             occluder_tests: false,
+            tile_culling: false,
+            parallel_rule: false,
+            indirect: false,
+            coverage: 0.0,
             encoding: EncodingLayout::for_resolution(w.max(1), h.max(1)),
         };
         for (i, s) in table.shapes.iter().enumerate() {
@@ -80,6 +154,19 @@ impl FramePlan {
             plan.visible.push(i as u32);
             plan.screen_rects.push(screen_rect(&clip, viewport));
         }
+        // Sorted by parallel group (then set order): the projection pass's parallel rule
+        // walks each group as one run.
+        let mut order: Vec<usize> = (0..plan.visible.len()).collect();
+        order.sort_by_key(|&k| (table.shapes[plan.visible[k] as usize].parallel_group, plan.visible[k]));
+        plan.visible = order.iter().map(|&k| plan.visible[k]).collect();
+        plan.screen_rects = order.iter().map(|&k| plan.screen_rects[k]).collect();
+
+        let screen = (w as f64 * h as f64).max(1.0);
+        let covered: f64 = plan.screen_rects.iter().map(|r| r.area() as f64).sum();
+        plan.coverage = (covered / screen).min(1.0) as f32;
+        plan.tile_culling = params.tile_culling.decide(plan.visible.len() >= params.tile_culling_min_shapes);
+        plan.parallel_rule = params.parallel_rule.decide(plan.tile_culling);
+        plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         plan
     }
 
@@ -89,8 +176,21 @@ impl FramePlan {
     }
 
     /// Names of the passes this frame records, in order.
-    pub fn passes(&self) -> &'static [&'static str] {
-        if self.is_empty() { &[] } else { &["clear", "projection", "reflection"] }
+    pub fn passes(&self) -> Vec<&'static str> {
+        match (self.is_empty(), self.indirect, self.tile_culling) {
+            (true, _, _) => vec![],
+            (false, true, true) => {
+                vec!["classify", "clear (tiles)", "projection (tiled)", "reflection (tiles)"]
+            }
+            (false, true, false) => vec!["classify", "clear (tiles)", "projection", "reflection (tiles)"],
+            (false, false, true) => vec!["clear", "projection (tiled)", "reflection"],
+            (false, false, false) => vec!["clear", "projection", "reflection"],
+        }
+    }
+
+    /// Number of 16 × 16 tiles of the viewport.
+    pub fn tile_count(&self) -> u32 {
+        self.viewport[0].div_ceil(16) * self.viewport[1].div_ceil(16)
     }
 }
 
@@ -150,9 +250,11 @@ impl fmt::Display for FramePlan {
         let l = &self.encoding;
         write!(
             f,
-            "passes: {}; occluder tests {}; encoding {}.{}/{}.{} bits (major/minor whole.fraction)",
+            "passes: {}; occluder tests {}; parallel rule {}; screen coverage {:.0}%; encoding {}.{}/{}.{} bits (major/minor whole.fraction)",
             self.passes().join(" -> "),
             if self.occluder_tests { "on" } else { "off" },
+            if self.parallel_rule { "on" } else { "off" },
+            self.coverage * 100.0,
             l.major_int_bits,
             l.major_frac_bits,
             l.minor_int_bits,

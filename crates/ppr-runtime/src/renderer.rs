@@ -1,16 +1,19 @@
 //! `ReflectionRenderer`: what a game creates once and calls twice per frame.
 
+use std::cell::Cell;
+
 use glam::DMat4;
 use ppr_format::ReflectorSet;
-use wgpu::util::DeviceExt;
 
 use crate::camera::Camera;
-use crate::encoding::CLEAR_VALUE;
-use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuShape};
+use crate::frame_buffers::FrameBuffers;
+use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms};
+use crate::passes::clear::ClearBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
-use crate::passes::{ClearPass, ProjectionPass, ReflectionPass};
-use crate::plan::FramePlan;
+use crate::passes::tile_classify::ClassifyBindings;
+use crate::passes::{ClearPass, ProjectionPass, ProjectionVariant, ReflectionPass, TileClassifyPass};
+use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings};
@@ -40,21 +43,13 @@ impl Default for RendererDesc {
 /// - `depth`: the scene's depth, `Depth32Float`, `TEXTURE_BINDING`, a depth-only view,
 ///   written with the camera's [`crate::Projection`] (standard or reversed Z);
 /// - `output`: `Rgba16Float` with `STORAGE_BINDING`, same size: reflected colour, alpha 1
-///   where a reflection was found and 0 elsewhere. Not written when the plan is empty.
+///   where a reflection was found and 0 elsewhere. It is written only where the plan's
+///   passes run: nowhere when [`FramePlan::is_empty`], and with indirect dispatch only in
+///   tiles that show a visible reflector (every pixel on a visible reflector is covered).
 pub struct FrameInputs<'a> {
     pub color: &'a wgpu::TextureView,
     pub depth: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
-}
-
-/// GPU buffers sized for a viewport and a set.
-struct FrameBuffers {
-    uniforms: wgpu::Buffer,
-    shapes: wgpu::Buffer,
-    visible: wgpu::Buffer,
-    occluders: wgpu::Buffer,
-    intermediate: wgpu::Buffer,
-    viewport: [u32; 2],
 }
 
 /// Renders pixel-projected reflections for one view.
@@ -73,8 +68,14 @@ pub struct ReflectionRenderer {
     queue: wgpu::Queue,
     /// Steps of the reflection pass; change at any time.
     pub settings: ReflectionSettings,
+    /// How the frame plan picks passes and variants.
+    pub plan_params: PlanParams,
     /// How the projection pass writes (debug: shows the write-order artefact).
     pub write_mode: WriteMode,
+    /// Record per source pixel which visible shapes it wrote for (debug; see
+    /// [`Self::debug_writes_buffer`]).
+    pub debug_writes: bool,
+    classify: TileClassifyPass,
     clear: ClearPass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
@@ -83,6 +84,7 @@ pub struct ReflectionRenderer {
     buffers: Option<FrameBuffers>,
     plan: Option<FramePlan>,
     timer: Option<PassTimer>,
+    dispatches: Cell<u32>,
 }
 
 impl ReflectionRenderer {
@@ -92,7 +94,10 @@ impl ReflectionRenderer {
             device: device.clone(),
             queue: queue.clone(),
             settings: ReflectionSettings::default(),
+            plan_params: PlanParams::default(),
             write_mode: WriteMode::default(),
+            debug_writes: false,
+            classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
@@ -101,6 +106,7 @@ impl ReflectionRenderer {
             buffers: None,
             plan: None,
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
+            dispatches: Cell::new(0),
         }
     }
 
@@ -118,7 +124,10 @@ impl ReflectionRenderer {
     /// Plans the frame and uploads what the GPU needs. Call once per frame before
     /// [`Self::encode`].
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
-        let plan = FramePlan::build(&self.table, camera, viewport);
+        let plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
+        if !plan.is_empty() {
+            self.projection.prepare_variant(&self.device, self.variant(&plan));
+        }
         self.upload(camera, &plan);
         self.plan.insert(plan)
     }
@@ -128,24 +137,25 @@ impl ReflectionRenderer {
         self.plan.as_ref()
     }
 
+    fn variant(&self, plan: &FramePlan) -> ProjectionVariant {
+        ProjectionVariant {
+            tile_culling: plan.tile_culling,
+            parallel_rule: plan.parallel_rule,
+            occluder_tests: plan.occluder_tests,
+            debug_writes: self.debug_writes,
+        }
+    }
+
     fn upload(&mut self, camera: &Camera, plan: &FramePlan) {
-        let (device, queue) = (&self.device, &self.queue);
         let [w, h] = plan.viewport;
         let shapes = self.table.gpu_shapes(camera.position);
-        let needs_new = match &self.buffers {
-            None => true,
-            Some(b) => {
-                b.viewport != plan.viewport
-                    || b.shapes.size() < byte_len(&shapes).max(16)
-                    || b.visible.size() < (4 * self.table.shapes.len() as u64).max(16)
-                    || self.table_dirty
-            }
-        };
-        if needs_new {
-            self.buffers = Some(FrameBuffers::new(device, &self.table, plan.viewport));
+        let fits = self.buffers.as_ref().is_some_and(|b| b.fits(&self.table, plan, self.debug_writes));
+        if self.table_dirty || !fits {
+            self.buffers = Some(FrameBuffers::new(&self.device, &self.table, plan, self.debug_writes));
             self.table_dirty = false;
         }
         let b = self.buffers.as_ref().expect("allocated above");
+        let queue = &self.queue;
 
         let aspect = w as f32 / h.max(1) as f32;
         let clip_from_rel = camera.clip_from_relative(aspect);
@@ -171,6 +181,11 @@ impl ReflectionRenderer {
         }
         if !plan.visible.is_empty() {
             queue.write_buffer(&b.visible, 0, bytemuck::cast_slice(&plan.visible));
+            queue.write_buffer(&b.screen_rects, 0, bytemuck::cast_slice(&plan.screen_rects));
+        }
+        if plan.indirect {
+            // The classify pass counts the active tiles from zero.
+            queue.write_buffer(&b.active_tiles, 0, &[0; 4]);
         }
     }
 
@@ -179,58 +194,108 @@ impl ReflectionRenderer {
     /// # Panics
     /// If [`Self::prepare`] was not called first.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, inputs: &FrameInputs<'_>) {
-        let device = &self.device;
         let plan = self.plan.as_ref().expect("prepare() before encode()");
+        self.dispatches.set(0);
         if plan.is_empty() {
             return;
         }
+        let device = &self.device;
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
-        let clear_bg = self.clear.bind_group(device, &b.intermediate);
-        let projection_bg = self.projection.bind_group(
-            device,
-            &ProjectionBindings {
-                uniforms: &b.uniforms,
-                depth: inputs.depth,
-                shapes: &b.shapes,
-                visible: &b.visible,
-                occluders: &b.occluders,
-                intermediate: &b.intermediate,
-            },
-        );
-        let reflection_bg = self.reflection.bind_group(
-            device,
-            &ReflectionBindings {
-                uniforms: &b.uniforms,
-                intermediate: &b.intermediate,
-                color: inputs.color,
-                output: inputs.output,
-            },
-        );
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
-        {
+        let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
+
+        if plan.indirect {
+            let bg = self.classify.bind_group(
+                device,
+                &ClassifyBindings {
+                    uniforms: &b.uniforms,
+                    depth: inputs.depth,
+                    shapes: &b.shapes,
+                    visible: &b.visible,
+                    screen_rects: &b.screen_rects,
+                    active_tiles: &b.active_tiles,
+                    dispatch_args: &b.dispatch_args,
+                    tile_flags: &b.tile_flags,
+                },
+            );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ppr clear"),
+                label: Some("ppr tile classify"),
                 timestamp_writes: timestamps(0),
             });
-            self.clear.encode(&mut pass, &clear_bg, (b.intermediate.size() / 16) as u32);
+            self.classify.encode(&mut pass, &bg, plan.viewport);
+            count(2);
         }
         {
+            let bg = self.clear.bind_group(
+                device,
+                &ClearBindings {
+                    intermediate: &b.intermediate,
+                    uniforms: &b.uniforms,
+                    active_tiles: &b.active_tiles,
+                },
+            );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ppr projection"),
+                label: Some("ppr clear"),
                 timestamp_writes: timestamps(1),
             });
-            self.projection.encode(&mut pass, &projection_bg, plan.viewport);
+            if plan.indirect {
+                self.clear.encode_tiles(&mut pass, &bg, &b.dispatch_args);
+            } else {
+                self.clear.encode_all(&mut pass, &bg, (b.intermediate.size() / 16) as u32);
+            }
+            count(1);
         }
         {
+            let bg = self.projection.bind_group(
+                device,
+                &ProjectionBindings {
+                    uniforms: &b.uniforms,
+                    depth: inputs.depth,
+                    shapes: &b.shapes,
+                    visible: &b.visible,
+                    occluders: &b.occluders,
+                    intermediate: &b.intermediate,
+                    debug_writes: &b.debug_writes,
+                },
+            );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ppr reflection"),
+                label: Some("ppr projection"),
                 timestamp_writes: timestamps(2),
             });
-            self.reflection.encode(&mut pass, &reflection_bg, plan.viewport);
+            self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
+            count(1);
+        }
+        {
+            let bg = self.reflection.bind_group(
+                device,
+                &ReflectionBindings {
+                    uniforms: &b.uniforms,
+                    intermediate: &b.intermediate,
+                    color: inputs.color,
+                    output: inputs.output,
+                    active_tiles: &b.active_tiles,
+                    tile_flags: &b.tile_flags,
+                },
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ppr reflection"),
+                timestamp_writes: timestamps(3),
+            });
+            if plan.indirect {
+                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args);
+            } else {
+                self.reflection.encode(&mut pass, &bg, plan.viewport);
+            }
+            count(1);
         }
         if let Some(t) = &self.timer {
             t.resolve(encoder);
         }
+    }
+
+    /// Dispatches recorded by the last [`Self::encode`] (0 when nothing was visible).
+    pub fn last_dispatch_count(&self) -> u32 {
+        self.dispatches.get()
     }
 
     /// Whether GPU timestamps are recorded (the device has `TIMESTAMP_QUERY`).
@@ -241,63 +306,26 @@ impl ReflectionRenderer {
     /// Waits for the last submitted frame and returns its GPU time per pass, when the
     /// device supports timestamps and the last plan ran passes.
     pub fn read_timings(&self) -> Option<PassTimings> {
-        if self.plan.as_ref().is_none_or(|p| p.is_empty()) {
-            return None;
-        }
-        self.timer.as_ref()?.read(&self.device)
+        let plan = self.plan.as_ref().filter(|p| !p.is_empty())?;
+        self.timer.as_ref()?.read(&self.device, [plan.indirect, true, true, true])
     }
 
     /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for
-    /// debug views and tests. `None` before the first [`Self::prepare`].
+    /// debug views and tests. With indirect dispatch only active tiles are meaningful.
+    /// `None` before the first [`Self::prepare`].
     pub fn intermediate_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().map(|b| &b.intermediate)
     }
-}
 
-impl FrameBuffers {
-    fn new(device: &wgpu::Device, table: &ShapeTable, [w, h]: [u32; 2]) -> Self {
-        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
-        let buffer = |label: &str, size: u64, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        let pixels = u64::from(w) * u64::from(h);
-        let occluders =
-            if table.occluder_indices.is_empty() { vec![0u32; 4] } else { table.occluder_indices.clone() };
-        Self {
-            uniforms: buffer(
-                "ppr frame uniforms",
-                std::mem::size_of::<FrameUniforms>() as u64,
-                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            ),
-            shapes: buffer(
-                "ppr shapes",
-                (table.shapes.len() * std::mem::size_of::<GpuShape>()).max(std::mem::size_of::<GpuShape>())
-                    as u64,
-                storage,
-            ),
-            visible: buffer("ppr visible shapes", (4 * table.shapes.len() as u64).max(16), storage),
-            occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("ppr occluder lists"),
-                contents: bytemuck::cast_slice(&occluders),
-                usage: storage,
-            }),
-            intermediate: buffer(
-                "ppr intermediate buffer",
-                (pixels * 4).next_multiple_of(16).max(16),
-                storage | wgpu::BufferUsages::COPY_SRC,
-            ),
-            viewport: [w, h],
-        }
+    /// With [`Self::debug_writes`], one u32 per pixel: bit `k % 32` set when the pixel was
+    /// written for the `k`-th shape of the plan's visible list.
+    pub fn debug_writes_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.buffers.as_ref().filter(|_| self.debug_writes).map(|b| &b.debug_writes)
+    }
+
+    /// The active-tile list of the last frame (count, 3 × padding, tile indices), for debug
+    /// views and tests.
+    pub fn active_tiles_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.buffers.as_ref().map(|b| &b.active_tiles)
     }
 }
-
-fn byte_len(shapes: &[GpuShape]) -> u64 {
-    std::mem::size_of_val(shapes) as u64
-}
-
-const _: () = assert!(CLEAR_VALUE == u32::MAX);

@@ -33,6 +33,7 @@ mod tests {
             ("clear", include_str!("../../../shaders/ppr/clear.wgsl")),
             ("projection", include_str!("../../../shaders/ppr/projection.wgsl")),
             ("reflection", include_str!("../../../shaders/ppr/reflection.wgsl")),
+            ("tile classify", include_str!("../../../shaders/ppr/tile_classify.wgsl")),
         ] {
             let source = super::source(wgsl);
             let module = naga::front::wgsl::parse_str(&source)

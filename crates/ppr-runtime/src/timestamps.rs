@@ -1,22 +1,47 @@
 //! GPU timestamps around each pass, resolved into a buffer and read back on request.
 
-/// GPU time of each pass of one frame, milliseconds.
+use std::fmt;
+
+/// GPU time of each pass of one frame, milliseconds; `None` for a pass that did not run
+/// (or whose timestamps the adapter got wrong).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassTimings {
-    pub clear_ms: f64,
-    pub projection_ms: f64,
-    pub reflection_ms: f64,
+    pub classify_ms: Option<f64>,
+    pub clear_ms: Option<f64>,
+    pub projection_ms: Option<f64>,
+    pub reflection_ms: Option<f64>,
 }
 
 impl PassTimings {
-    /// Sum of the passes.
+    /// Sum of the passes that ran.
     pub fn total_ms(&self) -> f64 {
-        self.clear_ms + self.projection_ms + self.reflection_ms
+        self.passes().iter().filter_map(|(_, t)| *t).sum()
+    }
+
+    /// (name, time) of each pass in order.
+    pub fn passes(&self) -> [(&'static str, Option<f64>); 4] {
+        [
+            ("classify", self.classify_ms),
+            ("clear", self.clear_ms),
+            ("projection", self.projection_ms),
+            ("reflection", self.reflection_ms),
+        ]
     }
 }
 
-/// Number of passes timed (clear, projection, reflection).
-pub const TIMED_PASSES: u32 = 3;
+impl fmt::Display for PassTimings {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for (name, t) in self.passes() {
+            if let Some(t) = t {
+                write!(f, "{name} {t:.3} ms, ")?;
+            }
+        }
+        write!(f, "total {:.3} ms", self.total_ms())
+    }
+}
+
+/// Passes with a timestamp slot: classify, clear, projection, reflection.
+pub const TIMED_PASSES: u32 = 4;
 
 /// A query set with a begin and an end timestamp per pass, and the buffers to read it.
 pub struct PassTimer {
@@ -56,7 +81,7 @@ impl PassTimer {
         })
     }
 
-    /// Timestamp writes for pass `index` (0 clear, 1 projection, 2 reflection).
+    /// Timestamp writes for pass `index` (0 classify, 1 clear, 2 projection, 3 reflection).
     pub fn writes(&self, index: u32) -> wgpu::ComputePassTimestampWrites<'_> {
         wgpu::ComputePassTimestampWrites {
             query_set: &self.query_set,
@@ -71,8 +96,9 @@ impl PassTimer {
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, self.resolve.size());
     }
 
-    /// Waits for the submitted frame and reads its timings.
-    pub fn read(&self, device: &wgpu::Device) -> Option<PassTimings> {
+    /// Waits for the submitted frame and reads its timings; `ran[i]` says whether pass `i`
+    /// was recorded.
+    pub fn read(&self, device: &wgpu::Device, ran: [bool; TIMED_PASSES as usize]) -> Option<PassTimings> {
         let slice = self.readback.slice(..);
         let (tx, rx) = std::sync::mpsc::channel();
         slice.map_async(wgpu::MapMode::Read, move |r| {
@@ -85,8 +111,11 @@ impl PassTimer {
             view.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect()
         };
         self.readback.unmap();
-        let ms =
-            |i: usize| ticks[2 * i + 1].wrapping_sub(ticks[2 * i]) as f64 * f64::from(self.period_ns) * 1e-6;
-        Some(PassTimings { clear_ms: ms(0), projection_ms: ms(1), reflection_ms: ms(2) })
+        let ms = |i: usize| {
+            let (begin, end) = (ticks[2 * i], ticks[2 * i + 1]);
+            // Some drivers (llvmpipe's GL timer queries) report an end before the begin.
+            (ran[i] && end >= begin).then(|| (end - begin) as f64 * f64::from(self.period_ns) * 1e-6)
+        };
+        Some(PassTimings { classify_ms: ms(0), clear_ms: ms(1), projection_ms: ms(2), reflection_ms: ms(3) })
     }
 }

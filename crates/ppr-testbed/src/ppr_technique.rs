@@ -59,14 +59,6 @@ impl ReflectionTechnique for PprTechnique {
     }
 
     fn timings(&mut self, _device: &wgpu::Device) -> Option<String> {
-        self.renderer.read_timings().map(|t| {
-            format!(
-                "clear {:.3} ms, projection {:.3} ms, reflection {:.3} ms, total {:.3} ms",
-                t.clear_ms,
-                t.projection_ms,
-                t.reflection_ms,
-                t.total_ms()
-            )
-        })
+        self.renderer.read_timings().map(|t| t.to_string())
     }
 }

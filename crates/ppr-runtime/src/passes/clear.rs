@@ -1,14 +1,23 @@
-//! Clear pass: fills the intermediate buffer with the clear value (four u32 per thread).
+//! Clear pass: fills the intermediate buffer with the clear value, everywhere (four u32
+//! per thread) or only in the active tiles (indirect, one workgroup per tile).
 
-use super::{compute_pipeline, storage_entry};
+use super::{compute_pipeline, storage_entry, uniform_entry};
 
 const WGSL: &str = include_str!("../../../../shaders/ppr/clear.wgsl");
-/// Threads per workgroup, as in `clear.wgsl`.
+/// Threads per workgroup of `clear_all`, as in `clear.wgsl`.
 const GROUP: u32 = 256;
+
+/// Buffers the clear pass reads and writes.
+pub struct ClearBindings<'a> {
+    pub intermediate: &'a wgpu::Buffer,
+    pub uniforms: &'a wgpu::Buffer,
+    pub active_tiles: &'a wgpu::Buffer,
+}
 
 /// The clear pass.
 pub struct ClearPass {
-    pipeline: wgpu::ComputePipeline,
+    all: wgpu::ComputePipeline,
+    tiles: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -16,27 +25,51 @@ impl ClearPass {
     pub fn new(device: &wgpu::Device) -> Self {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ppr clear"),
-            entries: &[storage_entry(0, false)],
+            entries: &[storage_entry(0, false), uniform_entry(1), storage_entry(2, true)],
         });
-        let pipeline = compute_pipeline(device, "ppr clear", &layout, WGSL);
-        Self { pipeline, layout }
+        let module = crate::shader::module(device, "ppr clear", WGSL);
+        Self {
+            all: compute_pipeline(device, "ppr clear", &layout, &module, "clear_all", &[]),
+            tiles: compute_pipeline(device, "ppr clear tiles", &layout, &module, "clear_tiles", &[]),
+            layout,
+        }
     }
 
-    /// The bind group for an intermediate buffer.
-    pub fn bind_group(&self, device: &wgpu::Device, intermediate: &wgpu::Buffer) -> wgpu::BindGroup {
+    pub fn bind_group(&self, device: &wgpu::Device, b: &ClearBindings<'_>) -> wgpu::BindGroup {
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ppr clear"),
             layout: &self.layout,
-            entries: &[wgpu::BindGroupEntry { binding: 0, resource: intermediate.as_entire_binding() }],
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: b.active_tiles.as_entire_binding() },
+            ],
         })
     }
 
-    /// Records the clear of `vec4_count` four-value groups.
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, vec4_count: u32) {
+    /// Records the clear of the whole buffer (`vec4_count` four-value groups).
+    pub fn encode_all(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        vec4_count: u32,
+    ) {
         let groups = vec4_count.div_ceil(GROUP);
         let x = groups.min(65535);
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(&self.all);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
+    }
+
+    /// Records the clear of the active tiles (indirect arguments from the classify pass).
+    pub fn encode_tiles(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        args: &wgpu::Buffer,
+    ) {
+        pass.set_pipeline(&self.tiles);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups_indirect(args, 0);
     }
 }

@@ -1,12 +1,14 @@
-//! The GPU passes: one struct per pass, owning its pipeline and bind-group layout.
+//! The GPU passes: one struct per pass, owning its pipelines and bind-group layout.
 
 pub mod clear;
 pub mod projection;
 pub mod reflection;
+pub mod tile_classify;
 
 pub use clear::ClearPass;
-pub use projection::ProjectionPass;
+pub use projection::{ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
+pub use tile_classify::TileClassifyPass;
 
 /// Workgroup edge of the 2-D per-pixel passes (16 × 16 = 256 threads), as in the WGSL.
 pub const TILE: u32 = 16;
@@ -37,13 +39,30 @@ pub(crate) fn uniform_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
+/// A depth (or any float) texture read with `textureLoad` only. Depth is bound as an
+/// unfilterable float texture: naga's GLSL output cannot `textureLoad` depth textures.
+pub(crate) fn loaded_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type: wgpu::TextureSampleType::Float { filterable: false },
+            view_dimension: wgpu::TextureViewDimension::D2,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A compute pipeline of `entry` in the pass's WGSL, with override constants.
 pub(crate) fn compute_pipeline(
     device: &wgpu::Device,
     label: &str,
     layout: &wgpu::BindGroupLayout,
-    wgsl: &str,
+    module: &wgpu::ShaderModule,
+    entry: &str,
+    constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
-    let module = crate::shader::module(device, label, wgsl);
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(layout)],
@@ -52,9 +71,9 @@ pub(crate) fn compute_pipeline(
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: Some(&pipeline_layout),
-        module: &module,
-        entry_point: Some("main"),
-        compilation_options: Default::default(),
+        module,
+        entry_point: Some(entry),
+        compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
         cache: None,
     })
 }
@@ -62,4 +81,9 @@ pub(crate) fn compute_pipeline(
 /// Workgroups to cover a `width × height` viewport with [`TILE`]² tiles.
 pub fn tile_groups([w, h]: [u32; 2]) -> (u32, u32) {
     (w.div_ceil(TILE), h.div_ceil(TILE))
+}
+
+/// 0.0 or 1.0, as override constants take booleans.
+pub(crate) fn flag(on: bool) -> f64 {
+    if on { 1.0 } else { 0.0 }
 }

@@ -1,9 +1,25 @@
-//! Projection pass: mirror every pixel against the visible reflectors and `atomicMin` the
-//! encoded offset into the intermediate buffer.
+//! Projection pass: mirror every pixel against the candidate reflectors and `atomicMin`
+//! the encoded offset into the intermediate buffer. Shader variants are pipelines built
+//! on first use from the WGSL's override constants.
 
-use super::{compute_pipeline, storage_entry, tile_groups, uniform_entry};
+use std::collections::HashMap;
+
+use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
 const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
+
+/// Which projection shader runs (the WGSL's override constants).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct ProjectionVariant {
+    /// Per-tile shape lists in workgroup memory.
+    pub tile_culling: bool,
+    /// Only the nearest of parallel shapes reflects a pixel.
+    pub parallel_rule: bool,
+    /// Occluder tests.
+    pub occluder_tests: bool,
+    /// Record per source pixel which visible shapes it wrote for.
+    pub debug_writes: bool,
+}
 
 /// Buffers and views the projection pass reads and writes.
 pub struct ProjectionBindings<'a> {
@@ -13,41 +29,50 @@ pub struct ProjectionBindings<'a> {
     pub visible: &'a wgpu::Buffer,
     pub occluders: &'a wgpu::Buffer,
     pub intermediate: &'a wgpu::Buffer,
+    pub debug_writes: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
 pub struct ProjectionPass {
-    pipeline: wgpu::ComputePipeline,
+    module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
+    pipelines: HashMap<ProjectionVariant, wgpu::ComputePipeline>,
 }
 
 impl ProjectionPass {
     pub fn new(device: &wgpu::Device) -> Self {
-        let depth = wgpu::BindGroupLayoutEntry {
-            binding: 1,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                // A depth texture bound as unfilterable float: naga's GLSL output cannot
-                // `textureLoad` from depth textures, and the pass only loads.
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ppr projection"),
             entries: &[
                 uniform_entry(0),
-                depth,
+                loaded_texture_entry(1),
                 storage_entry(2, true),
                 storage_entry(3, true),
                 storage_entry(4, true),
                 storage_entry(5, false),
+                storage_entry(6, false),
             ],
         });
-        let pipeline = compute_pipeline(device, "ppr projection", &layout, WGSL);
-        Self { pipeline, layout }
+        let module = crate::shader::module(device, "ppr projection", WGSL);
+        let mut pass = Self { module, layout, pipelines: HashMap::new() };
+        pass.prepare_variant(device, ProjectionVariant::default());
+        pass
+    }
+
+    /// Builds the pipeline of `variant` unless it exists.
+    pub fn prepare_variant(&mut self, device: &wgpu::Device, v: ProjectionVariant) {
+        if self.pipelines.contains_key(&v) {
+            return;
+        }
+        let constants = [
+            ("TILE_CULLING", flag(v.tile_culling)),
+            ("PARALLEL_RULE", flag(v.parallel_rule)),
+            ("OCCLUDER_TESTS", flag(v.occluder_tests)),
+            ("DEBUG_WRITES", flag(v.debug_writes)),
+        ];
+        let label = format!("ppr projection {v:?}");
+        let pipeline = compute_pipeline(device, &label, &self.layout, &self.module, "main", &constants);
+        self.pipelines.insert(v, pipeline);
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ProjectionBindings<'_>) -> wgpu::BindGroup {
@@ -61,13 +86,24 @@ impl ProjectionPass {
                 wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 4, resource: b.occluders.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 5, resource: b.intermediate.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: b.debug_writes.as_entire_binding() },
             ],
         })
     }
 
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
+    /// Records the pass with `variant` (prepared beforehand).
+    ///
+    /// # Panics
+    /// If [`Self::prepare_variant`] was not called for `variant`.
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        viewport: [u32; 2],
+        variant: ProjectionVariant,
+    ) {
         let (x, y) = tile_groups(viewport);
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(self.pipelines.get(&variant).expect("variant prepared in prepare()"));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }

@@ -1,6 +1,6 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
-use super::{compute_pipeline, storage_entry, tile_groups, uniform_entry};
+use super::{compute_pipeline, flag, storage_entry, tile_groups, uniform_entry};
 
 const WGSL: &str = include_str!("../../../../shaders/ppr/reflection.wgsl");
 
@@ -13,11 +13,14 @@ pub struct ReflectionBindings<'a> {
     pub intermediate: &'a wgpu::Buffer,
     pub color: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
+    pub active_tiles: &'a wgpu::Buffer,
+    pub tile_flags: &'a wgpu::Buffer,
 }
 
 /// The reflection pass.
 pub struct ReflectionPass {
     pipeline: wgpu::ComputePipeline,
+    indirect: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -55,9 +58,27 @@ impl ReflectionPass {
                     },
                     count: None,
                 },
+                storage_entry(5, true),
+                storage_entry(6, true),
             ],
         });
-        let pipeline = compute_pipeline(device, "ppr reflection", &layout, WGSL);
+        let module = crate::shader::module(device, "ppr reflection", WGSL);
+        let pipeline = compute_pipeline(
+            device,
+            "ppr reflection",
+            &layout,
+            &module,
+            "main",
+            &[("INDIRECT", flag(false))],
+        );
+        let indirect = compute_pipeline(
+            device,
+            "ppr reflection tiles",
+            &layout,
+            &module,
+            "main",
+            &[("INDIRECT", flag(true))],
+        );
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -66,7 +87,7 @@ impl ReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipeline, layout, sampler }
+        Self { pipeline, indirect, layout, sampler }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
@@ -79,14 +100,29 @@ impl ReflectionPass {
                 wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(b.color) },
                 wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(b.output) },
+                wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
             ],
         })
     }
 
+    /// Records the pass over the whole viewport.
     pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
         let (x, y) = tile_groups(viewport);
         pass.set_pipeline(&self.pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
+    }
+
+    /// Records the pass over the active tiles (indirect arguments from the classify pass).
+    pub fn encode_tiles(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        args: &wgpu::Buffer,
+    ) {
+        pass.set_pipeline(&self.indirect);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups_indirect(args, 0);
     }
 }

@@ -6,3 +6,4 @@ mod gpu;
 mod harness;
 mod reflection;
 mod scene;
+mod tiles;

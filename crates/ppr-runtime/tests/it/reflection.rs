@@ -68,6 +68,8 @@ fn room_case_with(stripes: bool) -> Case {
 
 fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> crate::harness::Output {
     let mut r = renderer();
+    // Full clears, so that the whole intermediate buffer can be compared.
+    r.plan_params.indirect = ppr_runtime::Choice::Off;
     r.set_reflectors(&case.set);
     r.settings = settings;
     r.write_mode = mode;

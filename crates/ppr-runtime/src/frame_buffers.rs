@@ -1,0 +1,81 @@
+//! The GPU buffers of a frame, sized for a viewport and a reflector set.
+
+use wgpu::util::DeviceExt;
+
+use crate::gpu_types::{FrameUniforms, GpuShape};
+use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
+use crate::plan::FramePlan;
+use crate::shapes::ShapeTable;
+
+/// Buffers reallocated only when the viewport or the set changes.
+pub(crate) struct FrameBuffers {
+    pub uniforms: wgpu::Buffer,
+    pub shapes: wgpu::Buffer,
+    pub visible: wgpu::Buffer,
+    pub screen_rects: wgpu::Buffer,
+    pub occluders: wgpu::Buffer,
+    pub intermediate: wgpu::Buffer,
+    pub active_tiles: wgpu::Buffer,
+    pub dispatch_args: wgpu::Buffer,
+    pub tile_flags: wgpu::Buffer,
+    pub debug_writes: wgpu::Buffer,
+    viewport: [u32; 2],
+    shape_count: usize,
+    debug: bool,
+}
+
+impl FrameBuffers {
+    pub fn new(device: &wgpu::Device, table: &ShapeTable, plan: &FramePlan, debug: bool) -> Self {
+        let [w, h] = plan.viewport;
+        let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
+        let readable = storage | wgpu::BufferUsages::COPY_SRC;
+        let buffer = |label: &str, size: u64, usage| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: size.max(16),
+                usage,
+                mapped_at_creation: false,
+            })
+        };
+        let pixels = u64::from(w) * u64::from(h);
+        let n = table.shapes.len() as u64;
+        let occluders =
+            if table.occluder_indices.is_empty() { vec![0u32; 4] } else { table.occluder_indices.clone() };
+        Self {
+            uniforms: buffer(
+                "ppr frame uniforms",
+                std::mem::size_of::<FrameUniforms>() as u64,
+                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            ),
+            shapes: buffer("ppr shapes", n * std::mem::size_of::<GpuShape>() as u64, storage),
+            visible: buffer("ppr visible shapes", 4 * n, storage),
+            screen_rects: buffer("ppr screen rects", 16 * n, storage),
+            occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("ppr occluder lists"),
+                contents: bytemuck::cast_slice(&occluders),
+                usage: storage,
+            }),
+            intermediate: buffer("ppr intermediate buffer", (pixels * 4).next_multiple_of(16), readable),
+            active_tiles: buffer(
+                "ppr active tiles",
+                ACTIVE_TILES_HEADER + 4 * u64::from(plan.tile_count()),
+                readable,
+            ),
+            dispatch_args: buffer(
+                "ppr indirect dispatch args",
+                16,
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+            ),
+            tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
+            debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
+            viewport: plan.viewport,
+            shape_count: table.shapes.len(),
+            debug,
+        }
+    }
+
+    /// Whether these buffers serve `plan` over `table`.
+    pub fn fits(&self, table: &ShapeTable, plan: &FramePlan, debug: bool) -> bool {
+        self.viewport == plan.viewport && self.shape_count == table.shapes.len() && self.debug == debug
+    }
+}

@@ -1,0 +1,87 @@
+//! Tile classification: the list of tiles that show a visible reflector, and the indirect
+//! dispatch arguments of the clear and reflection passes over them.
+
+use super::{compute_pipeline, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+
+const WGSL: &str = include_str!("../../../../shaders/ppr/tile_classify.wgsl");
+
+/// Bytes before the tile indices in the active-tile buffer (count + padding).
+pub const ACTIVE_TILES_HEADER: u64 = 16;
+
+/// Buffers and views the classification reads and writes.
+pub struct ClassifyBindings<'a> {
+    pub uniforms: &'a wgpu::Buffer,
+    pub depth: &'a wgpu::TextureView,
+    pub shapes: &'a wgpu::Buffer,
+    pub visible: &'a wgpu::Buffer,
+    pub screen_rects: &'a wgpu::Buffer,
+    pub active_tiles: &'a wgpu::Buffer,
+    pub dispatch_args: &'a wgpu::Buffer,
+    pub tile_flags: &'a wgpu::Buffer,
+}
+
+/// The tile classification pass (two dispatches: classify, then finalize the arguments).
+pub struct TileClassifyPass {
+    classify: wgpu::ComputePipeline,
+    finalize: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl TileClassifyPass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ppr tile classify"),
+            entries: &[
+                uniform_entry(0),
+                loaded_texture_entry(1),
+                storage_entry(2, true),
+                storage_entry(3, true),
+                storage_entry(4, true),
+                storage_entry(5, false),
+                storage_entry(6, false),
+                storage_entry(7, false),
+            ],
+        });
+        let module = crate::shader::module(device, "ppr tile classify", WGSL);
+        Self {
+            classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
+            finalize: compute_pipeline(
+                device,
+                "ppr tile classify finalize",
+                &layout,
+                &module,
+                "finalize",
+                &[],
+            ),
+            layout,
+        }
+    }
+
+    pub fn bind_group(&self, device: &wgpu::Device, b: &ClassifyBindings<'_>) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ppr tile classify"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
+                wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
+            ],
+        })
+    }
+
+    /// Records the classification of every tile and the argument fix-up (two dispatches).
+    /// The active-tile count must be zero beforehand (the renderer writes it each frame).
+    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
+        let (x, y) = tile_groups(viewport);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.set_pipeline(&self.classify);
+        pass.dispatch_workgroups(x, y, 1);
+        pass.set_pipeline(&self.finalize);
+        pass.dispatch_workgroups(1, 1, 1);
+    }
+}

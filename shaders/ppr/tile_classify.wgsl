@@ -1,0 +1,117 @@
+// Tile classification: finds the 16x16 tiles where some pixel lies on a visible reflector
+// and appends them to the active-tile list, so that the clear and the reflection passes
+// run (indirectly) only there. Per tile, the visible shapes whose screen rectangle touches
+// the tile are first gathered in workgroup memory (one thread per shape); each pixel then
+// tests whether it lies on one of them. A second entry point turns the count into
+// indirect dispatch arguments.
+
+const TILE_SIZE: u32 = 16u;
+const GROUP_THREADS: u32 = 256u;
+const LIST_CAPACITY: u32 = 256u;
+// Largest workgroup count per dispatch dimension.
+const MAX_GROUPS_X: u32 = 65535u;
+// Pixels closer to a plane than this times their distance count as on it (generous:
+// marking a tile active that shows no reflector only costs time).
+const ON_PLANE_EPSILON: f32 = 2e-3;
+
+struct ActiveTileCounter {
+    count: atomic<u32>,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+    // Tile index (x + y * tiles_x) of each active tile.
+    tiles: array<u32>,
+}
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+@group(0) @binding(1) var depth_tex: texture_2d<f32>;
+@group(0) @binding(2) var<storage, read> shapes: array<Shape>;
+@group(0) @binding(3) var<storage, read> visible: array<u32>;
+// Per visible shape: its screen rectangle in pixels (min x, min y, max x, max y), exclusive max.
+@group(0) @binding(4) var<storage, read> screen_rects: array<vec4<u32>>;
+@group(0) @binding(5) var<storage, read_write> active_tiles: ActiveTileCounter;
+@group(0) @binding(6) var<storage, read_write> dispatch_args: array<u32, 3>;
+// Per tile: 1 when active, 0 when not (so that reads across a tile border can tell
+// whether the neighbouring tile was cleared this frame).
+@group(0) @binding(7) var<storage, read_write> tile_flags: array<u32>;
+
+var<workgroup> list: array<u32, LIST_CAPACITY>;
+var<workgroup> list_len: atomic<u32>;
+var<workgroup> shows_reflector: atomic<u32>;
+
+fn lies_on(p: vec3<f32>, s: Shape) -> bool {
+    let reach = length(p);
+    let dist = dot(p, s.normal) - s.plane_dist;
+    if (abs(dist) > ON_PLANE_EPSILON * reach) {
+        return false;
+    }
+    let l = p - s.center;
+    let margin = ON_PLANE_EPSILON * reach;
+    return abs(dot(l, s.axis_u)) <= s.half_u + margin && abs(dot(l, s.axis_v)) <= s.half_v + margin;
+}
+
+@compute @workgroup_size(16, 16)
+fn classify(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
+    if (lid == 0u) {
+        atomicStore(&list_len, 0u);
+        atomicStore(&shows_reflector, 0u);
+    }
+    workgroupBarrier();
+    let tile_lo = wid.xy * TILE_SIZE;
+    let tile_hi = tile_lo + TILE_SIZE;
+    for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
+        let k = base + lid;
+        if (k < frame.visible_count) {
+            let r = screen_rects[k];
+            if (r.x < tile_hi.x && r.z > tile_lo.x && r.y < tile_hi.y && r.w > tile_lo.y) {
+                let slot = atomicAdd(&list_len, 1u);
+                if (slot < LIST_CAPACITY) {
+                    list[slot] = visible[k];
+                }
+            }
+        }
+    }
+    workgroupBarrier();
+    let listed = atomicLoad(&list_len);
+    if (all(gid.xy < frame.size) && listed > 0u) {
+        let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
+        if (depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth) {
+            let uv = (vec2<f32>(gid.xy) + 0.5) * frame.resolution.zw;
+            let h = frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+            let p = h.xyz / h.w;
+            let overflow = listed > LIST_CAPACITY;
+            let n = select(listed, frame.visible_count, overflow);
+            for (var i = 0u; i < n; i++) {
+                let s = shapes[select(list[i], visible[i], overflow)];
+                if (lies_on(p, s)) {
+                    atomicOr(&shows_reflector, 1u);
+                    break;
+                }
+            }
+        }
+    }
+    workgroupBarrier();
+    if (lid == 0u) {
+        let tile = wid.x + wid.y * groups.x;
+        let is_active = atomicLoad(&shows_reflector) != 0u;
+        tile_flags[tile] = select(0u, 1u, is_active);
+        if (is_active) {
+            let slot = atomicAdd(&active_tiles.count, 1u);
+            active_tiles.tiles[slot] = tile;
+        }
+    }
+}
+
+// One thread: dispatch arguments (x, y, 1) covering `count` tiles in rows of MAX_GROUPS_X.
+@compute @workgroup_size(1)
+fn finalize() {
+    let n = atomicLoad(&active_tiles.count);
+    dispatch_args[0] = min(n, MAX_GROUPS_X);
+    dispatch_args[1] = (n + MAX_GROUPS_X - 1u) / MAX_GROUPS_X;
+    dispatch_args[2] = 1u;
+}
