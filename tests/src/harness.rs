@@ -269,9 +269,10 @@ pub fn compare(frame: &Frame, out: &[Vec4], mask: impl Fn(usize) -> bool) -> Com
     }
 }
 
-/// Writes `name.png` under the test output folder (target/tmp): the runtime's output, the
-/// exact reflection and their difference ×4 (blue: not compared), side by side.
-pub fn save_comparison(name: &str, frame: &Frame, out: &[Vec4], mask: impl Fn(usize) -> bool) {
+/// Writes `dir/ppr/name.png`: the runtime's output, the exact reflection and their
+/// difference ×4 (blue: not compared), side by side. Tests pass their
+/// `env!("CARGO_TARGET_TMPDIR")`.
+pub fn save_comparison(dir: &str, name: &str, frame: &Frame, out: &[Vec4], mask: impl Fn(usize) -> bool) {
     let ppr: Vec<Vec3> = out.iter().map(|p| p.truncate()).collect();
     let reference: Vec<Vec3> = (0..ppr.len())
         .map(|i| if frame.mirror[i].is_some() { frame.reference[i] } else { Vec3::ZERO })
@@ -285,7 +286,7 @@ pub fn save_comparison(name: &str, frame: &Frame, out: &[Vec4], mask: impl Fn(us
             }
         })
         .collect();
-    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("ppr-runtime");
+    let dir = std::path::Path::new(dir).join("ppr");
     std::fs::create_dir_all(&dir).expect("create test output folder");
     save_png(&dir.join(format!("{name}.png")), frame.size, &[ppr, reference, diff]);
 }

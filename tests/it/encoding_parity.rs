@@ -6,7 +6,7 @@ use ppr_runtime::EncodingLayout;
 use ppr_runtime::encoding::{self, CLEAR_VALUE};
 use wgpu::util::DeviceExt;
 
-use crate::gpu::{gpu, read_buffer};
+use ppr_tests::gpu::{gpu, read_buffer};
 
 const KERNEL: &str = r#"
 @group(0) @binding(0) var<uniform> enc_params: EncodingParams;

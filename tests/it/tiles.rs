@@ -5,9 +5,9 @@
 use glam::{DVec3, Vec3, Vec4};
 use ppr_runtime::{Camera, Choice, Projection, ReflectionRenderer};
 
-use crate::gpu::read_buffer;
-use crate::harness::{GpuFrame, renderer, run};
-use crate::scene::{Albedo, AnalyticScene};
+use ppr_tests::gpu::read_buffer;
+use ppr_tests::harness::{GpuFrame, renderer, run};
+use ppr_tests::scene::{Albedo, AnalyticScene};
 
 const SIZE: [u32; 2] = [96, 64];
 

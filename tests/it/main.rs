@@ -1,0 +1,6 @@
+//! The runtime on the GPU (software adapter in CI) against CPU references and the exact
+//! reflection of analytic scenes.
+
+mod encoding_parity;
+mod reflection;
+mod tiles;
