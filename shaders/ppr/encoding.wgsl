@@ -15,8 +15,9 @@ struct EncodingParams {
     minor_frac_bits: u32,
     major_decode_scale: f32,
     minor_decode_scale: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // 1: mirror the fraction along the offset direction (the seed's behaviour).
+    mirror_fractions: u32,
+    _pad: u32,
 }
 
 // A decoded value in its packing basis: (minor, major).
@@ -86,15 +87,21 @@ fn ppr_encode(offset: vec2<f32>, enc: EncodingParams) -> u32 {
     if (whole.y > max_major || whole.x < -minor_bias || whole.x >= minor_bias) {
         return PPR_CLEAR_VALUE;
     }
-    var t = 0;
-    if (o.y > 0) {
-        t = ppr_div_round(o.x << PPR_TANGENT_BITS, o.y);
+    // Mirrored fraction = (p_minor, p_major) / den.
+    var p_minor = fract.x;
+    var p_major = fract.y;
+    var den = 1;
+    if (enc.mirror_fractions != 0u) {
+        var t = 0;
+        if (o.y > 0) {
+            t = ppr_div_round(o.x << PPR_TANGENT_BITS, o.y);
+        }
+        let k = 1 << PPR_TANGENT_BITS;
+        let s = t * fract.x + k * fract.y;
+        den = t * t + k * k;
+        p_minor = fract.x * den - 2 * t * s;
+        p_major = fract.y * den - 2 * k * s;
     }
-    let k = 1 << PPR_TANGENT_BITS;
-    let s = t * fract.x + k * fract.y;
-    let den = t * t + k * k;
-    let p_minor = fract.x * den - 2 * t * s;
-    let p_major = fract.y * den - 2 * k * s;
     let q_minor = ppr_quantise_fraction(p_minor, den, enc.minor_frac_bits);
     let q_major = ppr_quantise_fraction(p_major, den, enc.major_frac_bits);
 

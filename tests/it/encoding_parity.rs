@@ -205,6 +205,7 @@ fn gpu_encoding_equals_cpu_reference_bit_for_bit() {
         EncodingLayout::for_resolution(1920, 1080),
         EncodingLayout::for_resolution(3840, 2160),
         EncodingLayout::for_resolution(7680, 4320),
+        EncodingLayout { mirror_fractions: false, ..EncodingLayout::for_resolution(1920, 1080) },
     ];
     let mut total = 0;
     for (k, layout) in layouts.iter().enumerate() {

@@ -54,12 +54,15 @@ pub struct EncodingLayout {
     pub minor_int_bits: u32,
     /// Bits of the minor fraction (at most [`MAX_FRACTION_BITS`]).
     pub minor_frac_bits: u32,
+    /// Mirror the fraction along the offset direction (the seed's cure for filtered
+    /// reflections swimming under motion). Off only to show that artefact.
+    pub mirror_fractions: bool,
 }
 
 impl EncodingLayout {
     /// The seed's layout: major below 4096 px, minor within ±2048 px (enough for 2560×1440).
     pub const SEED: Self =
-        Self { major_int_bits: 12, major_frac_bits: 3, minor_int_bits: 12, minor_frac_bits: 3 };
+        Self { major_int_bits: 12, major_frac_bits: 3, minor_int_bits: 12, minor_frac_bits: 3, mirror_fractions: true };
 
     /// The layout with the most fraction bits that encodes every on-screen offset of a
     /// `width × height` viewport: the major whole part needs to hold `max(w, h)`, the
@@ -81,7 +84,13 @@ impl EncodingLayout {
         let major_frac_bits = left.div_ceil(2).min(MAX_FRACTION_BITS);
         let minor_frac_bits = (left - major_frac_bits).min(MAX_FRACTION_BITS);
         let spare = left - major_frac_bits - minor_frac_bits;
-        Self { major_int_bits: major_int_bits + spare, major_frac_bits, minor_int_bits, minor_frac_bits }
+        Self {
+            major_int_bits: major_int_bits + spare,
+            major_frac_bits,
+            minor_int_bits,
+            minor_frac_bits,
+            mirror_fractions: true,
+        }
     }
 
     /// Total bits used (at most 32).
@@ -130,7 +139,8 @@ impl EncodingLayout {
             minor_frac_bits: self.minor_frac_bits,
             major_decode_scale: Self::decode_scale(self.major_frac_bits),
             minor_decode_scale: Self::decode_scale(self.minor_frac_bits),
-            _pad: [0; 2],
+            mirror_fractions: u32::from(self.mirror_fractions),
+            _pad: 0,
         }
     }
 }
@@ -149,7 +159,8 @@ pub struct EncodingParams {
     pub minor_frac_bits: u32,
     pub major_decode_scale: f32,
     pub minor_decode_scale: f32,
-    pub _pad: [u32; 2],
+    pub mirror_fractions: u32,
+    pub _pad: u32,
 }
 const _: () = assert!(std::mem::size_of::<EncodingParams>() == 32);
 
@@ -243,13 +254,17 @@ pub fn encode(offset: Vec2, layout: &EncodingLayout) -> u32 {
     if whole.y > layout.max_major() || whole.x < -layout.minor_bias() || whole.x >= layout.minor_bias() {
         return CLEAR_VALUE;
     }
-    // Mirror the fraction along the direction (t, 1), t = minor / major rounded to 1/256.
-    let t = if o.y > 0 { div_round(o.x << TANGENT_BITS, o.y) } else { 0 };
-    let k = 1 << TANGENT_BITS;
-    let s = t * fract.x + k * fract.y;
-    let den = t * t + k * k;
-    let p_minor = fract.x * den - 2 * t * s;
-    let p_major = fract.y * den - 2 * k * s;
+    // Mirror the fraction along the direction (t, 1), t = minor / major rounded to 1/256:
+    // the mirrored fraction is (p_minor, p_major) / den.
+    let (p_minor, p_major, den) = if layout.mirror_fractions {
+        let t = if o.y > 0 { div_round(o.x << TANGENT_BITS, o.y) } else { 0 };
+        let k = 1 << TANGENT_BITS;
+        let s = t * fract.x + k * fract.y;
+        let den = t * t + k * k;
+        (fract.x * den - 2 * t * s, fract.y * den - 2 * k * s, den)
+    } else {
+        (fract.x, fract.y, 1)
+    };
     let q_minor = quantise_fraction(p_minor, den, layout.minor_frac_bits);
     let q_major = quantise_fraction(p_major, den, layout.major_frac_bits);
 
@@ -304,6 +319,7 @@ mod tests {
         check(3840, 2160, [12, 3, 13, 2]);
         check(7680, 4320, [13, 2, 14, 1]);
         check(1, 1, [21, 3, 3, 3]);
+        assert!(EncodingLayout::for_resolution(640, 480).mirror_fractions);
         assert_eq!(EncodingLayout::for_resolution(1920, 1080), EncodingLayout::SEED);
         assert!(EncodingLayout::SEED.fits_viewport(1920, 1080));
         assert!(!EncodingLayout::SEED.fits_viewport(3840, 2160));

@@ -54,14 +54,21 @@ pub struct FrameInputs<'a> {
 
 /// Renders pixel-projected reflections for one view.
 ///
-/// ```ignore
-/// let mut ppr = ReflectionRenderer::new(&device, &queue, &RendererDesc::default());
-/// ppr.set_reflectors(&set);
-/// // every frame:
-/// let plan = ppr.prepare(&camera, [width, height]);
+/// ```no_run
+/// # fn frames(device: &wgpu::Device, queue: &wgpu::Queue, set: &ppr_format::ReflectorSet,
+/// #     camera: &ppr_runtime::Camera, color: &wgpu::TextureView, depth: &wgpu::TextureView,
+/// #     output: &wgpu::TextureView, [width, height]: [u32; 2]) {
+/// use ppr_runtime::{FrameInputs, ReflectionRenderer, RendererDesc};
+/// // once:
+/// let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
+/// ppr.set_reflectors(set);
+/// // every frame, after the scene's colour and depth are recorded:
+/// let plan = ppr.prepare(camera, [width, height]);
+/// let mut encoder = device.create_command_encoder(&Default::default());
 /// ppr.encode(&mut encoder, &FrameInputs { color, depth, output });
 /// queue.submit([encoder.finish()]);
-/// let timings = ppr.read_timings(); // optional, waits for the GPU
+/// let timings = ppr.read_timings(); // optional: waits for the GPU
+/// # }
 /// ```
 pub struct ReflectionRenderer {
     device: wgpu::Device,
