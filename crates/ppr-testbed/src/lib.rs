@@ -54,5 +54,5 @@ pub use render_job::{RenderJob, RenderReport};
 pub use renderer::{FrameSummary, LevelRenderer, RenderSettings};
 pub use scene_layouts::SceneLayouts;
 pub use synthetic::{FloorMirrorParams, SyntheticScene};
-pub use technique::{ReflectionInputs, ReflectionTechnique};
+pub use technique::{ReflectionInputs, ReflectionTechnique, format_timings};
 pub use view::{Lighting, ReflectorMaskParams, ViewBindings};

@@ -58,7 +58,8 @@ impl ReflectionTechnique for PprTechnique {
         self.renderer.encode(encoder, &frame);
     }
 
-    fn timings(&mut self, _device: &wgpu::Device) -> Option<String> {
-        self.renderer.read_timings().map(|t| t.to_string())
+    fn timings(&mut self, _device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
+        let t = self.renderer.read_timings()?;
+        Some(t.passes().iter().filter_map(|(name, ms)| ms.map(|ms| ((*name).to_owned(), ms))).collect())
     }
 }

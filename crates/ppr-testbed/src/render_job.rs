@@ -20,7 +20,7 @@ use crate::metrics::{ImageComparison, compare};
 use crate::pixel_mask::PixelMask;
 use crate::readback::read_rgba_f32;
 use crate::renderer::{FrameSummary, LevelRenderer, RenderSettings};
-use crate::technique::{REFLECTION_FORMAT, ReflectionInputs, ReflectionTechnique};
+use crate::technique::{REFLECTION_FORMAT, ReflectionInputs, ReflectionTechnique, format_timings};
 
 /// Everything `ppr-render` was asked to do.
 #[derive(Clone, Debug, PartialEq)]
@@ -93,8 +93,8 @@ pub struct RenderReport {
     pub frame: FrameSummary,
     /// The technique's name and plan, if one ran.
     pub technique: Option<(String, String)>,
-    /// The technique's GPU timings, if measured.
-    pub timings: Option<String>,
+    /// The technique's GPU time per pass (name, milliseconds), if measured.
+    pub timings: Option<Vec<(String, f64)>>,
     /// Technique vs reference over reflector pixels whose reflected point is on screen.
     pub on_screen: Option<ImageComparison>,
     /// Technique vs reference over the other reflector pixels (off screen, hidden, background).
@@ -125,7 +125,7 @@ impl std::fmt::Display for RenderReport {
             None => writeln!(f, "no reflection technique ran: frame.png has no reflections")?,
         }
         if let Some(t) = &self.timings {
-            writeln!(f, "GPU timings: {t}")?;
+            writeln!(f, "GPU timings: {}", format_timings(t))?;
         }
         if let Some(c) = &self.on_screen {
             writeln!(f, "on-screen reflector pixels:  {c}")?;
@@ -195,10 +195,7 @@ pub fn run_level(
     renderer.encode_gbuffer(&mut encoder);
     if let Some(t) = technique.as_mut() {
         let g = renderer.gbuffer();
-        t.encode(
-            &mut encoder,
-            &ReflectionInputs { color: &g.color.view, depth: &g.depth.view, output: &reflection.view },
-        );
+        t.encode(&mut encoder, &ReflectionInputs::from_gbuffer(g, &reflection.view));
     }
     renderer.encode_reference(&mut encoder);
     queue.submit([encoder.finish()]);
