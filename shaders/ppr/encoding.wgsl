@@ -27,6 +27,16 @@ struct PprDecoded {
     basis: u32,
 }
 
+// Finite test on the bits: shader compilers may rewrite comparisons with NaN (`!(x < y)`
+// into `x >= y`), so `x == x`-style tests are not reliable.
+fn ppr_is_finite(x: f32) -> bool {
+    return (bitcast<u32>(x) & 0x7f800000u) != 0x7f800000u;
+}
+
+fn ppr_is_finite2(v: vec2<f32>) -> bool {
+    return ppr_is_finite(v.x) && ppr_is_finite(v.y);
+}
+
 fn ppr_basis_index(o: vec2<i32>) -> u32 {
     if (abs(o.x) >= abs(o.y)) {
         return select(1u, 0u, o.x >= 0);
@@ -63,22 +73,32 @@ fn ppr_div_round(a: i32, b: i32) -> i32 {
 
 fn ppr_quantise_fraction(p: i32, den: i32, bits: u32) -> u32 {
     let mult = 1u << bits;
-    let num = u32(PPR_FRACTION_SCALE_NUMERATOR * p + 4096 * den) + (4096u / mult) * u32(den);
+    let num = u32(PPR_FRACTION_SCALE_NUMERATOR * p + 4096 * den);
     let q = num / ((8192u / mult) * u32(den));
     return min(q, mult - 1u);
 }
 
+// Encodes a screen-space offset (target point - source pixel centre), split as the seed
+// does: whole part floor(o + 0.5), fraction in [-0.5, 0.5).
 fn ppr_encode(offset: vec2<f32>, enc: EncodingParams) -> u32 {
-    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
-    let half = one / 2;
-    // NaN fails both comparisons; infinities fail the second.
-    if (!(all(abs(offset) < vec2<f32>(65536.0)))) {
+    if (!ppr_is_finite2(offset) || any(abs(offset) >= vec2<f32>(65536.0))) {
         return PPR_CLEAR_VALUE;
     }
-    let os = vec2<i32>(round(offset * f32(one)));
+    let whole = floor(offset + 0.5);
+    return ppr_encode_parts(vec2<i32>(whole), offset - whole, enc);
+}
+
+// Encodes an offset in parts: whole = target pixel - source pixel, fract = the target
+// point in its pixel relative to the pixel's centre, in [-0.5, 0.5).
+fn ppr_encode_parts(whole_s: vec2<i32>, fract_in: vec2<f32>, enc: EncodingParams) -> u32 {
+    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
+    let half = one / 2;
+    if (!ppr_is_finite2(fract_in) || any(abs(fract_in) >= vec2<f32>(2.0)) || any(abs(whole_s) >= vec2<i32>(65536))) {
+        return PPR_CLEAR_VALUE;
+    }
+    let fract_s = clamp(vec2<i32>(round(fract_in * f32(one))), vec2<i32>(-half), vec2<i32>(half - 1));
+    let os = whole_s * one + fract_s;
     let basis = ppr_basis_index(os);
-    let whole_s = (os + vec2<i32>(half)) >> vec2<u32>(PPR_OFFSET_SUBPIXEL_BITS);
-    let fract_s = os - whole_s * one;
     let o = ppr_to_basis(os, basis);
     let whole = ppr_to_basis(whole_s, basis);
     let fract = ppr_to_basis(fract_s, basis);

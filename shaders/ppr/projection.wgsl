@@ -60,12 +60,13 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
         return false;
     }
     let target_crd = (ndc * vec2<f32>(0.5, -0.5) + 0.5) * frame.resolution.xy;
-    let offset = target_crd - (vec2<f32>(pixel) + 0.5);
-    let value = ppr_encode(offset, frame.encoding);
+    // Whole part from integer pixels, so that it points exactly at the source pixel.
+    let t = min(vec2<u32>(target_crd), frame.size - 1u);
+    let whole = vec2<i32>(t) - vec2<i32>(pixel);
+    let value = ppr_encode_parts(whole, target_crd - vec2<f32>(t) - 0.5, frame.encoding);
     if (value == PPR_CLEAR_VALUE) {
         return false;
     }
-    let t = min(vec2<u32>(target_crd), frame.size - 1u);
     let index = t.x + t.y * frame.size.x;
     if ((frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u) {
         atomicMin(&intermediate[index], value);
@@ -161,7 +162,7 @@ fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
 
 fn is_valid_depth(depth: f32) -> bool {
     // Nothing rendered here (far plane), or a depth that is not a number.
-    return depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth;
+    return ppr_is_finite(depth) && depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth;
 }
 
 // Builds the tile's candidate list in workgroup memory (ordered like `visible`).
@@ -251,7 +252,7 @@ fn main(
     }
 
     let p = unproject(vec2<f32>(gid.xy) + 0.5, depth);
-    if (!all(abs(p) < vec3<f32>(1e30))) {
+    if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z)) || any(abs(p) >= vec3<f32>(1e30))) {
         return;
     }
     let min_dist = frame.plane_epsilon * length(p);

@@ -5,6 +5,7 @@ use glam::{DVec3, Vec3};
 use ppr_runtime::{Camera, Projection, ReflectionSettings, WriteMode};
 
 use ppr_tests::harness::{GpuFrame, compare, renderer, run};
+use ppr_tests::masks::{interior, reference_edges};
 use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
 
 /// 160 × 120: small enough for llvmpipe, large enough for stretching and squeezing.
@@ -173,38 +174,6 @@ fn anti_bleeding_reduces_error_at_high_contrast_edges() {
 /// The gradient wall's colours have blue and red both well above the stripes' grey.
 fn is_back_wall_colour(c: Vec3) -> bool {
     (c.x - c.z).abs() > 0.05 && c.y > 0.3 && c.y < 0.65
-}
-
-/// Pixels of `mask` whose whole (2r+1)² neighbourhood is in `mask`.
-fn interior(f: &Frame, r: i32, mask: impl Fn(usize) -> bool) -> Vec<bool> {
-    let [w, h] = f.size.map(|v| v as i32);
-    (0..w * h)
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            (-r..=r).all(|dy| {
-                (-r..=r).all(|dx| {
-                    let (nx, ny) = (x + dx, y + dy);
-                    nx >= 0 && ny >= 0 && nx < w && ny < h && mask((ny * w + nx) as usize)
-                })
-            })
-        })
-        .collect()
-}
-
-/// Mirror pixels whose reference differs from a 4-neighbour's by more than `threshold`.
-fn reference_edges(f: &Frame, threshold: f32) -> Vec<bool> {
-    let [w, h] = f.size;
-    let mut edges = vec![false; f.reference.len()];
-    for y in 1..h - 1 {
-        for x in 1..w - 1 {
-            let i = (y * w + x) as usize;
-            let c = f.reference[i];
-            edges[i] = [i - 1, i + 1, i - w as usize, i + w as usize]
-                .iter()
-                .any(|&j| f.mirror[j].is_none() || (f.reference[j] - c).abs().max_element() > threshold);
-        }
-    }
-    edges
 }
 
 /// On-screen mirror pixels whose reference differs strongly from a 4-neighbour's.

@@ -35,7 +35,19 @@ const DEPTH_WRITE: &str = r#"
 "#;
 
 impl GpuFrame {
+    /// Uploads colour as `Rgba16Float` and depth as `Depth32Float` (drawn with `frag_depth`).
     pub fn upload(frame: &Frame) -> Self {
+        Self::upload_with(frame, false)
+    }
+
+    /// Like [`Self::upload`], but the depth the runtime reads is the raw `R32Float`
+    /// texture, so that values a depth buffer cannot hold (NaN, infinities, outside
+    /// [0, 1]) reach the passes.
+    pub fn upload_raw_depth(frame: &Frame) -> Self {
+        Self::upload_with(frame, true)
+    }
+
+    fn upload_with(frame: &Frame, raw_depth: bool) -> Self {
         let g = gpu();
         let d = &g.device;
         let [w, h] = frame.size;
@@ -99,6 +111,9 @@ impl GpuFrame {
             None,
             8,
         );
+        if raw_depth {
+            return Self { color, depth: depth_src, output, size: frame.size };
+        }
         write_depth(&depth_src, &depth);
         Self { color, depth, output, size: frame.size }
     }
@@ -175,10 +190,12 @@ pub fn run(renderer: &mut ReflectionRenderer, frame: &GpuFrame, camera: &Camera)
     let g = gpu();
     let plan = renderer.prepare(camera, frame.size).clone();
     let color = frame.color.create_view(&Default::default());
-    let depth = frame.depth.create_view(&wgpu::TextureViewDescriptor {
-        aspect: wgpu::TextureAspect::DepthOnly,
-        ..Default::default()
-    });
+    let aspect = if frame.depth.format().has_depth_aspect() {
+        wgpu::TextureAspect::DepthOnly
+    } else {
+        wgpu::TextureAspect::All
+    };
+    let depth = frame.depth.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
     let output = frame.output.create_view(&Default::default());
     let mut encoder = g.device.create_command_encoder(&Default::default());
     renderer.encode(&mut encoder, &FrameInputs { color: &color, depth: &depth, output: &output });
@@ -349,9 +366,11 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
                     continue;
                 }
                 let t = (n * glam::DVec2::new(0.5, -0.5) + 0.5) * glam::DVec2::new(w as f64, h as f64);
-                let off = t - glam::DVec2::new(x as f64 + 0.5, y as f64 + 0.5);
-                let v = ppr_runtime::encoding::encode(off.as_vec2(), &layout);
-                let i = (t.y as u32).min(h - 1) * w + (t.x as u32).min(w - 1);
+                let px = glam::UVec2::new((t.x as u32).min(w - 1), (t.y as u32).min(h - 1));
+                let whole = px.as_ivec2() - glam::IVec2::new(x as i32, y as i32);
+                let fract = (t - px.as_dvec2() - 0.5).as_vec2();
+                let v = ppr_runtime::encoding::encode_parts(whole, fract, &layout);
+                let i = px.y * w + px.x;
                 buf[i as usize] = buf[i as usize].min(v);
             }
         }

@@ -7,4 +7,5 @@
 
 pub mod gpu;
 pub mod harness;
+pub mod masks;
 pub mod scene;

@@ -173,6 +173,7 @@ impl AnalyticScene {
             reference: vec![Vec3::ZERO; n],
             on_screen: vec![false; n],
             source_px: vec![glam::Vec2::ZERO; n],
+            far_depth: camera.projection.far_depth(),
         };
         let project = |p_rel: DVec3| {
             let c = clip_from_rel * p_rel.extend(1.0);
@@ -239,6 +240,8 @@ pub struct Frame {
     pub on_screen: Vec<bool>,
     /// Where the reflected point of each on-screen mirror pixel is on screen (pixels).
     pub source_px: Vec<glam::Vec2>,
+    /// The depth of pixels where nothing was hit (the projection's far depth).
+    pub far_depth: f32,
 }
 
 impl Frame {

@@ -20,7 +20,9 @@
 //!    `t = minor / major` rounded to 1/256, which needs no square root: reflecting `f`
 //!    across the line orthogonal to `(t, 1)` is `f − 2 (t, 1) (t f.x + f.y) / (1 + t²)`,
 //!    a ratio of integers. The quantised fraction is then an integer division. 0.707 is
-//!    taken as 181/256 = 0.70703125. Every GPU and the CPU produce the same bits.
+//!    taken as 181/256 = 0.70703125. Every GPU and the CPU produce the same bits. The
+//!    fraction is quantised to its bin (the seed rounds to the nearest step but decodes
+//!    the bin's centre: a half-step bias).
 //! 2. **A layout chosen from the resolution** ([`EncodingLayout::for_resolution`]). The
 //!    seed's layout ([`EncodingLayout::SEED`]: 12-bit major, 12-bit signed minor, 3+3
 //!    fraction bits) overflows once an offset's minor component reaches ±2048 px, which
@@ -61,8 +63,13 @@ pub struct EncodingLayout {
 
 impl EncodingLayout {
     /// The seed's layout: major below 4096 px, minor within ±2048 px (enough for 2560×1440).
-    pub const SEED: Self =
-        Self { major_int_bits: 12, major_frac_bits: 3, minor_int_bits: 12, minor_frac_bits: 3, mirror_fractions: true };
+    pub const SEED: Self = Self {
+        major_int_bits: 12,
+        major_frac_bits: 3,
+        minor_int_bits: 12,
+        minor_frac_bits: 3,
+        mirror_fractions: true,
+    };
 
     /// The layout with the most fraction bits that encodes every on-screen offset of a
     /// `width × height` viewport: the major whole part needs to hold `max(w, h)`, the
@@ -224,32 +231,49 @@ fn div_round(a: i32, b: i32) -> i32 {
 }
 
 /// The quantised fraction of a mirrored component `p / den` (in 1/32 px) with `bits` bits:
-/// `min(floor((p / den / 32) · 0.70703125 · 2^bits + 2^bits / 2 + 0.5), 2^bits − 1)`.
+/// the index of its bin, `min(floor((p / den / 32) · 0.70703125 · 2^bits + 2^bits / 2), 2^bits − 1)`.
+///
+/// The seed rounds to the nearest step (`floor(x + 0.5)`) but decodes the bin's centre
+/// (`(q + 0.5) / 2^bits`), a bias of half a step (0.088 px with 3 bits); taking the bin
+/// index makes the decoded fraction unbiased (error ≤ half a step).
 fn quantise_fraction(p: i32, den: i32, bits: u32) -> u32 {
     let mult = 1u32 << bits;
     // The mirrored fraction has length ≤ 0.7072 px, so 181·p + 4096·den > 0 (see module docs).
-    let num = (FRACTION_SCALE_NUMERATOR * p + 4096 * den) as u32 + (4096 / mult) * den as u32;
+    let num = (FRACTION_SCALE_NUMERATOR * p + 4096 * den) as u32;
     let q = num / ((8192 / mult) * den as u32);
     q.min(mult - 1)
 }
 
-/// Encodes a screen-space offset (target pixel centre − source pixel centre, pixels).
+/// Encodes a screen-space offset (target point − source pixel centre, pixels), split as
+/// the seed does: whole part `floor(o + 0.5)`, fraction in `[-0.5, 0.5)`.
 /// Returns [`CLEAR_VALUE`] for offsets that do not fit the layout or are not finite.
 pub fn encode(offset: Vec2, layout: &EncodingLayout) -> u32 {
-    const ONE: i32 = 1 << OFFSET_SUBPIXEL_BITS;
-    const HALF: i32 = ONE / 2;
     if !offset.is_finite() || offset.abs().max_element() >= 65536.0 {
         return CLEAR_VALUE;
     }
-    // Offset in 1/32 px, exact: scaling by a power of two and rounding are exact in f32.
-    let o = IVec2::new(
-        (offset.x * ONE as f32).round_ties_even() as i32,
-        (offset.y * ONE as f32).round_ties_even() as i32,
+    let whole = (offset + 0.5).floor();
+    encode_parts(whole.as_ivec2(), offset - whole, layout)
+}
+
+/// Encodes an offset given in parts: `whole` = target pixel − source pixel (integers) and
+/// `fract` = the target point's position in its pixel relative to the pixel's centre, in
+/// `[-0.5, 0.5)`. The projection pass calls this: with integer pixels the whole part
+/// always points exactly at the source pixel, which `floor(o + 0.5)` on a rounded f32
+/// offset does not guarantee. Returns [`CLEAR_VALUE`] when the offset does not fit.
+pub fn encode_parts(whole: IVec2, fract: Vec2, layout: &EncodingLayout) -> u32 {
+    const ONE: i32 = 1 << OFFSET_SUBPIXEL_BITS;
+    const HALF: i32 = ONE / 2;
+    if !fract.is_finite() || whole.abs().max_element() >= 65536 {
+        return CLEAR_VALUE;
+    }
+    // The fraction in 1/32 px (exact: scaling by a power of two and rounding are exact in
+    // f32), kept inside its pixel so the whole part stays the integer one.
+    let fract = IVec2::new(
+        ((fract.x * ONE as f32).round_ties_even() as i32).clamp(-HALF, HALF - 1),
+        ((fract.y * ONE as f32).round_ties_even() as i32).clamp(-HALF, HALF - 1),
     );
+    let o = whole * ONE + fract;
     let basis = basis_index(o);
-    // Whole part floor(o + 0.5) and fraction in [-16, 16), in screen space as the seed does.
-    let whole = IVec2::new((o.x + HALF) >> OFFSET_SUBPIXEL_BITS, (o.y + HALF) >> OFFSET_SUBPIXEL_BITS);
-    let fract = o - whole * ONE;
     let (o, whole, fract) = (to_basis(o, basis), to_basis(whole, basis), to_basis(fract, basis));
     if whole.y > layout.max_major() || whole.x < -layout.minor_bias() || whole.x >= layout.minor_bias() {
         return CLEAR_VALUE;

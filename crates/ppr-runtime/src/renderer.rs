@@ -6,6 +6,7 @@ use glam::DMat4;
 use ppr_format::ReflectorSet;
 
 use crate::camera::Camera;
+use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms};
 use crate::passes::clear::ClearBindings;
@@ -82,6 +83,10 @@ pub struct ReflectionRenderer {
     /// Record per source pixel which visible shapes it wrote for (debug; see
     /// [`Self::debug_writes_buffer`]).
     pub debug_writes: bool,
+    /// Use this encoding instead of the one the plan picks for the viewport (e.g. the
+    /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
+    /// fit the viewport ([`EncodingLayout::fits_viewport`]) or long offsets are dropped.
+    pub encoding_override: Option<EncodingLayout>,
     classify: TileClassifyPass,
     clear: ClearPass,
     projection: ProjectionPass,
@@ -104,6 +109,7 @@ impl ReflectionRenderer {
             plan_params: PlanParams::default(),
             write_mode: WriteMode::default(),
             debug_writes: false,
+            encoding_override: None,
             classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
             projection: ProjectionPass::new(device),
@@ -131,7 +137,10 @@ impl ReflectionRenderer {
     /// Plans the frame and uploads what the GPU needs. Call once per frame before
     /// [`Self::encode`].
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
-        let plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
+        let mut plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
+        if let Some(layout) = self.encoding_override {
+            plan.encoding = layout;
+        }
         if !plan.is_empty() {
             self.projection.prepare_variant(&self.device, self.variant(&plan));
         }
