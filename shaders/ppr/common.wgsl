@@ -7,6 +7,12 @@ const PPR_FLAG_ANTI_BLEEDING: u32 = 4u;
 const PPR_FLAG_OCCLUDER_TESTS: u32 = 8u;
 const PPR_FLAG_WRITE_LAST: u32 = 16u;
 const PPR_FLAG_WRITE_MAX: u32 = 32u;
+const PPR_FLAG_WATER_STRETCH: u32 = 64u;
+
+// Reflector kinds (Layer::kind).
+const PPR_KIND_OPAQUE: u32 = 0u;
+const PPR_KIND_TRANSPARENT: u32 = 1u;
+const PPR_KIND_WATER: u32 = 2u;
 
 // Shape flags.
 const PPR_SHAPE_OCCLUDES: u32 = 1u;
@@ -23,9 +29,24 @@ struct FrameUniforms {
     // Points closer to a reflector's plane than this times their distance from the
     // camera are taken as lying on it (they would reflect onto themselves).
     plane_epsilon: f32,
-    _pad1: u32,
-    _pad2: u32,
+    // Layer reflectors (glass, water) with an atlas region this frame.
+    layer_count: u32,
+    _pad0: u32,
+    // The screen rectangle the layer reflection pass covers.
+    layer_origin: vec2<u32>,
+    layer_extent: vec2<u32>,
     encoding: EncodingParams,
+}
+
+// A layer reflector's atlas region: its screen rectangle (exclusive max) and where its
+// rows start in the atlas.
+struct Layer {
+    rect_min: vec2<u32>,
+    rect_max: vec2<u32>,
+    offset: u32,
+    shape: u32,
+    kind: u32,
+    _pad: u32,
 }
 
 // The tiles that show a visible reflector (written by tile_classify.wgsl, whose own view

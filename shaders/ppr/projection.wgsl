@@ -32,6 +32,9 @@ const TILE_LIST_CAPACITY: u32 = 256u;
 @group(0) @binding(4) var<storage, read> occluders: array<u32>;
 @group(0) @binding(5) var<storage, read_write> intermediate: array<atomic<u32>>;
 @group(0) @binding(6) var<storage, read_write> debug_writes: array<u32>;
+// Layer reflectors (glass, water) and their atlas (layer_reflection.wgsl reads it).
+@group(0) @binding(7) var<storage, read> layers: array<Layer>;
+@group(0) @binding(8) var<storage, read_write> atlas: array<atomic<u32>>;
 
 var<workgroup> tile_depth_min: atomic<u32>;
 var<workgroup> tile_depth_max: atomic<u32>;
@@ -49,24 +52,33 @@ fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     return false;
 }
 
-// Writes the reflection of `pixel` (camera-relative position `mirrored` once mirrored).
-fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
+// Where the reflection of `pixel` (camera-relative position `mirrored` once mirrored)
+// lands: (target x, target y, encoded value); the value is PPR_CLEAR_VALUE when it does
+// not land on screen or does not fit the encoding.
+fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
     let clip = frame.clip_from_rel * vec4<f32>(mirrored, 1.0);
     if (!(clip.w > 0.0)) {
-        return false;
+        return vec3<u32>(0u, 0u, PPR_CLEAR_VALUE);
     }
     let ndc = clip.xy / clip.w;
     if (!all(abs(ndc) < vec2<f32>(1.0))) {
-        return false;
+        return vec3<u32>(0u, 0u, PPR_CLEAR_VALUE);
     }
     let target_crd = (ndc * vec2<f32>(0.5, -0.5) + 0.5) * frame.resolution.xy;
     // Whole part from integer pixels, so that it points exactly at the source pixel.
     let t = min(vec2<u32>(target_crd), frame.size - 1u);
     let whole = vec2<i32>(t) - vec2<i32>(pixel);
-    let value = ppr_encode_parts(whole, target_crd - vec2<f32>(t) - 0.5, frame.encoding);
+    return vec3<u32>(t, ppr_encode_parts(whole, target_crd - vec2<f32>(t) - 0.5, frame.encoding));
+}
+
+// Writes the reflection of `pixel` into the main intermediate buffer.
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
+    let tv = projection_target(pixel, mirrored);
+    let value = tv.z;
     if (value == PPR_CLEAR_VALUE) {
         return false;
     }
+    let t = tv.xy;
     let index = t.x + t.y * frame.size.x;
     if ((frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u) {
         atomicMin(&intermediate[index], value);
@@ -88,6 +100,16 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
         }
     }
     return true;
+}
+
+// Writes the reflection of `pixel` into layer `l`'s atlas region (if it lands there).
+fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer) {
+    let tv = projection_target(pixel, mirrored);
+    if (tv.z == PPR_CLEAR_VALUE || any(tv.xy < l.rect_min) || any(tv.xy >= l.rect_max)) {
+        return;
+    }
+    let local = tv.xy - l.rect_min;
+    atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
 // The per-pixel test of shape `s`: the pixel is in front of its plane and its reflection
@@ -154,17 +176,6 @@ fn tile_may_reflect(s: Shape, corners: array<vec3<f32>, 8>) -> bool {
     return all(hi >= -half) && all(lo <= half);
 }
 
-fn unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    let uv = pixel * frame.resolution.zw;
-    let h = frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-    return h.xyz / h.w;
-}
-
-fn is_valid_depth(depth: f32) -> bool {
-    // Nothing rendered here (far plane), or a depth that is not a number.
-    return ppr_is_finite(depth) && depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth;
-}
-
 // Builds the tile's candidate list in workgroup memory (ordered like `visible`).
 // Returns the list length, or TILE_LIST_CAPACITY + 1 when it overflowed.
 fn build_tile_list(lid: u32, tile_origin: vec2<u32>, depth_ok: bool, depth: f32) -> u32 {
@@ -190,7 +201,7 @@ fn build_tile_list(lid: u32, tile_origin: vec2<u32>, depth_ok: bool, depth: f32)
     for (var i = 0u; i < 8u; i++) {
         let x = select(lo.x, hi.x, (i & 1u) != 0u);
         let y = select(lo.y, hi.y, (i & 2u) != 0u);
-        corners[i] = unproject(vec2<f32>(x, y), select(dmin, dmax, (i & 4u) != 0u));
+        corners[i] = ppr_unproject(vec2<f32>(x, y), select(dmin, dmax, (i & 4u) != 0u));
     }
     let empty_tile = dmin_bits > dmax_bits;
     var count = 0u;
@@ -233,7 +244,7 @@ fn main(
     var depth_ok = false;
     if (in_view) {
         depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
-        depth_ok = is_valid_depth(depth);
+        depth_ok = ppr_is_valid_depth(depth);
     }
 
     // In the tiled variant, the candidates are the tile's list (visible positions);
@@ -247,11 +258,11 @@ fn main(
             use_list = true;
         }
     }
-    if (!depth_ok || count == 0u) {
+    if (!depth_ok || (count == 0u && frame.layer_count == 0u)) {
         return;
     }
 
-    let p = unproject(vec2<f32>(gid.xy) + 0.5, depth);
+    let p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
     if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z)) || any(abs(p) >= vec3<f32>(1e30))) {
         return;
     }
@@ -289,6 +300,23 @@ fn main(
     }
     if (PARALLEL_RULE && best_k != 0xffffffffu && reflect_pixel(gid.xy, p, best_dist, shapes[visible[best_k]])) {
         written |= 1u << (best_k & 31u);
+    }
+    // Layer reflectors (few): each writes its own atlas region.
+    for (var l = 0u; l < frame.layer_count; l++) {
+        let layer = layers[l];
+        let s = shapes[layer.shape];
+        let dist = reflecting_distance(p, min_dist, s);
+        if (dist < 0.0) {
+            continue;
+        }
+        let mirrored = p - 2.0 * dist * s.normal;
+        if (OCCLUDER_TESTS) {
+            let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+            if (is_occluded(hit, s)) {
+                continue;
+            }
+        }
+        write_layer(gid.xy, mirrored, layer);
     }
     if (DEBUG_WRITES) {
         debug_writes[gid.x + gid.y * frame.size.x] = written;

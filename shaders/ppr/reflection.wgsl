@@ -1,21 +1,26 @@
 // Reflection pass: decode the intermediate buffer, fill holes from the neighbour with the
 // smallest offset, take filtered and unfiltered colour samples and reduce bleeding in
-// YCoCg. Output: reflected colour, alpha 1 where a reflection was found, 0 elsewhere.
-// Seed: PPR_ReflectionPass and PPR_FixColorBleeding.
+// YCoCg (shading.wgsl). Output: reflected colour, alpha 1 where a reflection was found,
+// 0 elsewhere. Seed: PPR_ReflectionPass.
+//
+// Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
+// empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
+// project, fetch; a 4-tap march toward the reflecting pixel rejects disoccluded samples;
+// the flat reflection is the fallback).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<storage, read> intermediate: array<u32>;
 @group(0) @binding(2) var color_tex: texture_2d<f32>;
 @group(0) @binding(3) var linear_sampler: sampler;
 @group(0) @binding(4) var output: texture_storage_2d<rgba16float, write>;
-
 @group(0) @binding(5) var<storage, read> active_tiles: ActiveTileList;
-
 @group(0) @binding(6) var<storage, read> tile_flags: array<u32>;
+@group(0) @binding(7) var depth_tex: texture_2d<f32>;
+// World-space (= camera-relative) shading normals, xyz.
+@group(0) @binding(8) var normal_tex: texture_2d<f32>;
 
-// When set, the pass is dispatched indirectly with one workgroup per active tile, and
-// only active tiles of the intermediate buffer were cleared this frame.
 override INDIRECT: bool = false;
+override NORMAL_MAPS: bool = false;
 
 // Reads the intermediate buffer; outside the viewport, and (with indirect dispatch) in
 // a tile that was not cleared this frame, reads as "no data".
@@ -32,29 +37,60 @@ fn read_value(p: vec2<i32>) -> u32 {
     return intermediate[u32(p.x) + u32(p.y) * frame.size.x];
 }
 
-fn rgb_to_ycocg(c: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(
-        0.25 * c.r + 0.5 * c.g + 0.25 * c.b,
-        0.5 * c.r - 0.5 * c.b,
-        -0.25 * c.r + 0.5 * c.g - 0.25 * c.b,
-    );
+fn valid_depth_at(p: vec2<i32>) -> f32 {
+    let d = textureLoad(depth_tex, clamp(p, vec2<i32>(0), vec2<i32>(frame.size) - 1), 0).r;
+    if (ppr_is_valid_depth(d)) {
+        return d;
+    }
+    return -1.0;
 }
 
-fn ycocg_to_rgb(c: vec3<f32>) -> vec3<f32> {
-    return vec3<f32>(c.x + c.y - c.z, c.x + c.z, c.x - c.y - c.z);
-}
-
-// PPR_FixColorBleeding: keep the filtered colour perceptually close to the unfiltered one.
-fn fix_color_bleeding(filtered: vec3<f32>, unfiltered: vec3<f32>) -> vec3<f32> {
-    var f = rgb_to_ycocg(filtered);
-    var u = rgb_to_ycocg(unfiltered);
-    let f_chroma = f.yz / max(0.0001, f.x);
-    let u_chroma = u.yz / max(0.0001, u.x);
-    let luma_factor = saturate(3.0 * abs(f.x - u.x));
-    let chroma_factor = saturate(1.4 * length(f_chroma - u_chroma));
-    let y = mix(f.x, u.x, luma_factor);
-    let cocg = mix(f_chroma, u_chroma, chroma_factor);
-    return ycocg_to_rgb(vec3<f32>(y, cocg * y));
+// The normal-mapped reflection at `vpos`, or `flat` when the normal does not perturb it
+// or no tap of the march is accepted.
+fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f32> {
+    let d_here = valid_depth_at(vpos);
+    let decoded = ppr_decode(chosen.value, frame.encoding);
+    let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
+    let d_src = valid_depth_at(vec2<i32>(floor(src)));
+    if (d_here < 0.0 || d_src < 0.0) {
+        return flat;
+    }
+    let p = ppr_unproject(vec2<f32>(vpos) + 0.5, d_here);
+    let q = ppr_unproject(floor(src) + 0.5, d_src);
+    let v = normalize(p);
+    let r = normalize(q - p);
+    // The flat reflection's plane normal: r - v is parallel to it.
+    let n_flat = normalize(r - v);
+    let n = textureLoad(normal_tex, vpos, 0).xyz;
+    let len = length(n);
+    if (!(len > 0.5)) {
+        return flat;
+    }
+    let n_map = n / len;
+    if (dot(n_map, n_flat) > 0.99999 || dot(n_map, -v) <= 0.0) {
+        return flat;
+    }
+    let r_map = reflect(v, n_map);
+    let q_map = p + r_map * length(q - p);
+    // March from the perturbed point toward the reflecting pixel; accept the first tap
+    // that is not behind the depth buffer (a disoccluded sample would be).
+    for (var k = 0u; k < 4u; k++) {
+        let c = mix(p, q_map, 1.0 - f32(k) * 0.25);
+        let s = ppr_project(c);
+        if (s.z == 0.0 || any(s.xy < vec2<f32>(0.0)) || any(s.xy >= frame.resolution.xy)) {
+            continue;
+        }
+        let d = valid_depth_at(vec2<i32>(s.xy));
+        if (d < 0.0) {
+            continue;
+        }
+        let surface = ppr_unproject(floor(s.xy) + 0.5, d);
+        if (length(c) <= length(surface) * 1.02) {
+            let colour = textureSampleLevel(color_tex, linear_sampler, s.xy * frame.resolution.zw, 0.0).rgb;
+            return vec4<f32>(finite_colour(colour), 1.0);
+        }
+    }
+    return flat;
 }
 
 @compute @workgroup_size(16, 16)
@@ -77,81 +113,15 @@ fn main(
         return;
     }
     let vpos = vec2<i32>(gid);
-    var vposread = vpos;
-    var holes_offset = vec2<f32>(0.0);
-
-    if ((frame.flags & PPR_FLAG_HOLES) != 0u) {
-        let v0 = read_value(vpos);
-        let h1 = vec2<i32>(1, 0);
-        let h2 = vec2<i32>(0, 1);
-        let h3 = vec2<i32>(1, 1);
-        let h4 = vec2<i32>(-1, 0);
-        let v1 = read_value(vpos + h1);
-        let v2 = read_value(vpos + h2);
-        let v3 = read_value(vpos + h3);
-        let v4 = read_value(vpos + h4);
-        let minv = min(min(min(v0, v1), min(v2, v3)), v4);
-
-        // Fill if this pixel has no data, or a neighbour's reflection is much closer.
-        var allow_hole_fill = true;
-        if (v0 != PPR_CLEAR_VALUE) {
-            let d0 = ppr_decoded_offset(ppr_decode(v0, frame.encoding));
-            let dmin = ppr_decoded_offset(ppr_decode(minv, frame.encoding));
-            let diff = d0 - dmin;
-            let min_dist = 6.0;
-            allow_hole_fill = dot(diff, diff) > min_dist * min_dist;
-        }
-        if (allow_hole_fill) {
-            if (minv == v1) { vposread = vpos + h1; }
-            if (minv == v2) { vposread = vpos + h2; }
-            if (minv == v3) { vposread = vpos + h3; }
-            if (minv == v4) { vposread = vpos + h4; }
-            holes_offset = vec2<f32>(vposread - vpos);
-        }
+    var v: array<u32, 5>;
+    v[0] = read_value(vpos);
+    for (var k = 0u; k < 4u; k++) {
+        v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-
-    let v = read_value(vposread);
-    if (v == PPR_CLEAR_VALUE) {
-        textureStore(output, vpos, vec4<f32>(0.0));
-        return;
+    let chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u);
+    var colour = ppr_reflected_colour(vpos, chosen);
+    if (NORMAL_MAPS && colour.a > 0.0) {
+        colour = normal_mapped(vpos, chosen, colour);
     }
-    let decoded = ppr_decode(v, frame.encoding);
-    var predicted = ppr_decoded_offset(decoded);
-    // The fraction is ignored for the unfiltered sample: with a non axis-aligned offset it
-    // could land on the neighbouring pixel.
-    var predicted_unfiltered = ppr_decoded_whole_offset(decoded);
-    if (any(predicted != vec2<f32>(0.0))) {
-        let dir = normalize(predicted);
-        predicted_unfiltered -= holes_offset;
-        predicted -= 2.0 * dir * dot(dir, holes_offset);
-    }
-    if (all(predicted == vec2<f32>(0.0))) {
-        textureStore(output, vpos, vec4<f32>(0.0));
-        return;
-    }
-
-    let target_crd = vec2<f32>(vpos) + 0.5 - predicted;
-    let target_unfiltered = vec2<f32>(vpos) + 0.5 - predicted_unfiltered;
-    let unfiltered_px = clamp(vec2<i32>(floor(target_unfiltered)), vec2<i32>(0), vec2<i32>(frame.size) - 1);
-    let unfiltered = textureLoad(color_tex, unfiltered_px, 0).rgb;
-    var result = unfiltered;
-    if ((frame.flags & PPR_FLAG_FILTERING) != 0u) {
-        let filtered = textureSampleLevel(color_tex, linear_sampler, target_crd * frame.resolution.zw, 0.0).rgb;
-        if ((frame.flags & PPR_FLAG_ANTI_BLEEDING) != 0u) {
-            result = fix_color_bleeding(filtered, unfiltered);
-        } else {
-            result = filtered;
-        }
-    }
-    textureStore(output, vpos, vec4<f32>(finite_colour(result), 1.0));
-}
-
-// NaN and infinities in the scene colour never reach the output: NaN becomes 0 and
-// infinities the largest f16. (Bit tests: a driver may fold `x != x` away.)
-fn finite_colour(c: vec3<f32>) -> vec3<f32> {
-    let bits = bitcast<vec3<u32>>(c);
-    let non_finite = (bits & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u);
-    let has_mantissa = (bits & vec3<u32>(0x007fffffu)) != vec3<u32>(0u);
-    let is_nan = select(vec3<bool>(false), has_mantissa, non_finite);
-    return clamp(select(c, vec3<f32>(0.0), is_nan), vec3<f32>(-65504.0), vec3<f32>(65504.0));
+    textureStore(output, vpos, colour);
 }

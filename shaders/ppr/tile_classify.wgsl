@@ -80,10 +80,8 @@ fn classify(
     let listed = atomicLoad(&list_len);
     if (all(gid.xy < frame.size) && listed > 0u) {
         let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
-        if (ppr_is_finite(depth) && depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth) {
-            let uv = (vec2<f32>(gid.xy) + 0.5) * frame.resolution.zw;
-            let h = frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
-            let p = h.xyz / h.w;
+        if (ppr_is_valid_depth(depth)) {
+            let p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
             let overflow = listed > LIST_CAPACITY;
             let n = select(listed, frame.visible_count, overflow);
             for (var i = 0u; i < n; i++) {

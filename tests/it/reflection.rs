@@ -78,9 +78,9 @@ fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tes
 }
 
 const HOLES_ONLY: ReflectionSettings =
-    ReflectionSettings { holes: true, filtering: false, anti_bleeding: false };
+    ReflectionSettings { holes: true, filtering: false, anti_bleeding: false, ..ReflectionSettings::ALL };
 const FILTERED: ReflectionSettings =
-    ReflectionSettings { holes: true, filtering: true, anti_bleeding: false };
+    ReflectionSettings { holes: true, filtering: true, anti_bleeding: false, ..ReflectionSettings::ALL };
 
 #[test]
 fn reflection_matches_the_exact_reference_on_screen() {

@@ -13,6 +13,8 @@ pub struct Output {
     pub pixels: Vec<Vec4>,
     /// The intermediate buffer after the projection pass.
     pub intermediate: Vec<u32>,
+    /// The layer output (glass and water reflections), colour + validity alpha.
+    pub layer_pixels: Vec<Vec4>,
 }
 
 /// GPU textures of a CPU frame.
@@ -20,6 +22,10 @@ pub struct GpuFrame {
     pub color: wgpu::Texture,
     pub depth: wgpu::Texture,
     pub output: wgpu::Texture,
+    /// Reflections of glass and water layers.
+    pub layer_output: wgpu::Texture,
+    /// Shading normals; `None` to run without them.
+    pub normals: Option<wgpu::Texture>,
     pub size: [u32; 2],
 }
 
@@ -111,11 +117,27 @@ impl GpuFrame {
             None,
             8,
         );
+        let layer_output = texture(
+            "test layer output",
+            ppr_runtime::OUTPUT_FORMAT,
+            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            None,
+            8,
+        );
+        let normals_f16: Vec<half::f16> =
+            frame.normals.iter().flat_map(|n| [n.x, n.y, n.z, 0.0]).map(half::f16::from_f32).collect();
+        let normals = Some(texture(
+            "test normals",
+            wgpu::TextureFormat::Rgba16Float,
+            wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
+            Some(bytemuck::cast_slice(&normals_f16)),
+            8,
+        ));
         if raw_depth {
-            return Self { color, depth: depth_src, output, size: frame.size };
+            return Self { color, depth: depth_src, output, layer_output, normals, size: frame.size };
         }
         write_depth(&depth_src, &depth);
-        Self { color, depth, output, size: frame.size }
+        Self { color, depth, output, layer_output, normals, size: frame.size }
     }
 }
 
@@ -198,14 +220,24 @@ pub fn run(renderer: &mut ReflectionRenderer, frame: &GpuFrame, camera: &Camera)
     let depth = frame.depth.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
     let output = frame.output.create_view(&Default::default());
     let mut encoder = g.device.create_command_encoder(&Default::default());
-    renderer.encode(&mut encoder, &FrameInputs { color: &color, depth: &depth, output: &output });
+    let layer_output = frame.layer_output.create_view(&Default::default());
+    let normals = frame.normals.as_ref().map(|t| t.create_view(&Default::default()));
+    renderer.encode(
+        &mut encoder,
+        &FrameInputs {
+            layer_output: Some(&layer_output),
+            normals: normals.as_ref(),
+            ..FrameInputs::new(&color, &depth, &output)
+        },
+    );
     g.queue.submit([encoder.finish()]);
     let pixels = read_rgba16f(&frame.output);
+    let layer_pixels = read_rgba16f(&frame.layer_output);
     let intermediate = renderer
         .intermediate_buffer()
         .map(|b| bytemuck::pod_collect_to_vec(&read_buffer(b)))
         .unwrap_or_default();
-    Output { plan, pixels, intermediate }
+    Output { plan, pixels, intermediate, layer_pixels }
 }
 
 /// A renderer on the test device.

@@ -54,11 +54,28 @@ pub struct Quad {
     pub albedo: Albedo,
     /// Index of the reflector this quad is, if it is one.
     pub mirror: Option<usize>,
+    /// Glass: invisible to the colour and depth buffers (drawn after them in a game), seen
+    /// only as a layer reflector.
+    pub glass: bool,
+    /// Normal-map bumps (amplitude, wavelength in metres): the shading normal tilts by up
+    /// to `amplitude` radians in a pattern of that wavelength.
+    pub bumps: Option<(f64, f64)>,
 }
 
 impl Quad {
     fn normal(&self) -> DVec3 {
         self.u.cross(self.v).normalize()
+    }
+
+    /// The shading normal at a point of the quad (the plane's, tilted by the bumps).
+    fn shading_normal(&self, p: DVec3) -> DVec3 {
+        let n = self.normal();
+        let Some((amplitude, wavelength)) = self.bumps else { return n };
+        let l = p - self.center;
+        let k = std::f64::consts::TAU / wavelength;
+        let tilt = self.u * (amplitude * (k * l.dot(self.u)).sin())
+            + self.v * (amplitude * (k * l.dot(self.v) * 0.7).cos());
+        (n + tilt).normalize()
     }
 
     /// Distance along the ray and quad coordinates in [0, 1]².
@@ -91,31 +108,82 @@ pub const SKY: Vec3 = Vec3::new(0.02, 0.02, 0.05);
 
 impl AnalyticScene {
     pub fn quad(&mut self, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2], albedo: Albedo) -> &mut Self {
-        self.quads.push(Quad { center, u: u.normalize(), v: v.normalize(), half, albedo, mirror: None });
+        self.quads.push(Quad {
+            center,
+            u: u.normalize(),
+            v: v.normalize(),
+            half,
+            albedo,
+            mirror: None,
+            glass: false,
+            bumps: None,
+        });
+        self
+    }
+
+    fn reflector(&mut self, name: &str, kind: ReflectorKind, quad: Quad) -> &mut Reflector {
+        let index = self.set.len();
+        self.quads.push(Quad { mirror: Some(index), ..quad });
+        let r = Reflector::new(
+            index as u32,
+            name,
+            kind,
+            quad.center,
+            quad.u,
+            quad.v,
+            glam::DVec2::new(quad.half[0], quad.half[1]),
+        );
+        self.set.push(r);
+        self.set.last_mut().expect("just pushed")
+    }
+
+    fn reflector_quad(center: DVec3, u: DVec3, v: DVec3, half: [f64; 2]) -> Quad {
+        Quad {
+            center,
+            u: u.normalize(),
+            v: v.normalize(),
+            half,
+            albedo: Albedo::Solid(Vec3::splat(0.1)),
+            mirror: None,
+            glass: false,
+            bumps: None,
+        }
+    }
+
+    /// A glass panel (a transparent reflector not in the colour and depth buffers); its
+    /// reflecting side is `u × v`.
+    pub fn glass(&mut self, name: &str, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2]) -> &mut Self {
+        let quad = Quad { glass: true, ..Self::reflector_quad(center, u, v, half) };
+        self.reflector(name, ReflectorKind::Transparent, quad);
+        self
+    }
+
+    /// A water plane (in the colour and depth buffers, kind `water`).
+    pub fn water(&mut self, name: &str, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2]) -> &mut Self {
+        let quad = Self::reflector_quad(center, u, v, half);
+        self.reflector(name, ReflectorKind::Water, quad);
+        self
+    }
+
+    /// A mirror with a normal map of bumps (amplitude in radians, wavelength in metres).
+    pub fn bumpy_mirror(
+        &mut self,
+        name: &str,
+        center: DVec3,
+        u: DVec3,
+        v: DVec3,
+        half: [f64; 2],
+        bumps: (f64, f64),
+    ) -> &mut Self {
+        let quad = Quad { bumps: Some(bumps), ..Self::reflector_quad(center, u, v, half) };
+        self.reflector(name, ReflectorKind::Opaque, quad).normal_map = true;
         self
     }
 
     /// A mirror quad; its reflecting side is `u × v`.
     pub fn mirror(&mut self, name: &str, center: DVec3, u: DVec3, v: DVec3, half: [f64; 2]) -> &mut Self {
-        let (u, v) = (u.normalize(), v.normalize());
-        let index = self.set.len();
-        self.quads.push(Quad {
-            center,
-            u,
-            v,
-            half,
-            albedo: Albedo::Solid(Vec3::splat(0.1)),
-            mirror: Some(index),
-        });
-        self.set.push(Reflector::new(
-            index as u32,
-            name,
-            ReflectorKind::Opaque,
-            center,
-            u,
-            v,
-            glam::DVec2::new(half[0], half[1]),
-        ));
+        let quad = Self::reflector_quad(center, u, v, half);
+        self.reflector(name, ReflectorKind::Opaque, quad);
         self
     }
 
@@ -148,7 +216,7 @@ impl AnalyticScene {
     /// Nearest hit along a ray: (distance, colour, quad index).
     fn cast(&self, o: DVec3, d: DVec3) -> Option<(f64, Vec3, usize)> {
         let mut best: Option<(f64, Vec3, usize)> = None;
-        for (i, q) in self.quads.iter().enumerate() {
+        for (i, q) in self.quads.iter().enumerate().filter(|(_, q)| !q.glass) {
             if let Some((t, s, u)) = q.intersect(o, d)
                 && best.is_none_or(|b| t < b.0)
             {
@@ -158,7 +226,7 @@ impl AnalyticScene {
         best
     }
 
-    /// Renders the colour and depth buffers and the exact reflection.
+    /// Renders the colour, depth and normal buffers and the exact reflections.
     pub fn render(&self, camera: &Camera, [w, h]: [u32; 2]) -> Frame {
         let aspect = w as f64 / h as f64;
         let clip_from_rel = camera.clip_from_relative(aspect as f32).as_dmat4();
@@ -169,15 +237,40 @@ impl AnalyticScene {
             size: [w, h],
             color: vec![SKY; n],
             depth: vec![camera.projection.far_depth(); n],
+            normals: vec![Vec3::ZERO; n],
             mirror: vec![None; n],
             reference: vec![Vec3::ZERO; n],
             on_screen: vec![false; n],
             source_px: vec![glam::Vec2::ZERO; n],
+            glass: vec![None; n],
+            glass_reference: vec![Vec3::ZERO; n],
+            glass_on_screen: vec![false; n],
             far_depth: camera.projection.far_depth(),
         };
         let project = |p_rel: DVec3| {
             let c = clip_from_rel * p_rel.extend(1.0);
             (c.x / c.w, c.y / c.w, c.z / c.w, c.w)
+        };
+        // The colour seen along a reflected ray from `hit`, whether that point is on
+        // screen, and where.
+        let reflect = |hit: DVec3, r: DVec3, n: DVec3| -> (Vec3, bool, glam::Vec2) {
+            match self.cast(hit + n * 1e-9, r) {
+                None => (SKY, false, glam::Vec2::ZERO),
+                Some((tr, c, _)) => {
+                    // On screen: inside the viewport and the nearest surface there.
+                    let q_rel = hit + r * tr - eye;
+                    let (nx, ny, _, cw) = project(q_rel);
+                    let inside = cw > 0.0 && nx.abs() < 1.0 && ny.abs() < 1.0;
+                    let visible = self.cast(eye, q_rel.normalize()).is_some_and(|(tq, _, _)| {
+                        (tq - q_rel.length()).abs() <= 1e-6 * q_rel.length().max(1.0)
+                    });
+                    let px = glam::Vec2::new(
+                        ((nx * 0.5 + 0.5) * w as f64) as f32,
+                        ((0.5 - 0.5 * ny) * h as f64) as f32,
+                    );
+                    (c, inside && visible, px)
+                }
+            }
         };
         for y in 0..h {
             for x in 0..w {
@@ -190,37 +283,45 @@ impl AnalyticScene {
                 );
                 let p = rel_from_clip * ndc;
                 let dir = (p.truncate() / p.w).normalize();
-                let Some((t, colour, qi)) = self.cast(eye, dir) else { continue };
+                let opaque = self.cast(eye, dir);
+                // The nearest glass panel in front of the opaque surface, seen from its
+                // reflecting side.
+                let mut glass: Option<(f64, usize)> = None;
+                for (qi, q) in self.quads.iter().enumerate().filter(|(_, q)| q.glass) {
+                    if let Some((t, _, _)) = q.intersect(eye, dir)
+                        && dir.dot(q.normal()) < 0.0
+                        && opaque.is_none_or(|o| t < o.0)
+                        && glass.is_none_or(|g| t < g.0)
+                    {
+                        glass = Some((t, qi));
+                    }
+                }
+                if let Some((t, qi)) = glass {
+                    let q = &self.quads[qi];
+                    let hit = eye + dir * t;
+                    let n = q.normal();
+                    let (c, on_screen, _) = reflect(hit, dir - 2.0 * dir.dot(n) * n, n);
+                    f.glass[i] = q.mirror;
+                    f.glass_reference[i] = c;
+                    f.glass_on_screen[i] = on_screen;
+                }
+                let Some((t, colour, qi)) = opaque else { continue };
                 f.color[i] = colour;
                 f.depth[i] = project(dir * t).2 as f32;
                 let quad = &self.quads[qi];
+                let hit = eye + dir * t;
+                let shading = quad.shading_normal(hit);
+                f.normals[i] = shading.as_vec3();
                 let Some(m) = quad.mirror else { continue };
                 // Seen from the reflecting side only.
                 if dir.dot(quad.normal()) >= 0.0 {
                     continue;
                 }
                 f.mirror[i] = Some(m);
-                let hit = eye + dir * t;
-                let n = quad.normal();
-                let r = dir - 2.0 * dir.dot(n) * n;
-                match self.cast(hit + n * 1e-9, r) {
-                    None => f.reference[i] = SKY,
-                    Some((tr, c, _)) => {
-                        f.reference[i] = c;
-                        // On screen: inside the viewport and the nearest surface there.
-                        let q_rel = hit + r * tr - eye;
-                        let (nx, ny, _, cw) = project(q_rel);
-                        let inside = cw > 0.0 && nx.abs() < 1.0 && ny.abs() < 1.0;
-                        let visible = self.cast(eye, q_rel.normalize()).is_some_and(|(tq, _, _)| {
-                            (tq - q_rel.length()).abs() <= 1e-6 * q_rel.length().max(1.0)
-                        });
-                        f.on_screen[i] = inside && visible;
-                        f.source_px[i] = glam::Vec2::new(
-                            ((nx * 0.5 + 0.5) * w as f64) as f32,
-                            ((0.5 - 0.5 * ny) * h as f64) as f32,
-                        );
-                    }
-                }
+                let (c, on_screen, px) = reflect(hit, dir - 2.0 * dir.dot(shading) * shading, quad.normal());
+                f.reference[i] = c;
+                f.on_screen[i] = on_screen;
+                f.source_px[i] = px;
             }
         }
         f
@@ -242,6 +343,14 @@ pub struct Frame {
     pub source_px: Vec<glam::Vec2>,
     /// The depth of pixels where nothing was hit (the projection's far depth).
     pub far_depth: f32,
+    /// Shading normal of the opaque surface at each pixel (zero where nothing was hit).
+    pub normals: Vec<Vec3>,
+    /// The glass panel (reflector index) in front of the opaque surface at each pixel.
+    pub glass: Vec<Option<usize>>,
+    /// The exact reflection off that glass panel.
+    pub glass_reference: Vec<Vec3>,
+    /// Glass pixels whose reflected point is visible on screen.
+    pub glass_on_screen: Vec<bool>,
 }
 
 impl Frame {

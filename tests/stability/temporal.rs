@@ -31,7 +31,12 @@ fn frame_to_frame(mirror_fractions: bool) -> (f32, f64, usize) {
         let gpu = GpuFrame::upload(&frame);
         let mut r = renderer();
         r.plan_params.indirect = Choice::Off;
-        r.settings = ReflectionSettings { holes: true, filtering: true, anti_bleeding: false };
+        r.settings = ReflectionSettings {
+            holes: true,
+            filtering: true,
+            anti_bleeding: false,
+            ..ReflectionSettings::ALL
+        };
         r.set_reflectors(&set);
         let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
         r.encoding_override = Some(ppr_runtime::EncodingLayout { mirror_fractions, ..layout });

@@ -100,6 +100,10 @@ pub struct Reflector {
     /// What the reflector was fitted to.
     #[serde(default)]
     pub source: ReflectorSource,
+    /// The surface has a normal map: the runtime may perturb its reflection when the frame
+    /// provides shading normals.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub normal_map: bool,
 }
 
 fn default_true() -> bool {
@@ -131,6 +135,7 @@ impl Reflector {
             parallel_group: 0,
             occluders: Vec::new(),
             source: ReflectorSource::default(),
+            normal_map: false,
         }
     }
 

@@ -2,9 +2,10 @@
 
 use wgpu::util::DeviceExt;
 
-use crate::gpu_types::{FrameUniforms, GpuShape};
+use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape};
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
 use crate::plan::FramePlan;
+use crate::plan::MAX_LAYERS;
 use crate::shapes::ShapeTable;
 
 /// Buffers reallocated only when the viewport or the set changes.
@@ -19,6 +20,9 @@ pub(crate) struct FrameBuffers {
     pub dispatch_args: wgpu::Buffer,
     pub tile_flags: wgpu::Buffer,
     pub debug_writes: wgpu::Buffer,
+    pub layers: wgpu::Buffer,
+    /// Atlas of the layer reflectors' regions (grown on demand).
+    pub atlas: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -68,6 +72,12 @@ impl FrameBuffers {
             ),
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
+            layers: buffer("ppr layers", (MAX_LAYERS * std::mem::size_of::<GpuLayer>()) as u64, storage),
+            atlas: buffer(
+                "ppr layer atlas",
+                (4 * u64::from(plan.layer_pixels)).next_multiple_of(16),
+                readable,
+            ),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
@@ -76,6 +86,9 @@ impl FrameBuffers {
 
     /// Whether these buffers serve `plan` over `table`.
     pub fn fits(&self, table: &ShapeTable, plan: &FramePlan, debug: bool) -> bool {
-        self.viewport == plan.viewport && self.shape_count == table.shapes.len() && self.debug == debug
+        self.viewport == plan.viewport
+            && self.shape_count == table.shapes.len()
+            && self.debug == debug
+            && self.atlas.size() >= 4 * u64::from(plan.layer_pixels)
     }
 }

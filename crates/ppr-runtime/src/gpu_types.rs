@@ -16,6 +16,9 @@ pub const FLAG_WRITE_LAST: u32 = 16;
 /// Bit of [`FrameUniforms::flags`]: `atomicMax` instead of `atomicMin` (debug).
 pub const FLAG_WRITE_MAX: u32 = 32;
 
+/// Bit of [`FrameUniforms::flags`]: stretch water reflections into missing borders.
+pub const FLAG_WATER_STRETCH: u32 = 64;
+
 /// Bit of [`GpuShape::flags`]: the shape blocks reflections of the main buffer behind it
 /// (opaque and water shapes do; glass does not).
 pub const SHAPE_OCCLUDES: u32 = 1;
@@ -32,10 +35,35 @@ pub struct FrameUniforms {
     pub flags: u32,
     pub far_depth: f32,
     pub plane_epsilon: f32,
-    pub _pad: [u32; 2],
+    pub layer_count: u32,
+    pub _pad: u32,
+    pub layer_origin: [u32; 2],
+    pub layer_extent: [u32; 2],
     pub encoding: EncodingParams,
 }
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 208);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 224);
+
+/// `Layer` of `common.wgsl`: a glass or water reflector's atlas region.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuLayer {
+    pub rect_min: [u32; 2],
+    pub rect_max: [u32; 2],
+    pub offset: u32,
+    pub shape: u32,
+    pub kind: u32,
+    pub _pad: u32,
+}
+const _: () = assert!(std::mem::size_of::<GpuLayer>() == 32);
+
+/// `PPR_KIND_*` of `common.wgsl`.
+pub fn kind_code(kind: ppr_format::ReflectorKind) -> u32 {
+    match kind {
+        ppr_format::ReflectorKind::Opaque => 0,
+        ppr_format::ReflectorKind::Transparent => 1,
+        ppr_format::ReflectorKind::Water => 2,
+    }
+}
 
 /// `Shape` of `common.wgsl`: one reflector rectangle, camera-relative.
 #[repr(C)]

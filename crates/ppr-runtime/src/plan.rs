@@ -64,6 +64,15 @@ pub struct PlanParams {
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
     /// at most this share of the screen.
     pub indirect_max_coverage: f32,
+    /// Glass panels and water planes get their own atlas regions (a second output, the
+    /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
+    pub layers: Choice,
+    /// The water planes most present on screen that get a layer each; the others go into
+    /// the main buffer.
+    pub max_water_layers: usize,
+    /// Perturb reflections by the frame's shading normals on reflectors with a normal map
+    /// (when the frame provides normals).
+    pub normal_maps: Choice,
 }
 
 impl Default for PlanParams {
@@ -74,8 +83,27 @@ impl Default for PlanParams {
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
             indirect_max_coverage: 0.5,
+            layers: Choice::Auto,
+            max_water_layers: 4,
+            normal_maps: Choice::Auto,
         }
     }
+}
+
+/// Most layer reflectors (glass panels and water planes) one frame gives atlas regions.
+pub const MAX_LAYERS: usize = 64;
+
+/// A glass panel or water plane given its own region of the atlas this frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LayerAlloc {
+    /// Index of the reflector in the set.
+    pub shape: u32,
+    /// Its kind (transparent or water).
+    pub kind: ReflectorKind,
+    /// Its screen rectangle: the region's size.
+    pub rect: ScreenRect,
+    /// Where the region starts in the atlas (u32 entries).
+    pub offset: u32,
 }
 
 /// What one frame will do, and why.
@@ -106,6 +134,18 @@ pub struct FramePlan {
     pub indirect: bool,
     /// Share of the screen the visible shapes' screen rectangles cover (summed, at most 1).
     pub coverage: f32,
+    /// Glass panels and water planes with an atlas region (the layer pass runs when any).
+    pub layers: Vec<LayerAlloc>,
+    /// Atlas entries the layers use.
+    pub layer_pixels: u32,
+    /// The union of the layers' screen rectangles (what the layer pass covers).
+    pub layer_rect: ScreenRect,
+    /// Visible glass panels or water planes that got no layer (over [`MAX_LAYERS`] or the
+    /// atlas capacity of two screens).
+    pub layers_dropped: usize,
+    /// Whether a visible reflector has a normal map (the reflection pass perturbs it when
+    /// the frame provides normals).
+    pub normal_maps: bool,
     /// The encoding layout for this viewport.
     pub encoding: EncodingLayout,
 }
@@ -128,8 +168,16 @@ impl FramePlan {
             parallel_rule: false,
             indirect: false,
             coverage: 0.0,
+            layers: Vec::new(),
+            layer_pixels: 0,
+            layer_rect: ScreenRect { min: [0, 0], max: [0, 0] },
+            layers_dropped: 0,
+            normal_maps: false,
             encoding: EncodingLayout::for_resolution(w.max(1), h.max(1)),
         };
+        let layers_on = params.layers.decide(true);
+        // (shape, kind, rect) of visible glass and water, before allocation.
+        let mut layer_candidates: Vec<(u32, ReflectorKind, ScreenRect)> = Vec::new();
         for (i, s) in table.shapes.iter().enumerate() {
             if !s.enabled {
                 plan.disabled += 1;
@@ -146,14 +194,22 @@ impl FramePlan {
                 plan.culled_frustum += 1;
                 continue;
             }
-            if s.kind == ReflectorKind::Transparent {
-                plan.transparent_skipped += 1;
-                continue;
-            }
             plan.occluder_tests |= table.has_blocking_occluders(i);
-            plan.visible.push(i as u32);
-            plan.screen_rects.push(screen_rect(&clip, viewport));
+            plan.normal_maps |= s.normal_map;
+            let rect = screen_rect(&clip, viewport);
+            match s.kind {
+                ReflectorKind::Transparent if !layers_on => plan.transparent_skipped += 1,
+                ReflectorKind::Transparent | ReflectorKind::Water if layers_on => {
+                    layer_candidates.push((i as u32, s.kind, rect));
+                }
+                _ => {
+                    plan.visible.push(i as u32);
+                    plan.screen_rects.push(rect);
+                }
+            }
         }
+        plan.allocate_layers(layer_candidates, params);
+        plan.normal_maps &= params.normal_maps.decide(true);
         // Sorted by parallel group (then set order): the projection pass's parallel rule
         // walks each group as one run.
         let mut order: Vec<usize> = (0..plan.visible.len()).collect();
@@ -170,9 +226,47 @@ impl FramePlan {
         plan
     }
 
-    /// True when no pass runs this frame (nothing is dispatched; the output is not written).
+    /// Gives glass panels (largest first) and the `max_water_layers` largest water planes
+    /// atlas regions; water planes left over go into the main buffer.
+    fn allocate_layers(
+        &mut self,
+        mut candidates: Vec<(u32, ReflectorKind, ScreenRect)>,
+        params: &PlanParams,
+    ) {
+        candidates.sort_by_key(|&(i, kind, rect)| {
+            (kind == ReflectorKind::Water, std::cmp::Reverse(rect.area()), i)
+        });
+        let capacity = 2 * u64::from(self.viewport[0]) * u64::from(self.viewport[1]);
+        let mut water = 0;
+        let mut used = 0u64;
+        for (shape, kind, rect) in candidates {
+            let is_water = kind == ReflectorKind::Water;
+            let fits = self.layers.len() < MAX_LAYERS && used + rect.area() <= capacity && rect.area() > 0;
+            if fits && (!is_water || water < params.max_water_layers) {
+                water += usize::from(is_water);
+                self.layers.push(LayerAlloc { shape, kind, rect, offset: used as u32 });
+                used += rect.area();
+            } else if is_water {
+                self.visible.push(shape);
+                self.screen_rects.push(rect);
+            } else {
+                self.layers_dropped += 1;
+            }
+        }
+        self.layer_pixels = used as u32;
+        if let Some(first) = self.layers.first() {
+            let mut r = first.rect;
+            for l in &self.layers[1..] {
+                r.min = [r.min[0].min(l.rect.min[0]), r.min[1].min(l.rect.min[1])];
+                r.max = [r.max[0].max(l.rect.max[0]), r.max[1].max(l.rect.max[1])];
+            }
+            self.layer_rect = r;
+        }
+    }
+
+    /// True when no pass runs this frame (nothing is dispatched; no output is written).
     pub fn is_empty(&self) -> bool {
-        self.visible.is_empty()
+        self.visible.is_empty() && self.layers.is_empty()
     }
 
     /// Names of the passes this frame records, in order.
@@ -239,11 +333,25 @@ impl fmt::Display for FramePlan {
             self.culled_frustum,
             self.disabled,
             if self.transparent_skipped > 0 {
-                format!("; {} glass panel(s) skipped (no transparent atlas)", self.transparent_skipped)
+                format!("; {} glass panel(s) skipped (layers off)", self.transparent_skipped)
             } else {
                 String::new()
             }
         )?;
+        if !self.layers.is_empty() || self.layers_dropped > 0 {
+            let glass = self.layers.iter().filter(|l| l.kind == ReflectorKind::Transparent).count();
+            writeln!(
+                f,
+                "layers: {glass} glass, {} water, {} atlas px{}",
+                self.layers.len() - glass,
+                self.layer_pixels,
+                if self.layers_dropped > 0 {
+                    format!(", {} dropped", self.layers_dropped)
+                } else {
+                    String::new()
+                }
+            )?;
+        }
         if self.is_empty() {
             return write!(f, "passes: none (nothing dispatched)");
         }

@@ -8,12 +8,15 @@ use ppr_format::ReflectorSet;
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
-use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms};
+use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::clear::ClearBindings;
+use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
 use crate::passes::tile_classify::ClassifyBindings;
-use crate::passes::{ClearPass, ProjectionPass, ProjectionVariant, ReflectionPass, TileClassifyPass};
+use crate::passes::{
+    ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass, TileClassifyPass,
+};
 use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
@@ -47,10 +50,31 @@ impl Default for RendererDesc {
 ///   where a reflection was found and 0 elsewhere. It is written only where the plan's
 ///   passes run: nowhere when [`FramePlan::is_empty`], and with indirect dispatch only in
 ///   tiles that show a visible reflector (every pixel on a visible reflector is covered).
+///
+/// Optional:
+/// - `layer_output`: like `output`, for the reflections of glass panels and water planes
+///   (the nearest one the view ray hits in front of the depth buffer); written over the
+///   plan's `layer_rect` when it has layers. Without it, layers are computed but not
+///   resolved: set [`PlanParams::layers`] to `Off` instead.
+/// - `normals`: the shading normals (world space, xyz in any float format, e.g.
+///   `Rgba16Float`), `TEXTURE_BINDING`; reflectors with `normal_map` are perturbed by them.
 pub struct FrameInputs<'a> {
     pub color: &'a wgpu::TextureView,
     pub depth: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
+    pub layer_output: Option<&'a wgpu::TextureView>,
+    pub normals: Option<&'a wgpu::TextureView>,
+}
+
+impl<'a> FrameInputs<'a> {
+    /// The three required textures; no layer output, no normals.
+    pub fn new(
+        color: &'a wgpu::TextureView,
+        depth: &'a wgpu::TextureView,
+        output: &'a wgpu::TextureView,
+    ) -> Self {
+        Self { color, depth, output, layer_output: None, normals: None }
+    }
 }
 
 /// Renders pixel-projected reflections for one view.
@@ -66,7 +90,7 @@ pub struct FrameInputs<'a> {
 /// // every frame, after the scene's colour and depth are recorded:
 /// let plan = ppr.prepare(camera, [width, height]);
 /// let mut encoder = device.create_command_encoder(&Default::default());
-/// ppr.encode(&mut encoder, &FrameInputs { color, depth, output });
+/// ppr.encode(&mut encoder, &FrameInputs::new(color, depth, output));
 /// queue.submit([encoder.finish()]);
 /// let timings = ppr.read_timings(); // optional: waits for the GPU
 /// # }
@@ -91,12 +115,14 @@ pub struct ReflectionRenderer {
     clear: ClearPass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
+    layer_reflection: LayerReflectionPass,
     table: ShapeTable,
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
     plan: Option<FramePlan>,
     timer: Option<PassTimer>,
     dispatches: Cell<u32>,
+    layer_output_given: Cell<bool>,
 }
 
 impl ReflectionRenderer {
@@ -114,12 +140,14 @@ impl ReflectionRenderer {
             clear: ClearPass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
+            layer_reflection: LayerReflectionPass::new(device),
             table: ShapeTable::default(),
             table_dirty: true,
             buffers: None,
             plan: None,
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
+            layer_output_given: Cell::new(false),
         }
     }
 
@@ -188,7 +216,13 @@ impl ReflectionRenderer {
                 | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 },
             far_depth: camera.projection.far_depth(),
             plane_epsilon: PLANE_EPSILON,
-            _pad: [0; 2],
+            layer_count: plan.layers.len() as u32,
+            _pad: 0,
+            layer_origin: plan.layer_rect.min,
+            layer_extent: [
+                plan.layer_rect.max[0].saturating_sub(plan.layer_rect.min[0]),
+                plan.layer_rect.max[1].saturating_sub(plan.layer_rect.min[1]),
+            ],
             encoding: plan.encoding.gpu_params(),
         };
         queue.write_buffer(&b.uniforms, 0, bytemuck::bytes_of(&uniforms));
@@ -203,6 +237,21 @@ impl ReflectionRenderer {
             // The classify pass counts the active tiles from zero.
             queue.write_buffer(&b.active_tiles, 0, &[0; 4]);
         }
+        if !plan.layers.is_empty() {
+            let layers: Vec<GpuLayer> = plan
+                .layers
+                .iter()
+                .map(|l| GpuLayer {
+                    rect_min: l.rect.min,
+                    rect_max: l.rect.max,
+                    offset: l.offset,
+                    shape: l.shape,
+                    kind: kind_code(l.kind),
+                    _pad: 0,
+                })
+                .collect();
+            queue.write_buffer(&b.layers, 0, bytemuck::cast_slice(&layers));
+        }
     }
 
     /// Records the frame's passes into `encoder` (nothing when the plan is empty).
@@ -212,6 +261,7 @@ impl ReflectionRenderer {
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, inputs: &FrameInputs<'_>) {
         let plan = self.plan.as_ref().expect("prepare() before encode()");
         self.dispatches.set(0);
+        self.layer_output_given.set(inputs.layer_output.is_some());
         if plan.is_empty() {
             return;
         }
@@ -220,7 +270,8 @@ impl ReflectionRenderer {
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
 
-        if plan.indirect {
+        let has_main = !plan.visible.is_empty();
+        if plan.indirect && has_main {
             let bg = self.classify.bind_group(
                 device,
                 &ClassifyBindings {
@@ -254,12 +305,27 @@ impl ReflectionRenderer {
                 label: Some("ppr clear"),
                 timestamp_writes: timestamps(1),
             });
-            if plan.indirect {
+            if !has_main {
+                // Only the atlas is cleared below.
+            } else if plan.indirect {
                 self.clear.encode_tiles(&mut pass, &bg, &b.dispatch_args);
+                count(1);
             } else {
                 self.clear.encode_all(&mut pass, &bg, (b.intermediate.size() / 16) as u32);
+                count(1);
             }
-            count(1);
+            if !plan.layers.is_empty() {
+                let atlas_bg = self.clear.bind_group(
+                    device,
+                    &ClearBindings {
+                        intermediate: &b.atlas,
+                        uniforms: &b.uniforms,
+                        active_tiles: &b.active_tiles,
+                    },
+                );
+                self.clear.encode_all(&mut pass, &atlas_bg, plan.layer_pixels.div_ceil(4));
+                count(1);
+            }
         }
         {
             let bg = self.projection.bind_group(
@@ -272,6 +338,8 @@ impl ReflectionRenderer {
                     occluders: &b.occluders,
                     intermediate: &b.intermediate,
                     debug_writes: &b.debug_writes,
+                    layers: &b.layers,
+                    atlas: &b.atlas,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -281,7 +349,7 @@ impl ReflectionRenderer {
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
             count(1);
         }
-        {
+        if has_main {
             let bg = self.reflection.bind_group(
                 device,
                 &ReflectionBindings {
@@ -291,17 +359,41 @@ impl ReflectionRenderer {
                     output: inputs.output,
                     active_tiles: &b.active_tiles,
                     tile_flags: &b.tile_flags,
+                    depth: inputs.depth,
+                    normals: inputs.normals.unwrap_or(inputs.color),
                 },
             );
+            let normal_maps = plan.normal_maps && inputs.normals.is_some();
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),
             });
             if plan.indirect {
-                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args);
+                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, normal_maps);
             } else {
-                self.reflection.encode(&mut pass, &bg, plan.viewport);
+                self.reflection.encode(&mut pass, &bg, plan.viewport, normal_maps);
             }
+            count(1);
+        }
+        if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
+            let bg = self.layer_reflection.bind_group(
+                device,
+                &LayerBindings {
+                    uniforms: &b.uniforms,
+                    atlas: &b.atlas,
+                    layers: &b.layers,
+                    shapes: &b.shapes,
+                    depth: inputs.depth,
+                    color: inputs.color,
+                    output: layer_output,
+                },
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ppr layer reflection"),
+                timestamp_writes: timestamps(4),
+            });
+            let r = plan.layer_rect;
+            self.layer_reflection.encode(&mut pass, &bg, [r.max[0] - r.min[0], r.max[1] - r.min[1]]);
             count(1);
         }
         if let Some(t) = &self.timer {
@@ -323,7 +415,9 @@ impl ReflectionRenderer {
     /// device supports timestamps and the last plan ran passes.
     pub fn read_timings(&self) -> Option<PassTimings> {
         let plan = self.plan.as_ref().filter(|p| !p.is_empty())?;
-        self.timer.as_ref()?.read(&self.device, [plan.indirect, true, true, true])
+        let has_main = !plan.visible.is_empty();
+        let layers = !plan.layers.is_empty() && self.layer_output_given.get();
+        self.timer.as_ref()?.read(&self.device, [plan.indirect && has_main, true, true, has_main, layers])
     }
 
     /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for

@@ -10,6 +10,10 @@ pub struct ReflectionSettings {
     pub filtering: bool,
     /// Pull the filtered colour towards the unfiltered one in YCoCg (needs `filtering`).
     pub anti_bleeding: bool,
+    /// Water layers: fill reflections missing at the borders by stretching the nearest
+    /// valid one along the plane's projected normal (the hash method's edge stretch,
+    /// seed 002).
+    pub water_edge_stretch: bool,
 }
 
 impl Default for ReflectionSettings {
@@ -20,9 +24,11 @@ impl Default for ReflectionSettings {
 
 impl ReflectionSettings {
     /// Every step on: the seed's final image.
-    pub const ALL: Self = Self { holes: true, filtering: true, anti_bleeding: true };
+    pub const ALL: Self =
+        Self { holes: true, filtering: true, anti_bleeding: true, water_edge_stretch: true };
     /// Every step off: raw decoded pixel data.
-    pub const RAW: Self = Self { holes: false, filtering: false, anti_bleeding: false };
+    pub const RAW: Self =
+        Self { holes: false, filtering: false, anti_bleeding: false, water_edge_stretch: false };
 
     /// The settings as shader flags.
     pub fn flags(&self) -> u32 {
@@ -30,6 +36,7 @@ impl ReflectionSettings {
         (if self.holes { FLAG_HOLES } else { 0 })
             | (if self.filtering { FLAG_FILTERING } else { 0 })
             | (if self.anti_bleeding { FLAG_ANTI_BLEEDING } else { 0 })
+            | (if self.water_edge_stretch { FLAG_WATER_STRETCH } else { 0 })
     }
 }
 

@@ -1,4 +1,7 @@
 //! Assembles each pass's WGSL with the shared modules (WGSL has no `#include`).
+//!
+//! Every pass gets `encoding.wgsl` and `common.wgsl`; passes that declare
+//! `frame: FrameUniforms` may add [`VIEW`]; the reflection passes add [`SHADING`] too.
 
 /// The shared declarations every pass sees: encoding, then frame and shape types.
 const SHARED: &str = concat!(
@@ -8,20 +11,54 @@ const SHARED: &str = concat!(
     "\n"
 );
 
-/// The source of one pass: the shared modules followed by the pass itself.
-pub fn source(pass: &str) -> String {
-    let mut s = String::with_capacity(SHARED.len() + pass.len());
+/// Pixel ↔ camera-relative position and depth validity (needs `frame`).
+pub const VIEW: &str = include_str!("../../../shaders/ppr/view.wgsl");
+
+/// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
+/// and [`VIEW`]).
+pub const SHADING: &str = include_str!("../../../shaders/ppr/shading.wgsl");
+
+/// The source of a pass: the shared modules, then `modules`, then the pass itself.
+pub fn source_with(modules: &[&str], pass: &str) -> String {
+    let mut s =
+        String::with_capacity(SHARED.len() + pass.len() + modules.iter().map(|m| m.len() + 1).sum::<usize>());
     s.push_str(SHARED);
+    for m in modules {
+        s.push_str(m);
+        s.push('\n');
+    }
     s.push_str(pass);
     s
 }
 
-/// Creates the shader module of a pass.
-pub fn module(device: &wgpu::Device, label: &str, pass: &str) -> wgpu::ShaderModule {
+/// The source of a pass (or a test kernel) with only the shared modules.
+pub fn source(pass: &str) -> String {
+    source_with(&[], pass)
+}
+
+/// Creates the shader module of a pass with extra shared modules.
+pub fn module_with(device: &wgpu::Device, label: &str, modules: &[&str], pass: &str) -> wgpu::ShaderModule {
     device.create_shader_module(wgpu::ShaderModuleDescriptor {
         label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source(pass).into()),
+        source: wgpu::ShaderSource::Wgsl(source_with(modules, pass).into()),
     })
+}
+
+/// Creates the shader module of a pass (or a test kernel) with only the shared modules.
+pub fn module(device: &wgpu::Device, label: &str, pass: &str) -> wgpu::ShaderModule {
+    module_with(device, label, &[], pass)
+}
+
+/// Every pass's WGSL with the modules it is built with (for validation).
+pub fn all_passes() -> Vec<(&'static str, String)> {
+    use crate::passes::*;
+    vec![
+        ("clear", source(clear::WGSL)),
+        ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
+        ("projection", source_with(&[VIEW], projection::WGSL)),
+        ("reflection", source_with(&[VIEW, SHADING], reflection::WGSL)),
+        ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
+    ]
 }
 
 #[cfg(test)]
@@ -29,13 +66,7 @@ mod tests {
     /// Every pass parses and validates (clear messages without a GPU).
     #[test]
     fn every_pass_validates() {
-        for (name, wgsl) in [
-            ("clear", include_str!("../../../shaders/ppr/clear.wgsl")),
-            ("projection", include_str!("../../../shaders/ppr/projection.wgsl")),
-            ("reflection", include_str!("../../../shaders/ppr/reflection.wgsl")),
-            ("tile classify", include_str!("../../../shaders/ppr/tile_classify.wgsl")),
-        ] {
-            let source = super::source(wgsl);
+        for (name, source) in super::all_passes() {
             let module = naga::front::wgsl::parse_str(&source)
                 .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
             naga::valid::Validator::new(

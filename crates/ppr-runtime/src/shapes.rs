@@ -25,6 +25,8 @@ pub struct ShapeSource {
     pub half_extents: [f32; 2],
     /// Parallel group from the set.
     pub parallel_group: u32,
+    /// The surface has a normal map.
+    pub normal_map: bool,
 }
 
 impl ShapeSource {
@@ -68,6 +70,7 @@ impl ShapeTable {
                 normal: r.normal.as_vec3(),
                 half_extents: [r.half_extents.x as f32, r.half_extents.y as f32],
                 parallel_group: r.parallel_group,
+                normal_map: r.normal_map,
             });
             let start = table.occluder_indices.len() as u32;
             table.occluder_indices.extend(&r.occluders);

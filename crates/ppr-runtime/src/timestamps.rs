@@ -10,6 +10,7 @@ pub struct PassTimings {
     pub clear_ms: Option<f64>,
     pub projection_ms: Option<f64>,
     pub reflection_ms: Option<f64>,
+    pub layers_ms: Option<f64>,
 }
 
 impl PassTimings {
@@ -19,12 +20,13 @@ impl PassTimings {
     }
 
     /// (name, time) of each pass in order.
-    pub fn passes(&self) -> [(&'static str, Option<f64>); 4] {
+    pub fn passes(&self) -> [(&'static str, Option<f64>); 5] {
         [
             ("classify", self.classify_ms),
             ("clear", self.clear_ms),
             ("projection", self.projection_ms),
             ("reflection", self.reflection_ms),
+            ("layers", self.layers_ms),
         ]
     }
 }
@@ -40,8 +42,8 @@ impl fmt::Display for PassTimings {
     }
 }
 
-/// Passes with a timestamp slot: classify, clear, projection, reflection.
-pub const TIMED_PASSES: u32 = 4;
+/// Passes with a timestamp slot: classify, clear, projection, reflection, layers.
+pub const TIMED_PASSES: u32 = 5;
 
 /// A query set with a begin and an end timestamp per pass, and the buffers to read it.
 pub struct PassTimer {
@@ -81,7 +83,8 @@ impl PassTimer {
         })
     }
 
-    /// Timestamp writes for pass `index` (0 classify, 1 clear, 2 projection, 3 reflection).
+    /// Timestamp writes for pass `index` (0 classify, 1 clear, 2 projection, 3 reflection,
+    /// 4 layers).
     pub fn writes(&self, index: u32) -> wgpu::ComputePassTimestampWrites<'_> {
         wgpu::ComputePassTimestampWrites {
             query_set: &self.query_set,
@@ -116,6 +119,12 @@ impl PassTimer {
             // Some drivers (llvmpipe's GL timer queries) report an end before the begin.
             (ran[i] && end >= begin).then(|| (end - begin) as f64 * f64::from(self.period_ns) * 1e-6)
         };
-        Some(PassTimings { classify_ms: ms(0), clear_ms: ms(1), projection_ms: ms(2), reflection_ms: ms(3) })
+        Some(PassTimings {
+            classify_ms: ms(0),
+            clear_ms: ms(1),
+            projection_ms: ms(2),
+            reflection_ms: ms(3),
+            layers_ms: ms(4),
+        })
     }
 }

@@ -100,6 +100,7 @@ fn main() -> anyhow::Result<()> {
         holes: !args.no_holes,
         filtering: !args.no_filter,
         anti_bleeding: !args.no_anti_bleed,
+        ..ReflectionSettings::ALL
     };
     let mut ppr = PprTechnique::new(&gpu.device, &gpu.queue, &reflectors, settings);
     let report =

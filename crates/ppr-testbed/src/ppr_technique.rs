@@ -54,7 +54,10 @@ impl ReflectionTechnique for PprTechnique {
     }
 
     fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, inputs: &ReflectionInputs<'_>) {
-        let frame = FrameInputs { color: inputs.color, depth: inputs.depth, output: inputs.output };
+        let frame = FrameInputs {
+            normals: inputs.normal,
+            ..FrameInputs::new(inputs.color, inputs.depth, inputs.output)
+        };
         self.renderer.encode(encoder, &frame);
     }
 

@@ -1,11 +1,13 @@
 //! The GPU passes: one struct per pass, owning its pipelines and bind-group layout.
 
 pub mod clear;
+pub mod layer_reflection;
 pub mod projection;
 pub mod reflection;
 pub mod tile_classify;
 
 pub use clear::ClearPass;
+pub use layer_reflection::LayerReflectionPass;
 pub use projection::{ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
 pub use tile_classify::TileClassifyPass;

@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
-const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
 
 /// Which projection shader runs (the WGSL's override constants).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -30,6 +30,8 @@ pub struct ProjectionBindings<'a> {
     pub occluders: &'a wgpu::Buffer,
     pub intermediate: &'a wgpu::Buffer,
     pub debug_writes: &'a wgpu::Buffer,
+    pub layers: &'a wgpu::Buffer,
+    pub atlas: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
@@ -51,9 +53,11 @@ impl ProjectionPass {
                 storage_entry(4, true),
                 storage_entry(5, false),
                 storage_entry(6, false),
+                storage_entry(7, true),
+                storage_entry(8, false),
             ],
         });
-        let module = crate::shader::module(device, "ppr projection", WGSL);
+        let module = crate::shader::module_with(device, "ppr projection", &[crate::shader::VIEW], WGSL);
         let mut pass = Self { module, layout, pipelines: HashMap::new() };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
@@ -87,6 +91,8 @@ impl ProjectionPass {
                 wgpu::BindGroupEntry { binding: 4, resource: b.occluders.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 5, resource: b.intermediate.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 6, resource: b.debug_writes.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: b.layers.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 8, resource: b.atlas.as_entire_binding() },
             ],
         })
     }

@@ -1,8 +1,8 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
-use super::{compute_pipeline, flag, storage_entry, tile_groups, uniform_entry};
+use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
-const WGSL: &str = include_str!("../../../../shaders/ppr/reflection.wgsl");
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/reflection.wgsl");
 
 /// Format of the reflection output (colour + validity alpha).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
@@ -15,12 +15,15 @@ pub struct ReflectionBindings<'a> {
     pub output: &'a wgpu::TextureView,
     pub active_tiles: &'a wgpu::Buffer,
     pub tile_flags: &'a wgpu::Buffer,
+    pub depth: &'a wgpu::TextureView,
+    /// Shading normals (world space, xyz); any float texture when normal maps are off.
+    pub normals: &'a wgpu::TextureView,
 }
 
 /// The reflection pass.
 pub struct ReflectionPass {
-    pipeline: wgpu::ComputePipeline,
-    indirect: wgpu::ComputePipeline,
+    /// Pipelines by (indirect, normal maps).
+    pipelines: [[wgpu::ComputePipeline; 2]; 2],
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -60,25 +63,23 @@ impl ReflectionPass {
                 },
                 storage_entry(5, true),
                 storage_entry(6, true),
+                loaded_texture_entry(7),
+                loaded_texture_entry(8),
             ],
         });
-        let module = crate::shader::module(device, "ppr reflection", WGSL);
-        let pipeline = compute_pipeline(
+        let module = crate::shader::module_with(
             device,
             "ppr reflection",
-            &layout,
-            &module,
-            "main",
-            &[("INDIRECT", flag(false))],
+            &[crate::shader::VIEW, crate::shader::SHADING],
+            WGSL,
         );
-        let indirect = compute_pipeline(
-            device,
-            "ppr reflection tiles",
-            &layout,
-            &module,
-            "main",
-            &[("INDIRECT", flag(true))],
-        );
+        let pipeline = |indirect: bool, normal_maps: bool| {
+            let label = format!("ppr reflection indirect={indirect} normal_maps={normal_maps}");
+            let constants = [("INDIRECT", flag(indirect)), ("NORMAL_MAPS", flag(normal_maps))];
+            compute_pipeline(device, &label, &layout, &module, "main", &constants)
+        };
+        let pipelines =
+            [[pipeline(false, false), pipeline(false, true)], [pipeline(true, false), pipeline(true, true)]];
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -87,7 +88,7 @@ impl ReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipeline, indirect, layout, sampler }
+        Self { pipelines, layout, sampler }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
@@ -102,14 +103,22 @@ impl ReflectionPass {
                 wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(b.output) },
                 wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(b.depth) },
+                wgpu::BindGroupEntry { binding: 8, resource: wgpu::BindingResource::TextureView(b.normals) },
             ],
         })
     }
 
     /// Records the pass over the whole viewport.
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        viewport: [u32; 2],
+        normal_maps: bool,
+    ) {
         let (x, y) = tile_groups(viewport);
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(&self.pipelines[0][usize::from(normal_maps)]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }
@@ -120,8 +129,9 @@ impl ReflectionPass {
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         args: &wgpu::Buffer,
+        normal_maps: bool,
     ) {
-        pass.set_pipeline(&self.indirect);
+        pass.set_pipeline(&self.pipelines[1][usize::from(normal_maps)]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups_indirect(args, 0);
     }

@@ -3,7 +3,7 @@
 
 use super::{compute_pipeline, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
-const WGSL: &str = include_str!("../../../../shaders/ppr/tile_classify.wgsl");
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/tile_classify.wgsl");
 
 /// Bytes before the tile indices in the active-tile buffer (count + padding).
 pub const ACTIVE_TILES_HEADER: u64 = 16;
@@ -42,7 +42,7 @@ impl TileClassifyPass {
                 storage_entry(7, false),
             ],
         });
-        let module = crate::shader::module(device, "ppr tile classify", WGSL);
+        let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
         Self {
             classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
             finalize: compute_pipeline(

@@ -1,0 +1,103 @@
+//! Layer reflection pass: the reflections of glass panels and water planes, read from
+//! their atlas regions, into the layer output.
+
+use super::{TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
+
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/layer_reflection.wgsl");
+
+/// Buffers and views the layer pass reads and writes.
+pub struct LayerBindings<'a> {
+    pub uniforms: &'a wgpu::Buffer,
+    pub atlas: &'a wgpu::Buffer,
+    pub layers: &'a wgpu::Buffer,
+    pub shapes: &'a wgpu::Buffer,
+    pub depth: &'a wgpu::TextureView,
+    pub color: &'a wgpu::TextureView,
+    pub output: &'a wgpu::TextureView,
+}
+
+/// The layer reflection pass.
+pub struct LayerReflectionPass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+    sampler: wgpu::Sampler,
+}
+
+impl LayerReflectionPass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ppr layer reflection"),
+            entries: &[
+                uniform_entry(0),
+                storage_entry(1, true),
+                storage_entry(2, true),
+                storage_entry(3, true),
+                loaded_texture_entry(4),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 5,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 6,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
+                    count: None,
+                },
+                wgpu::BindGroupLayoutEntry {
+                    binding: 7,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: super::reflection::OUTPUT_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let module = crate::shader::module_with(
+            device,
+            "ppr layer reflection",
+            &[crate::shader::VIEW, crate::shader::SHADING],
+            WGSL,
+        );
+        let pipeline = compute_pipeline(device, "ppr layer reflection", &layout, &module, "main", &[]);
+        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
+            label: Some("ppr layer reflection linear"),
+            mag_filter: wgpu::FilterMode::Linear,
+            min_filter: wgpu::FilterMode::Linear,
+            ..Default::default()
+        });
+        Self { pipeline, layout, sampler }
+    }
+
+    pub fn bind_group(&self, device: &wgpu::Device, b: &LayerBindings<'_>) -> wgpu::BindGroup {
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ppr layer reflection"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: b.atlas.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: b.layers.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: b.shapes.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(b.depth) },
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(b.color) },
+                wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::Sampler(&self.sampler) },
+                wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(b.output) },
+            ],
+        })
+    }
+
+    /// Records the pass over the layers' screen rectangle (`extent` pixels).
+    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, extent: [u32; 2]) {
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(extent[0].div_ceil(TILE), extent[1].div_ceil(TILE), 1);
+    }
+}

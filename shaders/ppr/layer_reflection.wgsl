@@ -1,0 +1,101 @@
+// Layer reflection pass: the reflections of surfaces that are not in the depth buffer's
+// opaque layer — glass panels (bonus slides: "transparent reflectors") and water planes
+// (seed 002: a reflection layer per water plane). Each such reflector was given a region
+// of the atlas (sized by its screen rectangle), which the projection pass wrote. Per
+// pixel: the nearest layer reflector the view ray hits in front of the depth buffer, its
+// atlas value with hole filling, the same sampling as the main reflection, and for water
+// optionally the hash-style edge stretch (reuse the nearest valid reflection along the
+// plane's projected normal). Output: colour, alpha 1 where a layer reflection was found.
+
+@group(0) @binding(0) var<uniform> frame: FrameUniforms;
+@group(0) @binding(1) var<storage, read> atlas: array<u32>;
+@group(0) @binding(2) var<storage, read> layers: array<Layer>;
+@group(0) @binding(3) var<storage, read> shapes: array<Shape>;
+@group(0) @binding(4) var depth_tex: texture_2d<f32>;
+@group(0) @binding(5) var color_tex: texture_2d<f32>;
+@group(0) @binding(6) var linear_sampler: sampler;
+@group(0) @binding(7) var output: texture_storage_2d<rgba16float, write>;
+
+// Longest edge stretch, pixels.
+const STRETCH_MAX: i32 = 48;
+
+fn read_layer(l: Layer, p: vec2<i32>) -> u32 {
+    if (any(p < vec2<i32>(l.rect_min)) || any(p >= vec2<i32>(l.rect_max))) {
+        return PPR_CLEAR_VALUE;
+    }
+    let local = vec2<u32>(p) - l.rect_min;
+    return atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)];
+}
+
+@compute @workgroup_size(16, 16)
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+    let pixel = frame.layer_origin + gid.xy;
+    if (any(pixel >= frame.size) || any(gid.xy >= frame.layer_extent)) {
+        return;
+    }
+    let vpos = vec2<i32>(pixel);
+    let ray = normalize(ppr_unproject(vec2<f32>(pixel) + 0.5, 0.5));
+    var surface = 3.0e38;
+    let d = textureLoad(depth_tex, vpos, 0).r;
+    if (ppr_is_valid_depth(d)) {
+        surface = length(ppr_unproject(vec2<f32>(pixel) + 0.5, d));
+    }
+    // The nearest layer reflector hit in front of (or on) the opaque surface.
+    var best = 0xffffffffu;
+    var best_t = 3.0e38;
+    for (var i = 0u; i < frame.layer_count; i++) {
+        let l = layers[i];
+        if (any(pixel < l.rect_min) || any(pixel >= l.rect_max)) {
+            continue;
+        }
+        let s = shapes[l.shape];
+        let dn = dot(ray, s.normal);
+        if (!(dn < 0.0)) {
+            continue;
+        }
+        let t = s.plane_dist / dn;
+        let local = ray * t - s.center;
+        let margin = 1e-5 * t;
+        if (abs(dot(local, s.axis_u)) > s.half_u + margin || abs(dot(local, s.axis_v)) > s.half_v + margin) {
+            continue;
+        }
+        if (t > 0.0 && t <= surface * 1.001 + 1e-4 && t < best_t) {
+            best = i;
+            best_t = t;
+        }
+    }
+    if (best == 0xffffffffu) {
+        textureStore(output, vpos, vec4<f32>(0.0));
+        return;
+    }
+    let l = layers[best];
+    var v: array<u32, 5>;
+    v[0] = read_layer(l, vpos);
+    for (var k = 0u; k < 4u; k++) {
+        v[k + 1u] = read_layer(l, vpos + PPR_HOLE_OFFSETS[k]);
+    }
+    var chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u);
+    var colour = ppr_reflected_colour(vpos, chosen);
+    if (colour.a == 0.0 && l.kind == PPR_KIND_WATER && (frame.flags & PPR_FLAG_WATER_STRETCH) != 0u) {
+        // Edge stretch: the nearest valid reflection along the plane's projected normal
+        // (up the screen for a water plane under an upright camera).
+        let s = shapes[l.shape];
+        let hit = ray * best_t;
+        let a = ppr_project(hit);
+        let b = ppr_project(hit + s.normal * (best_t * 0.01));
+        let dir = normalize(b.xy - a.xy);
+        if (a.z > 0.0 && b.z > 0.0 && ppr_is_finite2(dir)) {
+            for (var k = 1; k <= STRETCH_MAX; k++) {
+                let q = vpos + vec2<i32>(round(dir * f32(k)));
+                let value = read_layer(l, q);
+                if (value != PPR_CLEAR_VALUE) {
+                    chosen.value = value;
+                    chosen.holes_offset = q - vpos;
+                    colour = ppr_reflected_colour(vpos, chosen);
+                    break;
+                }
+            }
+        }
+    }
+    textureStore(output, vpos, colour);
+}
