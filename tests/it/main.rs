@@ -2,5 +2,6 @@
 //! reflection of analytic scenes.
 
 mod encoding_parity;
+mod features;
 mod reflection;
 mod tiles;

@@ -354,6 +354,24 @@ pub struct Frame {
 }
 
 impl Frame {
+    /// A copy of every image (for comparisons against another reference).
+    pub fn clone_images(&self) -> Frame {
+        Frame {
+            size: self.size,
+            color: self.color.clone(),
+            depth: self.depth.clone(),
+            mirror: self.mirror.clone(),
+            reference: self.reference.clone(),
+            on_screen: self.on_screen.clone(),
+            source_px: self.source_px.clone(),
+            far_depth: self.far_depth,
+            normals: self.normals.clone(),
+            glass: self.glass.clone(),
+            glass_reference: self.glass_reference.clone(),
+            glass_on_screen: self.glass_on_screen.clone(),
+        }
+    }
+
     pub fn on_screen_count(&self) -> usize {
         self.on_screen.iter().filter(|&&b| b).count()
     }

@@ -271,15 +271,32 @@ impl FramePlan {
 
     /// Names of the passes this frame records, in order.
     pub fn passes(&self) -> Vec<&'static str> {
-        match (self.is_empty(), self.indirect, self.tile_culling) {
-            (true, _, _) => vec![],
-            (false, true, true) => {
-                vec!["classify", "clear (tiles)", "projection (tiled)", "reflection (tiles)"]
-            }
-            (false, true, false) => vec!["classify", "clear (tiles)", "projection", "reflection (tiles)"],
-            (false, false, true) => vec!["clear", "projection (tiled)", "reflection"],
-            (false, false, false) => vec!["clear", "projection", "reflection"],
+        if self.is_empty() {
+            return vec![];
         }
+        let has_main = !self.visible.is_empty();
+        let mut passes = Vec::new();
+        if has_main && self.indirect {
+            passes.push("classify");
+        }
+        passes.push(match (has_main, self.indirect) {
+            (false, _) => "clear (atlas)",
+            (true, true) => "clear (tiles)",
+            (true, false) => "clear",
+        });
+        passes.push(if self.tile_culling { "projection (tiled)" } else { "projection" });
+        if has_main {
+            passes.push(match (self.indirect, self.normal_maps) {
+                (true, true) => "reflection (tiles, normal maps)",
+                (true, false) => "reflection (tiles)",
+                (false, true) => "reflection (normal maps)",
+                (false, false) => "reflection",
+            });
+        }
+        if !self.layers.is_empty() {
+            passes.push("layers");
+        }
+        passes
     }
 
     /// Number of 16 × 16 tiles of the viewport.

@@ -1,0 +1,205 @@
+//! What the scene calls for: glass panels (transparent atlas), water planes (a layer per
+//! plane, edge stretch), normal maps — each against the exact reflection, and each absent
+//! from the plan (no pass, no variant) when the frame has no such surface.
+
+use glam::{DVec3, Vec3, Vec4};
+use ppr_runtime::{Camera, Choice, Projection, ReflectionSettings};
+use ppr_tests::harness::{GpuFrame, compare, renderer, run};
+use ppr_tests::masks::{interior, reference_edges};
+use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
+
+const SIZE: [u32; 2] = [160, 120];
+
+fn camera() -> Camera {
+    Camera::look_at(DVec3::new(0.3, 1.9, 2.8), DVec3::new(-0.2, 0.4, -5.0), Vec3::Y, Projection::default())
+}
+
+/// Walls and boxes to reflect.
+fn room(s: &mut AnalyticScene) {
+    s.quad(
+        DVec3::new(0.0, -0.001, -4.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [8.0, 8.0],
+        Albedo::Solid(Vec3::splat(0.25)),
+    );
+    s.quad(DVec3::new(0.0, 2.5, -8.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.25));
+    for side in [-1.0, 1.0] {
+        s.quad(
+            DVec3::new(4.5 * side, 2.5, -4.0),
+            DVec3::Z,
+            DVec3::Y,
+            [6.0, 2.5],
+            Albedo::Gradient(Vec3::new(0.9, 0.6, 0.2), Vec3::new(0.2, 0.5, 0.9)),
+        );
+    }
+    s.cuboid(DVec3::new(-2.2, 0.0, -6.6), DVec3::new(-1.6, 2.0, -6.0), Vec3::new(0.1, 0.8, 0.2));
+}
+
+/// Error over `mask` pixels away from edges of `reference`.
+fn compare_layer(
+    frame: &Frame,
+    pixels: &[Vec4],
+    reference: &[Vec3],
+    mask: impl Fn(usize) -> bool,
+) -> ppr_tests::harness::Comparison {
+    // `compare` reads `frame.reference`: compare against the given reference instead.
+    let mut f = Frame { reference: reference.to_vec(), mirror: frame.mirror.clone(), ..frame.clone_images() };
+    for (i, m) in f.mirror.iter_mut().enumerate() {
+        if mask(i) {
+            *m = Some(0);
+        }
+    }
+    let edges = reference_edges(&f, 0.15);
+    let smooth = interior(&f, 1, |i| mask(i) && !edges[i]);
+    compare(&f, pixels, |i| smooth[i])
+}
+
+#[test]
+fn a_glass_panel_over_a_floor_mirror_reflects_both() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    // A glass table top 0.8 m above the mirror, covering part of it.
+    s.glass("glass top", DVec3::new(0.6, 0.7, -2.2), DVec3::X, DVec3::NEG_Z, [2.0, 1.6]);
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.plan_params.indirect = Choice::Off;
+    r.set_reflectors(&s.reflector_set());
+    let out = run(&mut r, &gpu, &cam);
+    eprintln!("{}", out.plan);
+    assert_eq!(out.plan.layers.len(), 1, "the glass panel gets a layer");
+    assert!(out.plan.passes().contains(&"layers"));
+
+    let glass_px = frame.glass.iter().filter(|g| g.is_some()).count();
+    let through_glass =
+        |i: usize| frame.glass[i].is_some() && frame.mirror[i].is_some() && frame.on_screen[i];
+    let mirror_under_glass =
+        compare(&frame, &out.pixels, |i| through_glass(i) && interior(&frame, 0, |_| true)[i]);
+    let glass =
+        compare_layer(&frame, &out.layer_pixels, &frame.glass_reference, |i| frame.glass_on_screen[i]);
+    let layer_elsewhere =
+        out.layer_pixels.iter().enumerate().filter(|(i, p)| frame.glass[*i].is_none() && p.w > 0.5).count();
+    eprintln!(
+        "glass pixels {glass_px}: layer vs glass reference {glass:?}\n  mirror seen through the glass, main output {mirror_under_glass:?}\n  layer pixels outside the glass {layer_elsewhere}"
+    );
+    assert!(glass.pixels > 500, "{glass:?}");
+    // Away from silhouettes, like the main reflection (35 dB there; see tests/it/reflection.rs).
+    assert!(glass.psnr >= 30.0, "{glass:?}");
+    assert!(mirror_under_glass.pixels > 300 && mirror_under_glass.psnr >= 20.0, "{mirror_under_glass:?}");
+    assert_eq!(layer_elsewhere, 0, "the layer output covers only glass pixels");
+}
+
+#[test]
+fn water_planes_at_two_heights_get_a_layer_each() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.water("lake", DVec3::new(0.0, 0.0, -4.5), DVec3::X, DVec3::NEG_Z, [3.5, 3.0]);
+    s.water("basin", DVec3::new(2.0, 0.4, -1.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let set = s.reflector_set();
+    let on_screen_water = |i: usize| frame.mirror[i].is_some() && frame.on_screen[i];
+
+    let mut r = renderer();
+    r.plan_params.indirect = Choice::Off;
+    r.set_reflectors(&set);
+    let layered = run(&mut r, &gpu, &cam);
+    assert_eq!(layered.plan.layers.len(), 2, "{}", layered.plan);
+    assert!(layered.plan.visible.is_empty(), "both water planes are layers");
+    let lake_and_basin = compare_layer(&frame, &layered.layer_pixels, &frame.reference, on_screen_water);
+
+    // With one water layer, the smaller plane (the basin) goes into the main buffer.
+    r.plan_params.max_water_layers = 1;
+    let one = run(&mut r, &gpu, &cam);
+    assert_eq!((one.plan.layers.len(), one.plan.visible.len()), (1, 1), "{}", one.plan);
+    let merged: Vec<Vec4> =
+        one.layer_pixels.iter().zip(&one.pixels).map(|(l, m)| if l.w > 0.5 { *l } else { *m }).collect();
+    let split = compare_layer(&frame, &merged, &frame.reference, on_screen_water);
+    eprintln!("two water layers {lake_and_basin:?}\n  one layer + main buffer {split:?}");
+    assert!(lake_and_basin.pixels > 1500 && lake_and_basin.psnr >= 30.0, "{lake_and_basin:?}");
+    assert!((split.psnr - lake_and_basin.psnr).abs() < 3.0, "{split:?} vs {lake_and_basin:?}");
+}
+
+#[test]
+fn water_edge_stretch_fills_reflections_missing_at_the_border() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.water("lake", DVec3::new(0.0, 0.0, -4.5), DVec3::X, DVec3::NEG_Z, [3.5, 3.0]);
+    // Looking down: the reflected walls' tops are above the screen.
+    let cam = Camera::look_at(
+        DVec3::new(0.0, 2.2, 1.5),
+        DVec3::new(0.0, 0.0, -4.0),
+        Vec3::Y,
+        Projection::default(),
+    );
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let water = |i: usize| frame.mirror[i].is_some();
+    let count = |stretch: bool| {
+        let mut r = renderer();
+        r.settings = ReflectionSettings { water_edge_stretch: stretch, ..ReflectionSettings::ALL };
+        r.set_reflectors(&s.reflector_set());
+        let out = run(&mut r, &gpu, &cam);
+        assert!(out.layer_pixels.iter().all(|p| p.is_finite()));
+        (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.5).count()
+    };
+    let water_px = (0..frame.mirror.len()).filter(|&i| water(i)).count();
+    let off_screen = (0..frame.mirror.len()).filter(|&i| water(i) && !frame.on_screen[i]).count();
+    let (without, with) = (count(false), count(true));
+    eprintln!(
+        "{water_px} water pixels, {off_screen} reflect off-screen points; with a reflection: {without} without stretch, {with} with"
+    );
+    assert!(off_screen > 200, "the view must lose reflections at the border: {off_screen}");
+    assert!(with >= without + off_screen / 2, "stretch fills at least half of them: {without} -> {with}");
+}
+
+#[test]
+fn normal_maps_bring_the_reflection_closer_to_the_bumpy_reference() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.bumpy_mirror(
+        "bumpy floor",
+        DVec3::new(0.0, 0.0, -4.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [3.5, 3.5],
+        (0.05, 0.6),
+    );
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.set_reflectors(&s.reflector_set());
+    let mapped = run(&mut r, &gpu, &cam);
+    assert!(mapped.plan.normal_maps && mapped.plan.passes().iter().any(|p| p.contains("normal maps")));
+    r.plan_params.normal_maps = Choice::Off;
+    let flat = run(&mut r, &gpu, &cam);
+    assert!(!flat.plan.normal_maps);
+    let mask = |i: usize| frame.on_screen[i];
+    let (m, f) = (compare(&frame, &mapped.pixels, mask), compare(&frame, &flat.pixels, mask));
+    eprintln!("bumpy mirror vs its exact reflection: flat {f:?}\n  normal-mapped {m:?}");
+    assert!(m.pixels > 2000);
+    assert!(m.mean_abs < 0.9 * f.mean_abs, "{f:?} -> {m:?}");
+}
+
+#[test]
+fn without_glass_water_or_normal_maps_nothing_extra_runs() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.plan_params.indirect = Choice::Off;
+    r.set_reflectors(&s.reflector_set());
+    let out = run(&mut r, &gpu, &cam);
+    assert!(out.plan.layers.is_empty() && !out.plan.normal_maps, "{}", out.plan);
+    assert_eq!(out.plan.passes(), vec!["clear", "projection", "reflection"]);
+    assert_eq!(r.last_dispatch_count(), 3);
+    assert!(out.layer_pixels.iter().all(|p| p.w == 0.0), "no layer output written");
+}
