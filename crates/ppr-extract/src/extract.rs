@@ -146,6 +146,8 @@ fn build_set(
             let mut r = Reflector::new(0, name, s.kind, center, axis_u, axis_v, half);
             r.normal = normal;
             r.coverage = (s.area / rect_area).clamp(0.0, 1.0);
+            r.normal_map =
+                s.materials.iter().any(|m| level.materials.iter().any(|l| l.normal_map && &l.name == m));
             r.source = ReflectorSource { nodes: s.nodes, materials: s.materials };
             let vertices =
                 s.polygons.iter().flat_map(|p| p.spatial.iter().map(|&v| v + scale.center)).collect();

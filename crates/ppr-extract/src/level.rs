@@ -39,6 +39,8 @@ pub struct MaterialInfo {
     pub clearcoat_roughness: f64,
     /// Override from the material's extras.
     pub extras: ReflectorOverride,
+    /// The material has a normal texture (reflectors fitted to it get `normal_map`).
+    pub normal_map: bool,
 }
 
 impl MaterialInfo {
@@ -52,6 +54,7 @@ impl MaterialInfo {
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
             extras: ReflectorOverride::default(),
+            normal_map: false,
         }
     }
 }

@@ -66,6 +66,7 @@ pub(crate) fn read_materials(path: &Path, doc: &gltf::Document) -> Result<Vec<Ma
             clearcoat: number("clearcoatFactor", 0.0),
             clearcoat_roughness: number("clearcoatRoughnessFactor", 0.0),
             extras: read_override(path, &owner, m.extras())?,
+            normal_map: m.normal_texture().is_some(),
             name,
         });
     }
