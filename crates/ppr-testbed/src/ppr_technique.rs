@@ -5,9 +5,112 @@ use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, R
 
 use crate::technique::{ReflectionInputs, ReflectionTechnique};
 
-/// The runtime's [`ReflectionRenderer`] driven by the testbed.
+/// The runtime's [`ReflectionRenderer`] driven by the testbed. Glass and water
+/// reflections (the runtime's layer output) are merged over the main reflection, so the
+/// technique's output holds one reflection per pixel like the reference.
 pub struct PprTechnique {
     renderer: ReflectionRenderer,
+    device: wgpu::Device,
+    merge: LayerMerge,
+    /// The runtime's main and layer outputs when the frame has layers, sized to it.
+    layer_targets: Option<LayerTargets>,
+}
+
+/// Textures the runtime writes when a frame has glass or water layers.
+struct LayerTargets {
+    size: [u32; 2],
+    main: wgpu::TextureView,
+    layer: wgpu::TextureView,
+}
+
+/// The compute pass that copies layer reflections over the main output.
+struct LayerMerge {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl LayerMerge {
+    fn new(device: &wgpu::Device) -> Self {
+        let texture = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("testbed layer merge"),
+            entries: &[
+                texture(0),
+                texture(1),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 2,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::StorageTexture {
+                        access: wgpu::StorageTextureAccess::WriteOnly,
+                        format: ppr_runtime::OUTPUT_FORMAT,
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                    },
+                    count: None,
+                },
+            ],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("testbed layer merge"),
+            source: wgpu::ShaderSource::Wgsl(
+                include_str!("../../../shaders/testbed/layer_merge.wgsl").into(),
+            ),
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("testbed layer merge"),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("testbed layer merge"),
+            layout: Some(&pipeline_layout),
+            module: &module,
+            entry_point: Some("main"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        Self { pipeline, layout }
+    }
+
+    fn encode(
+        &self,
+        device: &wgpu::Device,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &LayerTargets,
+        output: &wgpu::TextureView,
+    ) {
+        let [w, h] = targets.size;
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("testbed layer merge"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&targets.main),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&targets.layer),
+                },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(output) },
+            ],
+        });
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("testbed layer merge"),
+            timestamp_writes: None,
+        });
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &bind_group, &[]);
+        pass.dispatch_workgroups(w.div_ceil(16), h.div_ceil(16), 1);
+    }
 }
 
 impl PprTechnique {
@@ -22,7 +125,30 @@ impl PprTechnique {
         let mut renderer = ReflectionRenderer::new(device, queue, &RendererDesc::default());
         renderer.set_reflectors(reflectors);
         renderer.settings = settings;
-        Self { renderer }
+        Self { renderer, device: device.clone(), merge: LayerMerge::new(device), layer_targets: None }
+    }
+
+    /// The main and layer targets for a frame of `size`, (re)created when it changes.
+    fn layer_targets(&mut self, size: [u32; 2]) -> &LayerTargets {
+        if self.layer_targets.as_ref().is_none_or(|t| t.size != size) {
+            let target = |label| {
+                self.device
+                    .create_texture(&wgpu::TextureDescriptor {
+                        label: Some(label),
+                        size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
+                        mip_level_count: 1,
+                        sample_count: 1,
+                        dimension: wgpu::TextureDimension::D2,
+                        format: ppr_runtime::OUTPUT_FORMAT,
+                        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                        view_formats: &[],
+                    })
+                    .create_view(&Default::default())
+            };
+            let (main, layer) = (target("testbed ppr main output"), target("testbed ppr layer output"));
+            self.layer_targets = Some(LayerTargets { size, main, layer });
+        }
+        self.layer_targets.as_ref().expect("created above")
     }
 
     /// The runtime renderer (for its plan, intermediate buffer and settings).
@@ -54,11 +180,24 @@ impl ReflectionTechnique for PprTechnique {
     }
 
     fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, inputs: &ReflectionInputs<'_>) {
+        let size = self.renderer.plan().map_or([1, 1], |p| p.viewport);
+        if self.renderer.plan().is_none_or(|p| p.layers.is_empty()) {
+            let frame = FrameInputs {
+                normals: inputs.normal,
+                ..FrameInputs::new(inputs.color, inputs.depth, inputs.output)
+            };
+            self.renderer.encode(encoder, &frame);
+            return;
+        }
+        self.layer_targets(size);
+        let targets = self.layer_targets.as_ref().expect("created above");
         let frame = FrameInputs {
             normals: inputs.normal,
-            ..FrameInputs::new(inputs.color, inputs.depth, inputs.output)
+            layer_output: Some(&targets.layer),
+            ..FrameInputs::new(inputs.color, inputs.depth, &targets.main)
         };
         self.renderer.encode(encoder, &frame);
+        self.merge.encode(&self.device, encoder, targets, inputs.output);
     }
 
     fn timings(&mut self, _device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
