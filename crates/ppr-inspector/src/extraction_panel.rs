@@ -1,0 +1,51 @@
+//! Extraction parameters and the re-extract button (manual edits are kept by id).
+
+use egui::{DragValue, Ui};
+use ppr_extract::{CandidateRule, ExtractParams};
+
+use crate::state::InspectorState;
+
+/// Shows the main parameters and "Re-extract".
+pub fn show(ui: &mut Ui, state: &mut InspectorState) {
+    ui.horizontal(|ui| {
+        ui.label("Preset");
+        for (name, preset) in ExtractParams::presets() {
+            if ui.selectable_label(state.params == preset, name).clicked() {
+                state.params = preset;
+            }
+        }
+    });
+    let p = &mut state.params;
+    let mut all_planar = p.candidates == CandidateRule::AllPlanar;
+    if ui.checkbox(&mut all_planar, "Every planar surface is a candidate").changed() {
+        p.candidates = if all_planar { CandidateRule::AllPlanar } else { CandidateRule::Materials };
+    }
+    egui::Grid::new("extraction parameters").num_columns(2).show(ui, |ui| {
+        number(ui, "Max roughness", &mut p.max_roughness, 0.01);
+        number(ui, "Angle tolerance °", &mut p.angle_tolerance_deg, 0.05);
+        number(ui, "Distance tolerance (rel.)", &mut p.distance_tolerance, 1e-5);
+        number(ui, "Min area (rel.)", &mut p.min_area_relative, 1e-5);
+        number(ui, "Split min gain", &mut p.split_min_gain, 0.01);
+        let label = ui.label("Max shapes per region");
+        ui.add(DragValue::new(&mut p.max_shapes_per_region).range(1..=64)).labelled_by(label.id);
+        ui.end_row();
+        number(ui, "Occluder reach (rel.)", &mut p.reach, 0.01);
+    });
+    if let Err(e) = p.validate() {
+        ui.colored_label(egui::Color32::LIGHT_RED, e);
+    }
+    let can_run = state.job.is_none() && state.level.as_ref().is_some_and(|l| l.extract.is_some());
+    let run = ui.add_enabled(can_run, egui::Button::new("Re-extract")).on_hover_text(
+        "extract again with these parameters; manual edits are kept where their ids still exist",
+    );
+    if run.clicked() {
+        let result = state.reextract();
+        state.report(result);
+    }
+}
+
+fn number(ui: &mut Ui, title: &str, value: &mut f64, speed: f64) {
+    let label = ui.label(title);
+    ui.add(DragValue::new(value).speed(speed).max_decimals(6)).labelled_by(label.id);
+    ui.end_row();
+}
