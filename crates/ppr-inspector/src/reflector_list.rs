@@ -23,8 +23,8 @@ pub fn show(ui: &mut egui::Ui, state: &mut InspectorState) {
         egui::Grid::new("reflector list").striped(true).num_columns(SortColumn::ALL.len()).show(ui, |ui| {
             for column in SortColumn::ALL {
                 let arrow = match (state.sort.column == column, state.sort.descending) {
-                    (true, false) => " ⏶",
-                    (true, true) => " ⏷",
+                    (true, false) => " ^",
+                    (true, true) => " v",
                     _ => "",
                 };
                 let header = ui

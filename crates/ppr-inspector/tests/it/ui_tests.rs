@@ -13,10 +13,11 @@ use ppr_inspector::gpu_setup::with_inspector_device;
 use ppr_inspector::viewport::ViewportGpu;
 use ppr_inspector::{InspectorApp, InspectorState};
 
-use crate::demo::demo_level_path;
-
 /// Window size of the snapshots, points.
 const SIZE: egui::Vec2 = egui::Vec2::new(1000.0, 620.0);
+
+/// The demo level, relative to the crate (tests run there), so snapshots show one path.
+const DEMO_LEVEL: &str = "../../assets/demo_room.glb";
 
 /// The app on a harness whose wgpu renderer and the app's viewport share one device, as
 /// eframe gives them one (the inspector's device descriptor, the software adapter first).
@@ -42,6 +43,27 @@ fn harness() -> Harness<'static, InspectorApp> {
         )
 }
 
+/// Takes a snapshot with `masks` and the GPU times (they vary from frame to frame) masked.
+fn snapshot(
+    harness: &mut Harness<'_, InspectorApp>,
+    results: &mut SnapshotResults,
+    name: &str,
+    masks: &[egui::Rect],
+) {
+    let mut rects: Vec<egui::Rect> = harness
+        .query_all_by_label_contains(" ms")
+        .map(|n| {
+            let r = n.rect();
+            egui::Rect::from_min_max(r.min, egui::pos2(SIZE.x, r.max.y))
+        })
+        .collect();
+    rects.extend_from_slice(masks);
+    for r in rects {
+        harness.mask(r);
+    }
+    results.add(harness.try_snapshot(name));
+}
+
 fn wait_for_extraction(harness: &mut Harness<'_, InspectorApp>) {
     assert!(harness.state_mut().state.wait_for_job(Duration::from_secs(120)), "extraction finished in time");
     harness.run();
@@ -57,22 +79,22 @@ fn open_select_edit_undo_redo_save_reload() {
     let mut harness = harness();
     assert!(harness.state().viewport.adapter().is_some(), "the app renders on the harness's wgpu device");
 
-    // Open the demo level by typing its path.
-    harness.get_by_label("Path").set_text_value_accesskit(&demo_level_path().display().to_string());
+    // Open the demo level by typing its path (relative to the crate: the same on every machine).
+    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
     harness.run();
     harness.get_by_label("Open level").click();
     harness.run_ok();
     wait_for_extraction(&mut harness);
     assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(14));
     assert!(harness.state().viewport.has_frame(), "a preview was rendered");
-    snapshots.add(harness.try_snapshot("inspector/opened"));
+    snapshot(&mut harness, &mut snapshots, "inspector/opened", &[]);
 
     // Select the mirror in the list.
     harness.get_by_label("mirror on mirror_wall").click();
     harness.run();
     let mirror = selected(&harness);
     assert_eq!(mirror.name, "mirror on mirror_wall");
-    snapshots.add(harness.try_snapshot("inspector/selected"));
+    snapshot(&mut harness, &mut snapshots, "inspector/selected", &[]);
 
     // Edit name, kind and extent.
     harness.get_by_label("Reflector name").set_text_value_accesskit("hero mirror");
@@ -87,7 +109,7 @@ fn open_select_edit_undo_redo_save_reload() {
     assert_eq!(edited.kind, ReflectorKind::Water);
     assert!((edited.half_extents.x - 2.25).abs() < 1e-9, "{:?}", edited.half_extents);
     assert!((edited.half_extents.y - mirror.half_extents.y).abs() < 1e-12);
-    snapshots.add(harness.try_snapshot("inspector/edited"));
+    snapshot(&mut harness, &mut snapshots, "inspector/edited", &[]);
 
     // Undo the extent, then the kind; redo both.
     harness.get_by_label("Undo").click();
@@ -129,16 +151,20 @@ fn open_select_edit_undo_redo_save_reload() {
     assert_eq!(harness.state().state.set_path.as_deref(), Some(path.as_path()));
     assert_eq!(harness.state().state.set(), Some(&saved), "reloaded equals saved");
     harness.get_by_label("hero mirror").click();
+    harness.get_by_label("Path").set_text_value_accesskit("demo_room.ppr.json");
     harness.run();
     assert_eq!(selected(&harness).id, mirror.id);
-    snapshots.add(harness.try_snapshot("inspector/reloaded"));
+    // The temporary directory's name is in the status line: mask it.
+    let status = harness.get_by_label_contains("loaded 14 reflectors from").rect();
+    let status = egui::Rect::from_min_max(status.min, egui::pos2(SIZE.x, status.max.y));
+    snapshot(&mut harness, &mut snapshots, "inspector/reloaded", &[status]);
     snapshots.unwrap();
 }
 
 #[test]
 fn unsaved_changes_guard_asks_before_opening() {
     let mut harness = harness();
-    harness.get_by_label("Path").set_text_value_accesskit(&demo_level_path().display().to_string());
+    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
     harness.run();
     harness.get_by_label("Open level").click();
     harness.run_ok();
@@ -158,4 +184,96 @@ fn unsaved_changes_guard_asks_before_opening() {
     assert!(harness.state().state.job.is_some() || harness.state().state.doc.is_some());
     wait_for_extraction(&mut harness);
     assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(14));
+}
+
+/// A file dropped on the window (what eframe hands the app).
+#[derive(Debug)]
+struct DroppedPath(std::path::PathBuf);
+
+impl egui::DroppedFile for DroppedPath {
+    fn path(&self) -> &std::path::Path {
+        &self.0
+    }
+
+    fn bytes(&self) -> Result<Vec<u8>, String> {
+        std::fs::read(&self.0).map_err(|e| e.to_string())
+    }
+}
+
+#[test]
+fn dropping_a_level_then_a_set_opens_them() {
+    let mut harness = harness();
+    harness.input_mut().dropped_files.push(std::sync::Arc::new(DroppedPath(DEMO_LEVEL.into())));
+    harness.step();
+    wait_for_extraction(&mut harness);
+    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(14));
+
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("dropped.ppr.json");
+    let state = &mut harness.state_mut().state;
+    state.save_as(&path).expect("saved");
+    let first = state.set().and_then(|s| s.reflectors.first()).map(|r| r.id).expect("a reflector");
+    assert!(state.apply(ppr_inspector::commands::EditCommand::SetEnabled { id: first, enabled: false }));
+
+    // Dropping the set with unsaved changes asks first.
+    harness.input_mut().dropped_files.push(std::sync::Arc::new(DroppedPath(path.clone())));
+    harness.run();
+    assert!(harness.state().state.pending.is_some());
+    harness.get_by_label("Discard changes").click();
+    harness.run();
+    assert_eq!(harness.state().state.set_path.as_deref(), Some(path.as_path()));
+    assert_eq!(harness.state().state.set(), Some(&ReflectorSet::load(&path).expect("loads")));
+    assert!(!harness.state().state.is_dirty());
+}
+
+#[test]
+fn clicking_in_the_viewport_selects_and_a_corner_drag_resizes() {
+    let mut harness = harness();
+    harness.state_mut().state.open_level(std::path::Path::new(DEMO_LEVEL), None);
+    wait_for_extraction(&mut harness);
+    let viewport = harness.get_by_label("3D viewport").rect();
+    let size = glam::Vec2::new(viewport.width(), viewport.height());
+    let screen = |harness: &Harness<'_, InspectorApp>, world: glam::DVec3| {
+        let p = harness.state().state.camera.project(world, size).expect("in front of the camera");
+        egui::pos2(viewport.min.x + p.x, viewport.min.y + p.y)
+    };
+    let glass = harness
+        .state()
+        .state
+        .set()
+        .and_then(|s| s.reflectors.iter().find(|r| r.name == "glass on glass_panel"))
+        .cloned()
+        .expect("the glass panel");
+
+    // Click on the glass panel (in front of the mirror wall): it is picked.
+    let at = screen(&harness, glass.center + glass.axis_u * 0.3);
+    harness.hover_at(at);
+    harness.drag_at(at);
+    harness.drop_at(at);
+    harness.run();
+    assert_eq!(harness.state().state.selection, Some(glass.id), "the click picked the glass panel");
+
+    // Drag its (+u, +v) corner handle outwards: that corner follows, the opposite one stays.
+    let (u, v, h) = (glass.axis_u, glass.axis_v, glass.half_extents);
+    let from = screen(&harness, glass.center + u * h.x + v * h.y);
+    let to = screen(&harness, glass.center + u * (h.x + 0.5) + v * (h.y + 0.3));
+    harness.hover_at(from);
+    harness.drag_at(from);
+    harness.step();
+    for k in 1..=4 {
+        harness.hover_at(from + (to - from) * (k as f32 / 4.0));
+        harness.step();
+    }
+    harness.drop_at(to);
+    harness.run();
+    let resized = selected(&harness);
+    assert!((resized.half_extents.x - (h.x + 0.25)).abs() < 0.03, "{:?}", resized.half_extents);
+    assert!((resized.half_extents.y - (h.y + 0.15)).abs() < 0.03, "{:?}", resized.half_extents);
+    let fixed =
+        |r: &ppr_format::Reflector| r.center - r.axis_u * r.half_extents.x - r.axis_v * r.half_extents.y;
+    assert!((fixed(&resized) - fixed(&glass)).length() < 1e-6, "the opposite corner stays");
+    assert_eq!(harness.state().state.history.undo_len(), 1, "one drag is one undo step");
+    harness.get_by_label("Undo").click();
+    harness.run();
+    assert_eq!(selected(&harness), glass);
 }
