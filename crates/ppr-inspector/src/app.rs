@@ -195,7 +195,10 @@ impl InspectorApp {
                         if self.state.report(result).is_some() {
                             self.state.messages.info(format!("screenshot written to {}", path.display()));
                         }
+                        // The extracted set is not saved on purpose: close without asking.
+                        self.state.quit_confirmed = true;
                         ctx.send_viewport_cmd(ViewportCommand::Close);
+                        ctx.request_repaint();
                         None
                     }
                     None => Some(Screenshot::Requested { path, image }),
