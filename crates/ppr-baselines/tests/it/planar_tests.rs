@@ -1,0 +1,1 @@
+//! The exact planar reflection as a technique.

@@ -1,0 +1,1 @@
+//! SSPR: the projection hash against the exact reference and a CPU projection.

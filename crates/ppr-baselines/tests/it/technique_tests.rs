@@ -1,0 +1,1 @@
+//! What every technique and preset shares: output only on reflector pixels, resizing.
