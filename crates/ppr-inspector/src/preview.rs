@@ -51,6 +51,8 @@ pub struct PreviewSettings {
     pub overlay: bool,
     /// What the rectangles' colour shows.
     pub color_by: ColorBy,
+    /// Rendered pixels per screen pixel (1, 1/2 or 1/4): lower is faster on slow adapters.
+    pub resolution: f32,
 }
 
 impl Default for PreviewSettings {
@@ -61,6 +63,7 @@ impl Default for PreviewSettings {
             reflectivity: 0.8,
             overlay: true,
             color_by: ColorBy::Kind,
+            resolution: 1.0,
         }
     }
 }

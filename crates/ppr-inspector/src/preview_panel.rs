@@ -30,6 +30,12 @@ pub fn show(ui: &mut Ui, state: &mut InspectorState, frame: Option<&PreviewFrame
         ui.selectable_value(&mut p.color_by, ColorBy::Coverage, "Colour by coverage");
     });
     ui.horizontal(|ui| {
+        ui.label("Resolution");
+        for (scale, name) in [(1.0, "Full"), (0.5, "Half"), (0.25, "Quarter")] {
+            ui.selectable_value(&mut p.resolution, scale, name);
+        }
+    });
+    ui.horizontal(|ui| {
         let label = ui.label("Reflectivity");
         ui.add(egui::Slider::new(&mut p.reflectivity, 0.0..=1.0)).labelled_by(label.id);
     });

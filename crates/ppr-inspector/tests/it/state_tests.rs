@@ -324,3 +324,19 @@ fn float_fields(r: &ppr_format::Reflector) -> Vec<f64> {
         .chain([r.coverage])
         .collect()
 }
+
+#[test]
+fn opening_a_level_with_a_saved_set_skips_extraction() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("room.ppr.json");
+    let doc = demo_document(&ExtractParams::no_split());
+    doc.set.save(&path).expect("saved");
+    let mut state = InspectorState::default();
+    state.open_level(&demo_level_path(), Some(&path));
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(13), "the set is the file's");
+    assert!(!state.is_dirty());
+    assert!(state.wait_for_job(Duration::from_secs(120)));
+    assert!(state.level.as_ref().is_some_and(|l| l.render.is_some() && l.extract.is_some()));
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(13), "no extraction replaced it");
+    assert_eq!(state.default_set_path(), Some(path));
+}

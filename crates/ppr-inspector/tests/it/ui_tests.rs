@@ -277,3 +277,31 @@ fn clicking_in_the_viewport_selects_and_a_corner_drag_resizes() {
     harness.run();
     assert_eq!(selected(&harness), glass);
 }
+
+#[test]
+fn every_preview_mode_renders() {
+    let mut harness = harness();
+    harness.state_mut().state.open_level(std::path::Path::new(DEMO_LEVEL), None);
+    wait_for_extraction(&mut harness);
+    harness.get_by_label("Quarter").click();
+    harness.run();
+    for mode in ["Scene", "Reference", "Difference", "PPR"] {
+        harness.get_by_label(mode).click();
+        harness.run();
+        let frame = harness.state().viewport.frame.clone().expect("a frame");
+        assert_eq!(frame.quality.is_some(), mode == "Difference", "{mode}");
+        assert!(frame.plan.contains("visible"), "{mode}: {}", frame.plan);
+        assert!(frame.image.size[0] > 10 && frame.image.size[1] > 10);
+    }
+    let quality = {
+        harness.get_by_label("Difference").click();
+        harness.run();
+        harness.state().viewport.frame.clone().and_then(|f| f.quality).expect("quality")
+    };
+    assert!(quality.comparison.pixels > 0 && quality.comparison.psnr_db > 10.0, "{:?}", quality);
+    // Toggles re-render without errors.
+    harness.get_by_label("Holes").click();
+    harness.get_by_label("Filtering").click();
+    harness.run();
+    assert!(harness.state().state.messages.latest_error().is_none());
+}
