@@ -1,0 +1,141 @@
+//! The composite pass: scene colour and PPR's reflection mixed by the reflection weight,
+//! tone mapped, into the output (the swapchain image or the screenshot target). Also the
+//! debug views of the reflection buffer and the weight.
+
+use crate::frame_targets::FrameTargets;
+use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
+
+const WGSL: &str = include_str!("../../../shaders/walkthrough/composite_pass.wgsl");
+
+/// What the composite shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CompositeMode {
+    /// The game's image: scene with reflections.
+    #[default]
+    Final,
+    /// PPR's raw output (reflected colour; holes dark purple).
+    ReflectionBuffer,
+    /// The per-pixel reflection weight of the forward pass.
+    ReflectionWeight,
+}
+
+/// Composite uniform.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct CompositeUniform {
+    mode: u32,
+    reflections: u32,
+    encode_srgb: u32,
+    exposure: f32,
+}
+const _: () = assert!(size_of::<CompositeUniform>() == 16);
+
+/// The composite pass for one output format.
+pub struct CompositePass {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    pipeline: wgpu::RenderPipeline,
+    layout: wgpu::BindGroupLayout,
+    uniform: wgpu::Buffer,
+    encode_srgb: bool,
+}
+
+impl CompositePass {
+    /// Builds the pipeline for outputs of `format` (sRGB or not: encoded accordingly).
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat) -> Self {
+        let texture = |binding| wgpu::BindGroupLayoutEntry {
+            binding,
+            visibility: wgpu::ShaderStages::FRAGMENT,
+            ty: wgpu::BindingType::Texture {
+                sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                view_dimension: wgpu::TextureViewDimension::D2,
+                multisampled: false,
+            },
+            count: None,
+        };
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("walkthrough composite"),
+            entries: &[
+                wgpu::BindGroupLayoutEntry {
+                    binding: 0,
+                    visibility: wgpu::ShaderStages::FRAGMENT,
+                    ty: wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    count: None,
+                },
+                texture(1),
+                texture(2),
+                texture(3),
+            ],
+        });
+        let pipeline = fullscreen_pipeline(device, "walkthrough composite", WGSL, &layout, format, None);
+        let uniform = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("walkthrough composite"),
+            size: size_of::<CompositeUniform>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            pipeline,
+            layout,
+            uniform,
+            encode_srgb: !format.is_srgb(),
+        }
+    }
+
+    /// Records the composite into `output` (same size as `targets`). `reflections` says
+    /// whether `targets.reflection` holds this frame's PPR output.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        targets: &FrameTargets,
+        output: &wgpu::TextureView,
+        mode: CompositeMode,
+        reflections: bool,
+    ) {
+        let uniform = CompositeUniform {
+            mode: match mode {
+                CompositeMode::Final => 0,
+                CompositeMode::ReflectionBuffer => 1,
+                CompositeMode::ReflectionWeight => 2,
+            },
+            reflections: u32::from(reflections),
+            encode_srgb: u32::from(self.encode_srgb),
+            exposure: 1.0,
+        };
+        self.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
+        let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("walkthrough composite"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: self.uniform.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&targets.color.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&targets.reflection.view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::TextureView(&targets.reflection_weight.view),
+                },
+            ],
+        });
+        let mut pass = begin_output_pass(
+            encoder,
+            "walkthrough composite",
+            output,
+            wgpu::LoadOp::Clear(wgpu::Color::BLACK),
+        );
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, &group, &[]);
+        pass.draw(0..3, 0..1);
+    }
+}

@@ -1,0 +1,143 @@
+//! The game's renderer with PPR in it: what to copy.
+//!
+//! Per frame:
+//!
+//! 1. the game renders its scene: the forward pass writes linear HDR colour
+//!    (`Rgba16Float`), a reflection weight and depth (`Depth32Float`);
+//! 2. PPR, call 1 of 2: `ReflectionRenderer::prepare(&camera, [w, h])` plans the frame on
+//!    the CPU (culling, which passes run) and uploads what the GPU needs;
+//! 3. PPR, call 2 of 2: `ReflectionRenderer::encode(&mut encoder, &FrameInputs { color,
+//!    depth, output })` records the compute passes after the scene, in the same encoder;
+//! 4. the game composites: `mix(scene, reflection.rgb, weight × reflection.a)`, tone map,
+//!    onto the swapchain, then its UI (here: the text overlay).
+//!
+//! PPR never sees the meshes, the materials or the swapchain: only colour, depth and its
+//! output texture.
+
+use ppr_format::ReflectorSet;
+use ppr_runtime::{Camera, Choice, DepthMode, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc};
+
+use crate::forward_pass::{ForwardPass, SceneLight};
+use crate::frame_targets::FrameTargets;
+use crate::fullscreen_pipeline::begin_output_pass;
+use crate::gltf_level::LevelData;
+use crate::level_meshes::LevelMeshes;
+use crate::screen_passes::{ScreenInputs, ScreenPasses};
+use crate::view_mode::ViewMode;
+
+/// The level, its passes and PPR on one device.
+pub struct WalkthroughRenderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    meshes: LevelMeshes,
+    forward: ForwardPass,
+    /// PPR: settings (holes, filtering, anti-bleeding) and plan parameters are public.
+    pub ppr: ReflectionRenderer,
+    /// The sun of the forward pass.
+    pub light: SceneLight,
+    targets: Option<FrameTargets>,
+}
+
+impl WalkthroughRenderer {
+    /// Uploads the level, builds the passes and hands PPR the reflectors (an empty set
+    /// when there is none yet: PPR then plans empty frames and dispatches nothing).
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        level: &LevelData,
+        reflectors: Option<&ReflectorSet>,
+        depth: DepthMode,
+    ) -> Self {
+        let forward = ForwardPass::new(device, depth);
+        let meshes = LevelMeshes::new(device, queue, &forward.layouts, level);
+        let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc { timestamps: true });
+        // Glass panels and water planes as separate layers need `FrameInputs::layer_output`
+        // and a composite that knows their surfaces; this walkthrough keeps to the main
+        // buffer: water is reflected there and glass panels are skipped.
+        ppr.plan_params.layers = Choice::Off;
+        ppr.set_reflectors(reflectors.unwrap_or(&ReflectorSet::new("")));
+        Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            meshes,
+            forward,
+            ppr,
+            light: SceneLight::default(),
+            targets: None,
+        }
+    }
+
+    /// Takes a new reflector set (hot reload): cheap, nothing is recompiled.
+    pub fn set_reflectors(&mut self, reflectors: &ReflectorSet) {
+        self.ppr.set_reflectors(reflectors);
+    }
+
+    /// The targets of the last frame (scene colour, weight, depth, PPR output).
+    pub fn targets(&self) -> Option<&FrameTargets> {
+        self.targets.as_ref()
+    }
+
+    /// Renders one frame seen by `camera` at `size` and records it onto each output (the
+    /// swapchain image, and a screenshot target when one is asked for), then submits.
+    /// Returns the frame plan.
+    ///
+    /// # Panics
+    /// If `camera`'s depth convention is not the one the renderer was built for.
+    pub fn render(
+        &mut self,
+        camera: &Camera,
+        size: [u32; 2],
+        mode: ViewMode,
+        outputs: &[(&ScreenPasses, &wgpu::TextureView)],
+    ) -> FramePlan {
+        assert_eq!(camera.projection.depth, self.forward.depth_mode(), "one depth convention per renderer");
+        let size = [size[0].max(1), size[1].max(1)];
+        if self.targets.as_ref().is_none_or(|t| t.size != size) {
+            self.targets = Some(FrameTargets::new(&self.device, size));
+        }
+        let targets = self.targets.as_ref().expect("allocated above");
+
+        // 1. The game's scene: camera-relative draws, lit colour, reflection weight, depth.
+        self.meshes.update_camera(&self.queue, camera.position);
+        self.forward.prepare(&self.queue, camera, size, &self.light);
+
+        // 2. PPR, call 1 of 2: plan the frame on the CPU and upload (before the encoder).
+        //    The intermediate-buffer view needs the whole buffer cleared: no indirect dispatch.
+        self.ppr.plan_params.indirect =
+            if mode == ViewMode::Intermediate { Choice::Off } else { Choice::Auto };
+        let plan = self.ppr.prepare(camera, size).clone();
+
+        let mut encoder = self
+            .device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("walkthrough frame") });
+        self.forward.encode(&mut encoder, targets, &self.meshes, camera.projection.far_depth());
+
+        // With indirect dispatch PPR writes only the tiles that show a visible reflector;
+        // clear its output so no other pixel keeps an old frame's reflection (a reflector
+        // just disabled in the inspector, say). A full dispatch writes every pixel.
+        if plan.indirect {
+            let _ = begin_output_pass(
+                &mut encoder,
+                "walkthrough clear ppr output",
+                &targets.reflection.view,
+                wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+            );
+        }
+
+        // 3. PPR, call 2 of 2: record clear, projection and reflection after the scene.
+        //    Nothing is recorded when the plan is empty (then `reflection` is stale: the
+        //    composite is told so).
+        self.ppr.encode(
+            &mut encoder,
+            &FrameInputs::new(&targets.color.view, &targets.depth.view, &targets.reflection.view),
+        );
+
+        // 4. The game's composite and UI onto each output.
+        let inputs = ScreenInputs { targets, ppr: &self.ppr, plan: &plan, mode };
+        for (passes, output) in outputs {
+            passes.encode(&self.queue, &mut encoder, &inputs, output);
+        }
+        self.queue.submit([encoder.finish()]);
+        plan
+    }
+}

@@ -1,0 +1,70 @@
+// Composite of the walkthrough: the lit scene with PPR's reflection mixed in where the
+// surface is reflective, tone mapped, onto the swapchain (or the screenshot target).
+//
+// result = mix(scene, reflection.rgb, weight * reflection.a)
+//   weight: the forward pass's reflectivity × Fresnel (0 on surfaces that reflect nothing);
+//   reflection.a: 1 where PPR found a reflection, 0 where it did not (a hole, or off screen):
+//   there the surface keeps its own lit colour (a game would fall back to a probe).
+
+struct Composite {
+    // 0: final image; 1: PPR's raw reflection buffer (holes dark purple); 2: the weight.
+    mode: u32,
+    // 1 when the reflection texture holds this frame's PPR output (0: nothing was visible).
+    reflections: u32,
+    // 1 when the target is not an sRGB format: encode here.
+    encode_srgb: u32,
+    exposure: f32,
+}
+
+@group(0) @binding(0) var<uniform> composite: Composite;
+@group(0) @binding(1) var scene_color: texture_2d<f32>;
+@group(0) @binding(2) var reflection: texture_2d<f32>;
+@group(0) @binding(3) var reflection_weight: texture_2d<f32>;
+
+@vertex
+fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
+    // One triangle covering the screen.
+    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
+    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
+}
+
+// Narkowicz's fit of the ACES filmic curve.
+fn tonemap(x: vec3<f32>) -> vec3<f32> {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), vec3<f32>(0.0), vec3<f32>(1.0));
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let low = c * 12.92;
+    let high = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(high, low, c <= vec3<f32>(0.0031308));
+}
+
+@fragment
+fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
+    let p = vec2<i32>(position.xy);
+    let scene = textureLoad(scene_color, p, 0).rgb;
+    var found = vec4<f32>(0.0);
+    if (composite.reflections == 1u) {
+        found = textureLoad(reflection, p, 0);
+    }
+    let weight = textureLoad(reflection_weight, p, 0).r;
+    var rgb: vec3<f32>;
+    switch composite.mode {
+        case 1u: {
+            rgb = select(vec3<f32>(0.08, 0.0, 0.08), found.rgb, found.a > 0.5);
+        }
+        case 2u: {
+            rgb = vec3<f32>(weight);
+        }
+        default: {
+            rgb = mix(scene, found.rgb, clamp(weight * found.a, 0.0, 1.0));
+        }
+    }
+    if (composite.mode != 2u) {
+        rgb = tonemap(max(rgb, vec3<f32>(0.0)) * composite.exposure);
+    }
+    if (composite.encode_srgb == 1u) {
+        rgb = linear_to_srgb(rgb);
+    }
+    return vec4<f32>(rgb, 1.0);
+}
