@@ -143,3 +143,27 @@ pub fn timed<T>(name: &str, f: impl FnOnce() -> T) -> T {
     eprintln!("[ppr-baselines tests] {name}: {:.2?}", start.elapsed());
     out
 }
+
+/// Reads `count` `u32` values from the start of `buffer` (a `COPY_SRC` buffer).
+pub fn read_u32s(buffer: &wgpu::Buffer, count: usize) -> Vec<u32> {
+    let g = gpu();
+    let (device, queue) = (&g.ctx.device, &g.ctx.queue);
+    let size = (count * 4) as u64;
+    let staging = device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("test readback"),
+        size,
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_buffer_to_buffer(buffer, 0, &staging, 0, size);
+    queue.submit([encoder.finish()]);
+    staging.map_async(wgpu::MapMode::Read, .., |r| r.expect("map"));
+    device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
+    let values = {
+        let bytes = staging.get_mapped_range(..).expect("mapped");
+        bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+    };
+    staging.unmap();
+    values
+}

@@ -28,6 +28,22 @@ pub fn floor_mirror_with_bar() -> SyntheticScene {
     scene
 }
 
+/// A larger floor mirror (12 m square) with a wide wall standing behind the boxes (z = −3.8,
+/// 12 m wide, 2.5 m tall): its reflection reaches the left and right screen edges, where
+/// the reflected points lie beyond the screen.
+pub fn floor_mirror_with_wall() -> SyntheticScene {
+    let mut scene =
+        SyntheticScene::floor_mirror(&FloorMirrorParams { floor_half_size: 6.0, ..Default::default() });
+    let level = &mut scene.level;
+    let material = level.add_material(Material::matte("wall", [0.8, 0.45, 0.2]));
+    let mesh = level.add_mesh(Mesh {
+        name: "wall".into(),
+        primitives: vec![cuboid(Vec3::new(6.0, 1.25, 0.05), material)],
+    });
+    level.add_instance("wall", mesh, DMat4::from_translation(DVec3::new(0.0, 1.25, -3.8)));
+    scene
+}
+
 /// Whether a linear colour is the bar's (within rounding of `Rgba16Float`).
 pub fn is_bar_color(c: [f32; 4]) -> bool {
     (0..3).all(|i| (c[i] - BAR_COLOR[i]).abs() < 0.02)
