@@ -109,7 +109,10 @@ impl Viewport {
         response.widget_info(|| egui::WidgetInfo::labeled(egui::Role::Canvas, true, "3D viewport"));
         let size = Vec2::new(rect.width().max(1.0), rect.height().max(1.0));
         self.steer(ui, state, &response, rect, size);
-        let ppp = ui.ctx().pixels_per_point() * state.preview.resolution.clamp(0.1, 1.0);
+        // While the view or a handle is dragged, at most half resolution keeps slow adapters responsive.
+        let scale =
+            if response.dragged() { state.preview.resolution.min(0.5) } else { state.preview.resolution };
+        let ppp = ui.ctx().pixels_per_point() * scale.clamp(0.1, 1.0);
         let pixels = [(size.x * ppp).round().max(1.0) as u32, (size.y * ppp).round().max(1.0) as u32];
         self.render_if_needed(ui.ctx(), state, pixels);
 

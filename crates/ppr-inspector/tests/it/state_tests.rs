@@ -289,6 +289,14 @@ fn save_reload_and_broken_files() {
     assert_eq!(state.set(), Some(&saved), "reloaded from the file");
     assert!(!state.is_dirty());
 
+    // Quitting with unsaved changes asks too.
+    assert!(state.apply(EditCommand::SetEnabled { id: mirror, enabled: false }));
+    state.request(PendingAction::Quit);
+    assert!(!state.quit_confirmed && state.pending == Some(PendingAction::Quit));
+    state.confirm_pending();
+    assert!(state.quit_confirmed);
+    state.undo();
+
     // A broken set: the message names the file and the field.
     let text =
         std::fs::read_to_string(&path).expect("read").replacen("\"coverage\": 1.0", "\"coverage\": 2.5", 1);

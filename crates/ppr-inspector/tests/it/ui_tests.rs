@@ -301,7 +301,40 @@ fn every_preview_mode_renders() {
     assert!(quality.comparison.pixels > 0 && quality.comparison.psnr_db > 10.0, "{:?}", quality);
     // Toggles re-render without errors.
     harness.get_by_label("Holes").click();
+    harness.run();
     harness.get_by_label("Filtering").click();
     harness.run();
+    assert!(
+        !harness.state().state.preview.reflection.holes
+            && !harness.state().state.preview.reflection.filtering
+    );
     assert!(harness.state().state.messages.latest_error().is_none());
+}
+
+#[test]
+fn reextract_from_the_panel_keeps_a_rename() {
+    let mut harness = harness();
+    harness.state_mut().state.open_level(std::path::Path::new(DEMO_LEVEL), None);
+    wait_for_extraction(&mut harness);
+    harness.get_by_label("water on water_surface").click();
+    harness.run();
+    let water = selected(&harness).id;
+    harness.get_by_label("Reflector name").set_text_value_accesskit("pond");
+    harness.run();
+    // Make room in the right panel: fold the other sections, open Extraction.
+    for section in ["Preview", "Selected reflector", "Extraction"] {
+        harness.get_by_label(section).click();
+        harness.run();
+    }
+    harness.get_by_label("no_split").click();
+    harness.run();
+    harness.get_by_label("Re-extract").click();
+    harness.run_ok();
+    wait_for_extraction(&mut harness);
+    let state = &harness.state().state;
+    let set = state.set().expect("set");
+    assert_eq!(set.reflectors.len(), 13, "without splits the floor is one rectangle");
+    assert_eq!(set.by_id(water).map(|r| r.name.as_str()), Some("pond"), "the rename was kept");
+    assert_eq!(state.selection, Some(water));
+    assert_eq!(state.history.undo_len(), 2, "rename, re-extract");
 }
