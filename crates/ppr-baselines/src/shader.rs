@@ -66,6 +66,67 @@ pub fn all_sources() -> Vec<(&'static str, String)> {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+    use crate::gpu_types::{
+        BaselineFrame, ClearUniform, GpuReflectorPlane, HiZUniform, NO_LAYER, SsprUniform, SsrUniform,
+    };
+    use crate::hiz_pyramid::{DownsampleUniform, HIZ_MAX_LEVELS, HiZLevelsUniform, SKY_DEPTH};
+
+    fn parse(source: &str) -> naga::Module {
+        naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)))
+    }
+
+    /// Size of the WGSL struct `name` in `module`.
+    fn struct_size(module: &naga::Module, name: &str) -> usize {
+        module
+            .types
+            .iter()
+            .find_map(|(_, t)| match &t.inner {
+                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
+                    Some(*span as usize)
+                }
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no struct {name}"))
+    }
+
+    /// The literal value of the WGSL constant `name` in `module`.
+    fn constant(module: &naga::Module, name: &str) -> naga::Literal {
+        let c = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("no constant {name}"))
+            .1;
+        match module.global_expressions[c.init] {
+            naga::Expression::Literal(l) => l,
+            ref e => panic!("{name} is not a literal: {e:?}"),
+        }
+    }
+
+    /// The numbers both sides use: every uniform and storage struct has the size of its
+    /// `#[repr(C)]` mirror, and the shared constants have the Rust values.
+    #[test]
+    fn wgsl_structs_and_constants_match_rust() {
+        let trace = parse(&with_hiz_layout(HIZ_TRACE));
+        let build = parse(&with_hiz_layout(HIZ_BUILD));
+        for (name, size) in [
+            ("BaselineFrame", size_of::<BaselineFrame>()),
+            ("ReflectorPlane", size_of::<GpuReflectorPlane>()),
+            ("HiZParams", size_of::<HiZUniform>()),
+            ("HiZLevels", size_of::<HiZLevelsUniform>()),
+        ] {
+            assert_eq!(struct_size(&trace, name), size, "{name}");
+        }
+        assert_eq!(struct_size(&build, "DownsampleParams"), size_of::<DownsampleUniform>());
+        assert_eq!(struct_size(&parse(&with_common(SSR_MARCH)), "SsrParams"), size_of::<SsrUniform>());
+        assert_eq!(struct_size(&parse(&with_common(SSPR_PROJECT)), "SsprParams"), size_of::<SsprUniform>());
+        assert_eq!(struct_size(&parse(SSPR_CLEAR), "ClearParams"), size_of::<ClearUniform>());
+        assert_eq!(constant(&trace, "BASELINE_SKY_DEPTH"), naga::Literal::F32(SKY_DEPTH));
+        assert_eq!(constant(&trace, "BASELINE_NO_LAYER"), naga::Literal::U32(NO_LAYER));
+        assert_eq!(constant(&trace, "HIZ_MAX_LEVELS"), naga::Literal::U32(HIZ_MAX_LEVELS as u32));
+    }
+
     /// Every pass parses and validates (clear messages without a GPU).
     #[test]
     fn every_pass_validates() {
