@@ -85,6 +85,9 @@ pub enum InspectorError {
     /// The extraction thread stopped without a result.
     #[error("extraction failed: {0}")]
     Extraction(String),
+    /// The GPU refused work (validation or out of memory), caught in an error scope.
+    #[error("GPU error: {0}")]
+    Gpu(String),
     /// Writing an image (screenshot) failed.
     #[error("{}: cannot write image: {reason}", path.display())]
     Image {

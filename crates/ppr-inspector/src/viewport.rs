@@ -74,6 +74,8 @@ pub struct Viewport {
     /// The last rendered frame (plan, timings, quality).
     pub frame: Option<PreviewFrame>,
     failed: Option<RenderKey>,
+    /// (level generation, revision) for which the GPU side could not be built: not retried.
+    failed_build: Option<(u64, u64)>,
     drag: Option<HandleDrag>,
 }
 
@@ -89,6 +91,7 @@ impl Viewport {
             rendered: None,
             frame: None,
             failed: None,
+            failed_build: None,
             drag: None,
         }
     }
@@ -235,13 +238,20 @@ impl Viewport {
         let Some(gpu) = self.gpu.clone() else { return };
         let empty = ReflectorSet::new(level.path.display().to_string());
         let set = state.set().unwrap_or(&empty);
+        let build = (state.level_generation, state.revision());
         if self.renderer.is_none() || self.renderer_generation != state.level_generation {
+            if self.failed_build == Some(build) {
+                return;
+            }
             self.renderer = None;
             self.texture = None;
             self.frame = None;
             match ViewportRenderer::new(&gpu.device, &gpu.queue, &render_level, &level.path, set) {
                 Ok(r) => self.renderer = Some(r),
-                Err(e) => state.messages.error(e.to_string()),
+                Err(e) => {
+                    state.messages.error(format!("preview: {e}"));
+                    self.failed_build = Some(build);
+                }
             }
             self.renderer_generation = state.level_generation;
             self.uploaded_revision = state.revision();
@@ -249,8 +259,16 @@ impl Viewport {
         let Some(renderer) = self.renderer.as_mut() else { return };
         let set = state.set().unwrap_or(&empty);
         if self.uploaded_revision != state.revision() {
-            renderer.set_reflectors(set);
+            let uploaded = renderer.set_reflectors(set);
             self.uploaded_revision = state.revision();
+            if let Err(e) = uploaded {
+                state.messages.error(format!("preview: {e}"));
+                self.failed_build = Some(build);
+                self.renderer = None;
+                self.texture = None;
+                self.frame = None;
+                return;
+            }
         }
         let mut preview = state.preview;
         preview.overlay = false;

@@ -75,20 +75,29 @@ impl ViewportRenderer {
         level
             .validate()
             .map_err(|reason| InspectorError::InvalidLevel { path: level_path.to_owned(), reason })?;
-        Ok(Self {
-            device: device.clone(),
-            queue: queue.clone(),
-            level: LevelRenderer::new(device, queue, level, set),
-            ppr: PprTechnique::new(device, queue, set, ppr_runtime::ReflectionSettings::ALL),
-            composite: CompositePass::new(device),
-            targets: None,
+        within_error_scope(device, || {
+            Ok(Self {
+                device: device.clone(),
+                queue: queue.clone(),
+                level: LevelRenderer::new(device, queue, level, set),
+                ppr: PprTechnique::new(device, queue, set, ppr_runtime::ReflectionSettings::ALL),
+                composite: CompositePass::new(device),
+                targets: None,
+            })
         })
     }
 
     /// Replaces the reflector set (after an edit).
-    pub fn set_reflectors(&mut self, set: &ReflectorSet) {
-        self.level.set_reflectors(&self.device, set);
-        self.ppr.renderer().set_reflectors(set);
+    ///
+    /// # Errors
+    /// [`InspectorError::Gpu`] when the device refuses the new buffers.
+    pub fn set_reflectors(&mut self, set: &ReflectorSet) -> Result<(), InspectorError> {
+        let device = self.device.clone();
+        within_error_scope(&device, || {
+            self.level.set_reflectors(&self.device, set);
+            self.ppr.renderer().set_reflectors(set);
+            Ok(())
+        })
     }
 
     fn targets(&mut self, size: [u32; 2]) -> &SizedTargets {
@@ -110,6 +119,16 @@ impl ViewportRenderer {
     /// # Errors
     /// A read-back or image error from the testbed.
     pub fn render(
+        &mut self,
+        camera: &Camera,
+        size: [u32; 2],
+        settings: &PreviewSettings,
+    ) -> Result<PreviewFrame, InspectorError> {
+        let device = self.device.clone();
+        within_error_scope(&device, || self.render_frame(camera, size, settings))
+    }
+
+    fn render_frame(
         &mut self,
         camera: &Camera,
         size: [u32; 2],
@@ -196,4 +215,21 @@ fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
         occlusion_query_set: None,
         multiview_mask: None,
     });
+}
+
+/// Runs `work` with the device's validation and out-of-memory errors caught: they become
+/// [`InspectorError::Gpu`] instead of wgpu's default panic.
+fn within_error_scope<T>(
+    device: &wgpu::Device,
+    work: impl FnOnce() -> Result<T, InspectorError>,
+) -> Result<T, InspectorError> {
+    let memory = device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+    let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
+    let result = work();
+    let validation = pollster::block_on(validation.pop());
+    let memory = pollster::block_on(memory.pop());
+    match (validation.or(memory), result) {
+        (Some(e), _) => Err(InspectorError::Gpu(e.to_string())),
+        (None, result) => result,
+    }
 }
