@@ -161,7 +161,10 @@ impl InspectorApp {
         let Some(shot) = self.screenshot.take() else { return };
         self.screenshot = match shot {
             Screenshot::Waiting { path, frames } => {
-                let ready = self.state.job.is_none() && self.state.doc.is_some() && self.viewport.has_frame();
+                // Ready once nothing loads any more and the preview shows (or cannot show:
+                // then the picture shows the error).
+                let loaded = self.state.level.as_ref().is_some_and(|l| l.render.is_some());
+                let ready = self.state.job.is_none() && (self.viewport.has_frame() || !loaded);
                 if ready && self.state.selection.is_none() {
                     let first = self.state.set().and_then(|s| s.reflectors.first()).map(|r| r.id);
                     self.state.select(first);
@@ -180,10 +183,6 @@ impl InspectorApp {
                     )));
                     Some(Screenshot::Requested { path, image })
                 } else {
-                    let no_level = self.state.level.is_none() && self.state.job.is_none();
-                    if no_level {
-                        self.state.messages.error("--screenshot needs a level");
-                    }
                     Some(Screenshot::Waiting { path, frames: if ready { frames + 1 } else { 0 } })
                 }
             }
