@@ -38,6 +38,7 @@ pub fn build_demo_room() -> DemoRoom {
     add_mirror_stairs(&mut room, &materials);
     add_tilted_mirror(&mut room, &materials);
     add_water_basin(&mut room, &materials);
+    add_pond(&mut room, &materials);
     add_polished_floor(&mut room, &materials);
     add_puddles(&mut room, &materials);
     add_props(&mut room, &materials);
@@ -221,6 +222,32 @@ fn add_water_basin(room: &mut DemoRoom, materials: &DemoMaterials) {
     b.add_node(NodeSpec::instance("basin_rim", Some(group), rim_mesh, NodeTransform::IDENTITY));
     let water_node = b.add_node(
         NodeSpec::instance("water_surface", Some(group), water_mesh, NodeTransform::IDENTITY)
+            .with_extras(PprExtras { ppr: PprOverride { reflector: true, kind: Some("water") } }),
+    );
+    room.reflector(water_node, 0, ReflectorKind::Water);
+}
+
+/// A low stone-rimmed pond (outer 2.4 × 1.8 m, rim 0.18 m high) between the stairs and
+/// `puddle_c`, centred at (-4.6, 0, -2.35), holding a 2.0 × 1.4 m water surface at
+/// y = 0.12: a second water plane at another height than the basin's.
+fn add_pond(room: &mut DemoRoom, materials: &DemoMaterials) {
+    let b = &mut room.builder;
+    let rim = MeshData::merged(&[
+        standing_box_at([-1.1, 0.0, 0.0], [0.2, 0.18, 1.8]),
+        standing_box_at([1.1, 0.0, 0.0], [0.2, 0.18, 1.8]),
+        standing_box_at([0.0, 0.0, -0.8], [2.0, 0.18, 0.2]),
+        standing_box_at([0.0, 0.0, 0.8], [2.0, 0.18, 0.2]),
+    ]);
+    let water = MeshData::quad(DVec3::new(-1.0, 0.12, -0.7), DVec3::Z * 1.4, DVec3::X * 2.0, 1.0);
+    let rim_geometry = b.add_geometry(&rim);
+    let rim_mesh = b.add_mesh("pond_rim", &[(rim_geometry, materials.stone)]);
+    let water_geometry = b.add_geometry(&water);
+    let water_mesh = b.add_mesh("pond_water", &[(water_geometry, materials.water)]);
+    let group =
+        b.add_node(NodeSpec::group("stone_pond", None, NodeTransform::at(DVec3::new(-4.6, 0.0, -2.35))));
+    b.add_node(NodeSpec::instance("pond_rim", Some(group), rim_mesh, NodeTransform::IDENTITY));
+    let water_node = b.add_node(
+        NodeSpec::instance("pond_water", Some(group), water_mesh, NodeTransform::IDENTITY)
             .with_extras(PprExtras { ppr: PprOverride { reflector: true, kind: Some("water") } }),
     );
     room.reflector(water_node, 0, ReflectorKind::Water);

@@ -20,7 +20,7 @@ static IMPORTED: LazyLock<(gltf::Document, Vec<gltf::buffer::Data>, Vec<gltf::im
 static EXPECTED: LazyLock<Value> =
     LazyLock::new(|| serde_json::from_str(&LEVEL.expected_json).expect("the ground truth is JSON"));
 
-const NODE_NAMES: [&str; 41] = [
+const NODE_NAMES: [&str; 44] = [
     "room",
     "room_floor",
     "room_walls",
@@ -42,6 +42,9 @@ const NODE_NAMES: [&str; 41] = [
     "stone_basin",
     "basin_rim",
     "water_surface",
+    "stone_pond",
+    "pond_rim",
+    "pond_water",
     "polished_floor",
     "puddles",
     "puddle_a",
@@ -276,7 +279,9 @@ fn only_water_and_table_top_carry_ppr_extras() {
         let extras: Option<Value> =
             node.extras().as_ref().map(|raw| serde_json::from_str(raw.get()).expect("extras are JSON"));
         let expected = match node.name() {
-            Some("water_surface") => Some(serde_json::json!({"ppr": {"reflector": true, "kind": "water"}})),
+            Some("water_surface" | "pond_water") => {
+                Some(serde_json::json!({"ppr": {"reflector": true, "kind": "water"}}))
+            }
             Some("table_top") => Some(serde_json::json!({"ppr": {"reflector": false}})),
             _ => None,
         };
@@ -370,6 +375,7 @@ fn ground_truth_matches_the_geometry_read_back() {
             "step_5",
             "tilted_mirror",
             "water_surface",
+            "pond_water",
             "polished_floor",
             "puddle_a",
             "puddle_b",
@@ -406,7 +412,7 @@ fn ground_truth_matches_the_geometry_read_back() {
     assert_eq!(floor["enclosing_rectangle"]["half_extents"], serde_json::json!([3.0, 2.5]));
     let kinds: Vec<&str> = reflectors.iter().map(|r| r["kind"].as_str().expect("kind")).collect();
     assert_eq!(kinds.iter().filter(|k| **k == "transparent").count(), 1);
-    assert_eq!(kinds.iter().filter(|k| **k == "water").count(), 1);
+    assert_eq!(kinds.iter().filter(|k| **k == "water").count(), 2, "the basin and the pond");
     assert_eq!(EXPECTED["non_reflectors"][0]["node"], "table_top");
 }
 

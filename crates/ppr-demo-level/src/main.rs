@@ -13,7 +13,7 @@
 //!  z=-6  +------------------[ mirror wall x∈[-3,3] ]----------------------------+
 //!        |      (red pillar -4,-4.2)  orange box -1.6,-4.9  green box 3.2,-4.8   |
 //!        |  purple box                              (blue pillar 4.5,-4.6)       |
-//!  z=-3.5|        puddle_c (-2.2,-2.6)   [ glass x∈[0,3] ]                      |
+//!  z=-3.5|  [pond -4.6,-2.35] puddle_c (-2.2,-2.6)   [ glass x∈[0,3] ]          |
 //!        |S5 z∈[-1.5,-0.5] y=1.25          puddle_b (1.9,-1.6)  tilted mirror   |
 //!        |S4 y=1.0      +--+                                    (5,-2)   table   |
 //!        |S3 y=0.75     |L | puddle_a (-0.6,0.6)   cyan box (2,0.8)     (6.3,-0.2)|
@@ -32,6 +32,7 @@
 //! - Tilted mirror (`tilted_mirror`): 1.5 × 2 m on a stone stand at (5, 0, -2), turned
 //!   -30° about Y, leaning back 20°; centre ≈ (5.18, 1.15, -2.31).
 //! - Stone basin: centred (4.5, 0, 3), rim 0.5 m; `water_surface` 3 × 2 m at y = 0.4.
+//! - Pond: centred (-4.6, 0, -2.35), rim 0.18 m; `pond_water` 2 × 1.4 m at y = 0.12.
 //! - L floor (polished marble, y = 0.001): x ∈ [-4.5, 1.5] × z ∈ [2.5, 4.5] plus
 //!   x ∈ [-4.5, -2.5] × z ∈ [-0.5, 2.5].
 //! - Puddles (y = 0.002): `puddle_a` (-0.6, 0.6), `puddle_b` (1.9, -1.6), `puddle_c`
