@@ -1,0 +1,338 @@
+//! The command line: subcommands per suite, shared options, and the entry point the binary
+//! and the tests call.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+use ppr_testbed::GpuContext;
+
+use crate::config::{BenchConfig, Resolution};
+use crate::error::BenchError;
+use crate::report::compare_report::write_compare_report;
+use crate::report::runtime_report::write_runtime_report;
+use crate::report::scaling_report::write_scaling_report;
+use crate::report::trade_report::write_trade_report;
+use crate::scaling::level_family::LevelFamily;
+use crate::suites::compare::{CompareConfig, CompareOutcome, run_compare};
+use crate::suites::extract_trade::{TradeConfig, run_extract_trade};
+use crate::suites::runtime::{RuntimeConfig, run_runtime};
+use crate::suites::scaling::{ScalingConfig, run_scaling};
+use crate::technique_spec::TechniqueSpec;
+
+const EXAMPLES: &str = "\
+Examples:
+  # CI smoke run: demo level, one camera, 64x36, every technique, a few frames
+  ppr-bench compare --quick --out target/bench-quick
+
+  # The full comparison (issue 6) on the demo level and the shared scenes
+  ppr-bench compare --scene demo --scene kitchen --scene small --out docs/perf
+
+  # PPR alone at 4K on the kitchen, tile culling forced off
+  ppr-bench compare --scene kitchen --resolution 4k --technique ppr:culling=off
+
+  # Runtime passes against their bandwidth floor (issue 4), scaling with shape count
+  # (issue 5) and the extractor's trade (issue 6), each into its own folder
+  ppr-bench runtime --out docs/perf
+  ppr-bench scaling --out docs/perf
+  ppr-bench extract-trade --out docs/perf
+
+Scenes: demo (assets/demo_room.glb), kitchen, small, collision-world, pool, mine (from
+--scenes-dir), or a path to a .glb/.gltf (append :all-planar for levels with one material).
+Run on a GPU with WGPU_BACKEND=vulkan; without one, wgpu's GL backend on llvmpipe works
+(only --quick is practical there).";
+
+/// Benchmarks of pixel-projected reflections: accuracy against time, runtime passes against
+/// the bandwidth floor, scaling with shape count, the extractor's trade.
+#[derive(Parser, Debug)]
+#[command(name = "ppr-bench", version, about, after_help = EXAMPLES)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub suite: Suite,
+}
+
+/// One suite per question.
+#[derive(Subcommand, Debug)]
+pub enum Suite {
+    /// Scenes x cameras x resolutions x techniques: GPU time per pass, PSNR/FLIP against the
+    /// exact reflection, Pareto plots, image sheet (comparison.md, comparison.csv).
+    Compare(CompareArgs),
+    /// Each PPR pass on the demo level and the kitchen against its bandwidth floor, with the
+    /// copy bandwidth measured in the same run (runtime.md, runtime.csv).
+    Runtime(RuntimeArgs),
+    /// Generated levels with 1 to 10 000 reflectors, tile culling on and off, and the plan's
+    /// two thresholds (scaling.md, scaling.csv, scaling.png).
+    Scaling(ScalingArgs),
+    /// Extraction settings per scene: rectangles against coverage and their GPU cost
+    /// (extract_trade.md, extract_trade.csv, one plot per scene).
+    ExtractTrade(TradeArgs),
+}
+
+/// Options of `runtime`.
+#[derive(Args, Debug, Clone)]
+pub struct RuntimeArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Scene to run (repeat; default: demo and kitchen).
+    #[arg(long = "scene")]
+    pub scenes: Vec<String>,
+    /// Render size (repeat; default: 1080p and 4k).
+    #[arg(long = "resolution")]
+    pub resolutions: Vec<Resolution>,
+    /// Most cameras per scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_cameras: usize,
+    /// MiB in each buffer of the copy kernel that measures the bandwidth.
+    #[arg(long, default_value_t = 256)]
+    pub copy_mib: u64,
+}
+
+/// Options of `scaling`.
+#[derive(Args, Debug, Clone)]
+pub struct ScalingArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Shape counts (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "1,10,100,1000,10000")]
+    pub counts: Vec<usize>,
+    /// Shape counts of the tile-culling threshold sweep (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "1,2,4,8,16,32,64,128,256")]
+    pub threshold_counts: Vec<usize>,
+    /// Screen coverages of the indirect-dispatch sweep (comma-separated).
+    #[arg(long, value_delimiter = ',', default_value = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0")]
+    pub coverages: Vec<f64>,
+    /// Level families (repeat; default: stairway, tiled-floor, facade).
+    #[arg(long = "family")]
+    pub families: Vec<String>,
+    /// Render size.
+    #[arg(long, default_value = "3840x2160")]
+    pub resolution: Resolution,
+}
+
+/// Options of `extract-trade`.
+#[derive(Args, Debug, Clone)]
+pub struct TradeArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Scene to run (repeat; default: demo, kitchen, small, collision-world).
+    #[arg(long = "scene")]
+    pub scenes: Vec<String>,
+    /// Render size.
+    #[arg(long, default_value = "3840x2160")]
+    pub resolution: Resolution,
+    /// Most cameras per scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_cameras: usize,
+}
+
+/// Options every suite takes.
+#[derive(Args, Debug, Clone)]
+pub struct CommonArgs {
+    /// Folder for the reports (created if missing).
+    #[arg(long, default_value = "target/bench")]
+    pub out: PathBuf,
+    /// Repository root (holds assets/demo_room.glb).
+    #[arg(long, default_value = ".")]
+    pub repo_root: PathBuf,
+    /// Folder of the shared scenes.
+    #[arg(long, default_value = "../shared/scenes")]
+    pub scenes_dir: PathBuf,
+    /// Timed frames per run (after the warm-up).
+    #[arg(long, default_value_t = 30)]
+    pub frames: usize,
+    /// Warm-up frames per run.
+    #[arg(long, default_value_t = 5)]
+    pub warmup: usize,
+    /// Timed frames of runs whose first timed frame takes more than 50 ms.
+    #[arg(long, default_value_t = 10)]
+    pub slow_frames: usize,
+    /// MiB written to a scratch buffer before each frame to evict the GPU caches (0: none).
+    #[arg(long, default_value_t = 256)]
+    pub flush_mib: u64,
+    /// Small and fast, for CI: the demo level, one camera, 64x36, 1 warm-up and 3 timed frames.
+    #[arg(long)]
+    pub quick: bool,
+}
+
+/// Options of `compare`.
+#[derive(Args, Debug, Clone)]
+pub struct CompareArgs {
+    #[command(flatten)]
+    pub common: CommonArgs,
+    /// Scene to run (repeat; default: demo, kitchen, small, collision-world).
+    #[arg(long = "scene")]
+    pub scenes: Vec<String>,
+    /// Camera name to keep (repeat; default: every camera of the scene, up to --max-cameras).
+    #[arg(long = "camera")]
+    pub cameras: Vec<String>,
+    /// Most cameras per scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_cameras: usize,
+    /// Render size, WIDTHxHEIGHT or 1080p/1440p/4k/8k (repeat; default: all four).
+    #[arg(long = "resolution")]
+    pub resolutions: Vec<Resolution>,
+    /// Technique and setting, `name` or `name:key=value,...` (repeat; default: every PPR
+    /// setting, exact, and the baselines with several SSR step counts and thicknesses).
+    /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect= on|off|auto), exact,
+    /// ssr-brute (thickness=), ssr-low (stride=, refine=, thickness=), ssr-hiz
+    /// (iterations=, thickness=), sspr, sspr-stretch, planar.
+    #[arg(long = "technique")]
+    pub techniques: Vec<TechniqueSpec>,
+    /// Measure quality only up to this many megapixels (FLIP runs on the CPU; the default
+    /// skips 8K).
+    #[arg(long, default_value_t = 8.3)]
+    pub quality_max_mpix: f64,
+    /// Size of the Pareto plots and of the cost ratios.
+    #[arg(long, default_value = "3840x2160")]
+    pub pareto_resolution: Resolution,
+    /// Size of the image sheet's crops.
+    #[arg(long, default_value = "1920x1080")]
+    pub sheet_resolution: Resolution,
+}
+
+/// The size of `--quick` runs.
+const TINY: Resolution = Resolution { width: 64, height: 36 };
+
+/// The given list, or the quick or full default.
+fn pick<T: Clone, D: Clone + Into<T>>(
+    given: &[T],
+    quick: bool,
+    quick_default: &[D],
+    full_default: &[D],
+) -> Vec<T> {
+    if !given.is_empty() {
+        return given.to_vec();
+    }
+    let d = if quick { quick_default } else { full_default };
+    d.iter().cloned().map(Into::into).collect()
+}
+
+fn bench_config(common: &CommonArgs, command_line: &str) -> BenchConfig {
+    let mut cfg = BenchConfig::full(common.out.clone(), common.repo_root.clone(), common.scenes_dir.clone());
+    cfg.frames.timed = common.frames.max(1);
+    cfg.frames.warmup = common.warmup;
+    cfg.frames.slow_timed = common.slow_frames.min(cfg.frames.timed);
+    cfg.flush_bytes = common.flush_mib << 20;
+    cfg.command_line = command_line.to_owned();
+    if common.quick { cfg.into_quick() } else { cfg }
+}
+
+fn compare_config(args: &CompareArgs, quick: bool) -> CompareConfig {
+    let scenes = match (args.scenes.is_empty(), quick) {
+        (false, _) => args.scenes.clone(),
+        (true, true) => vec!["demo".into()],
+        (true, false) => ["demo", "kitchen", "small", "collision-world"].map(String::from).to_vec(),
+    };
+    let resolutions = match (args.resolutions.is_empty(), quick) {
+        (false, _) => args.resolutions.clone(),
+        (true, true) => vec![TINY],
+        (true, false) => Resolution::STANDARD.to_vec(),
+    };
+    let techniques =
+        if args.techniques.is_empty() { TechniqueSpec::defaults() } else { args.techniques.clone() };
+    CompareConfig {
+        scenes,
+        cameras: if quick && args.cameras.is_empty() {
+            vec!["cam_mirror".into()]
+        } else {
+            args.cameras.clone()
+        },
+        max_cameras: args.max_cameras,
+        resolutions: resolutions.clone(),
+        techniques,
+        quality_max_pixels: (args.quality_max_mpix * 1e6) as u64,
+        sheet_resolution: if quick { resolutions[0] } else { args.sheet_resolution },
+        pareto_resolution: if quick { resolutions[0] } else { args.pareto_resolution },
+    }
+}
+
+/// Parses `args` (the first is the program name) and runs the suite; returns the files
+/// written.
+///
+/// # Errors
+/// Bad arguments (clap's message), no GPU adapter, or a failing suite.
+pub fn run_cli<I, T>(args: I) -> Result<Vec<PathBuf>, BenchError>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<std::ffi::OsString> + Clone,
+{
+    let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
+    let command_line = args.iter().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" ");
+    let cli = Cli::try_parse_from(&args).map_err(|e| BenchError::Spec(e.to_string()))?;
+    let gpu = GpuContext::new_headless()?;
+    eprintln!("adapter: {}", gpu.describe());
+    match &cli.suite {
+        Suite::Compare(a) => {
+            let cfg = bench_config(&a.common, &command_line);
+            let cc = compare_config(a, cfg.quick);
+            // The report is rewritten after every scene, so a run cut short keeps what it did.
+            let mut write = |o: &CompareOutcome| {
+                write_compare_report(
+                    &cfg.out_dir,
+                    o,
+                    &command_line,
+                    cc.pareto_resolution,
+                    cc.quality_max_pixels,
+                )
+                .map(|_| ())
+            };
+            let outcome = run_compare(&gpu, &cfg, &cc, &mut write)?;
+            write_compare_report(
+                &cfg.out_dir,
+                &outcome,
+                &command_line,
+                cc.pareto_resolution,
+                cc.quality_max_pixels,
+            )
+        }
+        Suite::Runtime(a) => {
+            let cfg = bench_config(&a.common, &command_line);
+            let rc = RuntimeConfig {
+                scenes: pick(&a.scenes, cfg.quick, &["demo"], &["demo", "kitchen"]),
+                resolutions: pick(&a.resolutions, cfg.quick, &[TINY], &[Resolution::HD, Resolution::UHD]),
+                max_cameras: if cfg.quick { 1 } else { a.max_cameras },
+                copy_bytes: if cfg.quick { 1 << 20 } else { a.copy_mib << 20 },
+            };
+            let outcome = run_runtime(&gpu, &cfg, &rc)?;
+            write_runtime_report(&cfg.out_dir, &outcome, &command_line)
+        }
+        Suite::Scaling(a) => {
+            let cfg = bench_config(&a.common, &command_line);
+            let families = if a.families.is_empty() {
+                LevelFamily::ALL.to_vec()
+            } else {
+                a.families
+                    .iter()
+                    .map(|f| {
+                        LevelFamily::ALL.into_iter().find(|k| k.as_str() == f).ok_or_else(|| {
+                            BenchError::Spec(format!("unknown family `{f}` (stairway, tiled-floor, facade)"))
+                        })
+                    })
+                    .collect::<Result<_, _>>()?
+            };
+            let sc = ScalingConfig {
+                families,
+                counts: if cfg.quick { vec![1, 10] } else { a.counts.clone() },
+                threshold_counts: if cfg.quick { vec![1, 2] } else { a.threshold_counts.clone() },
+                coverages: if cfg.quick { vec![0.2, 1.0] } else { a.coverages.clone() },
+                resolution: if cfg.quick { TINY } else { a.resolution },
+            };
+            let outcome = run_scaling(&gpu, &cfg, &sc)?;
+            write_scaling_report(&cfg.out_dir, &outcome, &command_line)
+        }
+        Suite::ExtractTrade(a) => {
+            let cfg = bench_config(&a.common, &command_line);
+            let tc = TradeConfig {
+                scenes: pick(
+                    &a.scenes,
+                    cfg.quick,
+                    &["demo"],
+                    &["demo", "kitchen", "small", "collision-world"],
+                ),
+                resolution: if cfg.quick { TINY } else { a.resolution },
+                max_cameras: if cfg.quick { 1 } else { a.max_cameras },
+            };
+            let (rows, notes) = run_extract_trade(&gpu, &cfg, &tc)?;
+            write_trade_report(&cfg.out_dir, &rows, &notes, &gpu.describe(), tc.resolution, &command_line)
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! Runs a technique for many frames and collects its pass times: warm-up frames first (back
+//! to back, at least [`WARMUP_SECONDS`]), then timed frames, each after a write over a large
+//! scratch buffer that evicts the GPU's caches (as the rest of a game frame would).
+
+use std::time::Instant;
+
+use ppr_runtime::Camera;
+
+use crate::technique::{BenchFrame, BenchTechnique};
+use crate::timing::{PassTime, TimingSeries, TimingSource};
+
+/// How many frames a run takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameCounts {
+    /// Frames run and thrown away first (pipelines, caches, clocks).
+    pub warmup: usize,
+    /// Frames timed.
+    pub timed: usize,
+    /// Frames timed instead when the first timed frame took longer than [`SLOW_FRAME_MS`]
+    /// (brute-force SSR and the exact re-render at 8K: their medians are steady and far
+    /// from PPR's, and a full count would not fit a device lease).
+    pub slow_timed: usize,
+    /// Warm up for at least this long, frames back to back ([`WARMUP_SECONDS`] for
+    /// measurements; 0 for `--quick`).
+    pub warmup_seconds: f64,
+}
+
+/// GPU milliseconds above which a run takes [`FrameCounts::slow_timed`] frames.
+pub const SLOW_FRAME_MS: f64 = 50.0;
+
+/// Shortest warm-up, seconds of frames submitted back to back. Without it, a short
+/// technique timed right after seconds of CPU work (read-backs, metrics) ran 2–2.6× slower
+/// on the H100 at 4K, every pass alike (docs/perf/comparison.md).
+pub const WARMUP_SECONDS: f64 = 0.2;
+/// Most warm-up frames, whatever their time.
+const MAX_WARMUP_FRAMES: usize = 2000;
+
+/// A scratch buffer written before every frame so that inputs do not sit in the L2 cache
+/// from the previous frame (the H100 has 50 MB of it: a 1080p frame's inputs would fit).
+pub struct CacheFlush {
+    buffer: Option<wgpu::Buffer>,
+}
+
+impl CacheFlush {
+    /// A flush of `bytes` (0: none).
+    pub fn new(device: &wgpu::Device, bytes: u64) -> Self {
+        let buffer = (bytes > 0).then(|| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("bench cache flush"),
+                size: bytes.next_multiple_of(4),
+                usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::STORAGE,
+                mapped_at_creation: false,
+            })
+        });
+        Self { buffer }
+    }
+
+    fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+        if let Some(b) = &self.buffer {
+            encoder.clear_buffer(b, 0, None);
+        }
+    }
+}
+
+/// What a run of frames measured.
+pub struct FrameRun {
+    pub timings: TimingSeries,
+    pub source: TimingSource,
+    /// The technique's plan of the last frame.
+    pub plan: String,
+}
+
+/// How a suite runs frames: the counts and the cache flush before each frame.
+pub struct FrameLoop {
+    pub counts: FrameCounts,
+    pub flush: CacheFlush,
+}
+
+impl FrameLoop {
+    /// The frame loop of `cfg` on `device` (allocates the flush buffer).
+    pub fn new(device: &wgpu::Device, cfg: &crate::config::BenchConfig) -> Self {
+        Self { counts: cfg.frames, flush: CacheFlush::new(device, cfg.flush_bytes) }
+    }
+
+    /// Runs `technique` on `frame` seen by `camera` at `size`.
+    pub fn run(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        technique: &mut dyn BenchTechnique,
+        frame: &BenchFrame<'_>,
+        camera: &Camera,
+        size: [u32; 2],
+    ) -> FrameRun {
+        run_frames(device, queue, technique, frame, camera, size, self.counts, &self.flush)
+    }
+}
+
+/// Runs `technique` on `frame` for `counts` frames.
+#[allow(clippy::too_many_arguments)] // the loop's inputs, each used once; callers use `FrameLoop`
+fn run_frames(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    technique: &mut dyn BenchTechnique,
+    frame: &BenchFrame<'_>,
+    camera: &Camera,
+    size: [u32; 2],
+    counts: FrameCounts,
+    flush: &CacheFlush,
+) -> FrameRun {
+    let mut timings = TimingSeries::default();
+    let mut source = TimingSource::GpuTimestamps;
+    let mut plan = String::new();
+    // Warm-up: frames back to back, without waiting, for at least `warmup_seconds`, so that
+    // the GPU leaves whatever clock state the previous (CPU-bound) work left it in.
+    let start = Instant::now();
+    let mut warm = 0;
+    while warm < counts.warmup.max(1)
+        || (start.elapsed().as_secs_f64() < counts.warmup_seconds && warm < MAX_WARMUP_FRAMES)
+    {
+        plan = technique.prepare(device, queue, camera, size);
+        let mut encoder = device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench warm-up frame") });
+        flush.encode(&mut encoder);
+        technique.encode(&mut encoder, frame);
+        queue.submit([encoder.finish()]);
+        warm += 1;
+        if warm % 16 == 0 {
+            // Keep the queue short enough that the time above means GPU time.
+            let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        }
+    }
+    let _ = technique.read_timings(device);
+    let mut total = counts.timed;
+    let mut i = 0;
+    while i < total {
+        plan = technique.prepare(device, queue, camera, size);
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench frame") });
+        flush.encode(&mut encoder);
+        technique.encode(&mut encoder, frame);
+        let start = Instant::now();
+        queue.submit([encoder.finish()]);
+        let passes = technique.read_timings(device);
+        let passes = match passes {
+            Some(p) => p,
+            None => {
+                let _ = device.poll(wgpu::PollType::wait_indefinitely());
+                source = TimingSource::WallClock;
+                vec![PassTime::new("frame (wall clock)", start.elapsed().as_secs_f64() * 1e3)]
+            }
+        };
+        let frame_ms: f64 = passes.iter().map(|p| p.ms).sum();
+        if i == 0 && frame_ms > SLOW_FRAME_MS {
+            total = counts.slow_timed.clamp(1, counts.timed);
+        }
+        timings.push_frame(&passes);
+        i += 1;
+    }
+    FrameRun { timings, source, plan: plan.replace('\n', " | ") }
+}

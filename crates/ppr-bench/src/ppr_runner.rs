@@ -1,0 +1,64 @@
+//! PPR from `ppr-runtime` (through the testbed's [`PprTechnique`]) as a bench technique.
+
+use ppr_format::ReflectorSet;
+use ppr_runtime::{Camera, PlanParams, ReflectionRenderer, ReflectionSettings};
+use ppr_testbed::{PprTechnique, ReflectionTechnique};
+
+use crate::technique::{BenchFrame, BenchTechnique, Family};
+use crate::timing::PassTime;
+
+/// PPR with one set of reflection-pass steps and plan parameters.
+pub struct PprRunner {
+    label: String,
+    technique: PprTechnique,
+}
+
+impl PprRunner {
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        reflectors: &ReflectorSet,
+        label: impl Into<String>,
+        settings: ReflectionSettings,
+        plan_params: PlanParams,
+    ) -> Self {
+        let mut technique = PprTechnique::new(device, queue, reflectors, settings);
+        technique.renderer().plan_params = plan_params;
+        Self { label: label.into(), technique }
+    }
+
+    /// The runtime renderer (plan, intermediate buffer, active tiles).
+    pub fn renderer(&mut self) -> &mut ReflectionRenderer {
+        self.technique.renderer()
+    }
+}
+
+impl BenchTechnique for PprRunner {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn family(&self) -> Family {
+        Family::Ppr
+    }
+
+    fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        size: [u32; 2],
+    ) -> String {
+        self.technique.prepare(device, queue, camera, size)
+    }
+
+    fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, frame: &BenchFrame<'_>) {
+        self.technique.encode(encoder, &frame.reflection);
+    }
+
+    fn read_timings(&mut self, device: &wgpu::Device) -> Option<Vec<PassTime>> {
+        let passes: Vec<PassTime> =
+            self.technique.timings(device)?.into_iter().map(|(name, ms)| PassTime::new(name, ms)).collect();
+        (!passes.is_empty()).then_some(passes)
+    }
+}

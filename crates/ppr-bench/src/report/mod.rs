@@ -1,0 +1,10 @@
+//! Files the suites write: CSV, markdown tables, plots and image sheets.
+
+pub mod compare_report;
+pub mod csv_file;
+pub mod image_sheet;
+pub mod markdown;
+pub mod plot;
+pub mod runtime_report;
+pub mod scaling_report;
+pub mod trade_report;

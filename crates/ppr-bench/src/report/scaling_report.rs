@@ -1,0 +1,262 @@
+//! `scaling.md`, `scaling.csv` and `scaling.png`: cost against shape count, and the plan's
+//! two thresholds.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use crate::error::BenchError;
+use crate::report::csv_file::{CsvTable, num};
+use crate::report::markdown::{MarkdownTable, ms};
+use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
+use crate::suites::scaling::{ScalingOutcome, ScalingRow, culling_crossover, indirect_crossover};
+
+fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
+    for r in rows {
+        for (pass, s) in r.timings.passes() {
+            csv.push(vec![
+                sweep.into(),
+                r.family.clone(),
+                r.shapes.to_string(),
+                r.variant.clone(),
+                r.visible.to_string(),
+                format!("{:.4}", r.coverage),
+                r.passes.clone(),
+                pass,
+                num(s.median, 4),
+                num(s.p95, 4),
+                s.count.to_string(),
+                r.source.as_str().into(),
+                res.into(),
+                adapter.into(),
+            ]);
+        }
+    }
+}
+
+fn find<'a>(rows: &'a [ScalingRow], family: &str, n: usize, variant: &str) -> Option<&'a ScalingRow> {
+    rows.iter().find(|r| r.family == family && r.shapes == n && r.variant == variant)
+}
+
+/// Writes the report files under `dir`.
+///
+/// # Errors
+/// A file cannot be written.
+pub fn write_scaling_report(
+    dir: &Path,
+    o: &ScalingOutcome,
+    command: &str,
+) -> Result<Vec<PathBuf>, BenchError> {
+    std::fs::create_dir_all(dir).map_err(|e| BenchError::io(dir, e))?;
+    let res = o.resolution.to_string();
+    let mut csv = CsvTable::new(&[
+        "sweep",
+        "family",
+        "shapes",
+        "variant",
+        "visible",
+        "coverage",
+        "passes",
+        "pass",
+        "median_ms",
+        "p95_ms",
+        "frames",
+        "timing_source",
+        "resolution",
+        "adapter",
+    ]);
+    csv_rows(&mut csv, "scaling", &o.rows, &o.adapter, &res);
+    csv_rows(&mut csv, "culling-threshold", &o.threshold_rows, &o.adapter, &res);
+    csv_rows(&mut csv, "indirect-threshold", &o.coverage_rows, &o.adapter, &res);
+    let csv_path = dir.join("scaling.csv");
+    csv.write(&csv_path)?;
+
+    let mut md = String::new();
+    let _ = writeln!(md, "# Scaling: GPU time against shape count\n");
+    let _ = writeln!(md, "Machine: **{}**, {res}.\n", o.adapter);
+    let _ = writeln!(md, "Command:\n\n```sh\n{command}\n```\n");
+    let _ = writeln!(
+        md,
+        "Generated levels (`ppr-bench`'s `scaling::level_family`): a stairway of mirror treads \
+         (6 m wide, 6 m rise over a 12 m run, occluders: treads above within 3 step depths), \
+         puddles on a 16 m × 16 m tiled floor (one per tile, 50–90 % of it, one plane) and \
+         windows on a 20 m × 16 m facade (one plane); the overall extent is fixed, so the \
+         reflecting screen area stays about the same while the count grows. Times are \
+         medians of GPU timestamps (PPR with every reflection step on); `overhead` is the \
+         frame's total minus the same family's total with one shape.\n"
+    );
+    let mut families: Vec<String> = Vec::new();
+    for r in &o.rows {
+        if !families.contains(&r.family) {
+            families.push(r.family.clone());
+        }
+    }
+    let mut counts: Vec<usize> = o.rows.iter().map(|r| r.shapes).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    let mut t = MarkdownTable::new(&[
+        "family",
+        "#shapes",
+        "#visible",
+        "#off: projection",
+        "#off: total",
+        "#on: projection",
+        "#on: total",
+        "#on: overhead",
+        "#best: overhead",
+    ]);
+    for f in &families {
+        let base =
+            |v: &str| find(&o.rows, f, counts.first().copied().unwrap_or(1), v).map(ScalingRow::total_ms);
+        let base_best = match (base("culling off"), base("culling on")) {
+            (Some(a), Some(b)) => a.min(b),
+            _ => f64::NAN,
+        };
+        for &n in &counts {
+            let (Some(off), Some(on)) =
+                (find(&o.rows, f, n, "culling off"), find(&o.rows, f, n, "culling on"))
+            else {
+                continue;
+            };
+            t.push(vec![
+                f.clone(),
+                n.to_string(),
+                on.visible.to_string(),
+                ms(off.pass_ms("projection")),
+                ms(off.total_ms()),
+                ms(on.pass_ms("projection")),
+                ms(on.total_ms()),
+                ms(on.total_ms() - base("culling on").unwrap_or(f64::NAN)),
+                ms(off.total_ms().min(on.total_ms()) - base_best),
+            ]);
+        }
+    }
+    let _ = writeln!(md, "## Per pass against shape count (ms)\n");
+    md.push_str(&t.render());
+    let _ = writeln!(
+        md,
+        "\nGrowth of the total (culling on) between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
+    );
+    for f in &families {
+        let mut parts = Vec::new();
+        for w in counts.windows(2) {
+            if let (Some(a), Some(b)) =
+                (find(&o.rows, f, w[0], "culling on"), find(&o.rows, f, w[1], "culling on"))
+            {
+                let k = (b.total_ms() / a.total_ms()).ln() / (w[1] as f64 / w[0] as f64).ln();
+                parts.push(format!("{}→{}: {k:.2}", w[0], w[1]));
+            }
+        }
+        let _ = writeln!(md, "- {f}: {}", parts.join(", "));
+    }
+    let _ = writeln!(md, "\nEvery pass of every row is in `scaling.csv`.\n");
+
+    let mut t = MarkdownTable::new(&[
+        "family",
+        "#shapes",
+        "#culling off: total ms",
+        "#culling on: total ms",
+        "faster",
+    ]);
+    let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();
+    tcounts.sort_unstable();
+    tcounts.dedup();
+    for f in &families {
+        for &n in &tcounts {
+            let (Some(off), Some(on)) =
+                (find(&o.threshold_rows, f, n, "culling off"), find(&o.threshold_rows, f, n, "culling on"))
+            else {
+                continue;
+            };
+            t.push(vec![
+                f.clone(),
+                n.to_string(),
+                ms(off.total_ms()),
+                ms(on.total_ms()),
+                if on.total_ms() <= off.total_ms() { "on".into() } else { "off".into() },
+            ]);
+        }
+    }
+    let _ = writeln!(md, "## Tile-culling threshold (`PlanParams::tile_culling_min_shapes`)\n");
+    md.push_str(&t.render());
+    for f in &families {
+        let c = culling_crossover(&o.threshold_rows, f);
+        let _ = writeln!(
+            md,
+            "- {f}: culling is never slower from {} shapes on",
+            c.map_or("— (never)".into(), |n| n.to_string())
+        );
+    }
+    let _ = writeln!(md, "\n## Indirect-dispatch threshold (`PlanParams::indirect_max_coverage`)\n");
+    let _ = writeln!(
+        md,
+        "One floor mirror seen from straight above, sized so that its screen rectangle covers the \
+         given share of the screen; classify + clear + reflection (+ projection, the same in both) \
+         with indirect dispatch forced off and on.\n"
+    );
+    let mut t = MarkdownTable::new(&[
+        "#coverage",
+        "#off: total ms",
+        "#on: total ms",
+        "#on: classify",
+        "#on: clear",
+        "#on: reflection",
+        "#off: clear",
+        "#off: reflection",
+        "faster",
+    ]);
+    let mut covs: Vec<f32> = o.coverage_rows.iter().map(|r| r.coverage).collect();
+    covs.sort_by(f32::total_cmp);
+    covs.dedup();
+    for c in covs {
+        let get = |v: &str| o.coverage_rows.iter().find(|r| r.coverage == c && r.variant == v);
+        let (Some(off), Some(on)) = (get("indirect off"), get("indirect on")) else { continue };
+        t.push(vec![
+            format!("{c:.3}"),
+            ms(off.total_ms()),
+            ms(on.total_ms()),
+            ms(on.pass_ms("classify")),
+            ms(on.pass_ms("clear")),
+            ms(on.pass_ms("reflection")),
+            ms(off.pass_ms("clear")),
+            ms(off.pass_ms("reflection")),
+            if on.total_ms() <= off.total_ms() { "on".into() } else { "off".into() },
+        ]);
+    }
+    md.push_str(&t.render());
+    let _ = writeln!(
+        md,
+        "- indirect dispatch is never slower up to a coverage of {}\n",
+        indirect_crossover(&o.coverage_rows).map_or("— (never)".into(), |c| format!("{c:.3}"))
+    );
+
+    let plot_path = dir.join("scaling.png");
+    let mut series = Vec::new();
+    for (k, f) in families.iter().enumerate() {
+        for (j, v) in ["culling off", "culling on"].iter().enumerate() {
+            let points: Vec<PlotPoint> = counts
+                .iter()
+                .filter_map(|&n| find(&o.rows, f, n, v))
+                .map(|r| PlotPoint { x: r.shapes as f64, y: r.total_ms(), label: String::new() })
+                .collect();
+            series.push(PlotSeries {
+                name: format!("{f}, {v}"),
+                color: PALETTE[(2 * k + j) % PALETTE.len()],
+                points,
+                line: true,
+            });
+        }
+    }
+    let spec = PlotSpec {
+        title: format!("PPR frame GPU time against shape count, {res}"),
+        x_label: "reflectors (log scale)".into(),
+        y_label: "GPU ms, all passes (median, log scale)".into(),
+        log_x: true,
+        log_y: true,
+        size: (1100, 700),
+    };
+    write_plot(&plot_path, &spec, &series)?;
+    let _ = writeln!(md, "![scaling](scaling.png)\n");
+    let md_path = dir.join("scaling.md");
+    std::fs::write(&md_path, md).map_err(|e| BenchError::io(&md_path, e))?;
+    Ok(vec![md_path, csv_path, plot_path])
+}

@@ -1,0 +1,254 @@
+//! The comparison (issue 6): scenes × cameras × resolutions × techniques, each timed per
+//! pass and measured against the exact reflection.
+
+use std::sync::Arc;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use ppr_runtime::PlanParams;
+use ppr_testbed::gbuffer_targets::Target;
+use ppr_testbed::readback::read_rgba_f32;
+use ppr_testbed::technique::REFLECTION_FORMAT;
+use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs};
+
+use crate::config::{BenchConfig, Resolution};
+use crate::error::BenchError;
+use crate::frame_loop::FrameLoop;
+use crate::quality::{Quality, ReferenceFrame};
+use crate::quality_pool::QualityPool;
+use crate::report::image_sheet::{
+    SheetRow, crop_window, visualize_reference, visualize_scene, visualize_technique,
+};
+use crate::run_result::RunResult;
+use crate::scene::{BenchScene, SceneOptions, SceneSpec};
+use crate::technique::{BenchFrame, ReflectionOutput};
+use crate::technique_spec::{TechniqueContext, TechniqueSpec, build_technique};
+
+/// What the comparison runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompareConfig {
+    /// Scene names or paths (see [`SceneSpec::parse`]).
+    pub scenes: Vec<String>,
+    /// Camera names to keep (all when empty).
+    pub cameras: Vec<String>,
+    /// At most this many cameras per scene.
+    pub max_cameras: usize,
+    /// Render sizes.
+    pub resolutions: Vec<Resolution>,
+    /// Techniques and settings.
+    pub techniques: Vec<TechniqueSpec>,
+    /// Quality is measured only at sizes of at most this many pixels (FLIP on the CPU is
+    /// slow; 8K is skipped by default).
+    pub quality_max_pixels: u64,
+    /// Size of the image sheet's crops (the first camera of each scene).
+    pub sheet_resolution: Resolution,
+    /// Size of the accuracy-against-time plot.
+    pub pareto_resolution: Resolution,
+}
+
+/// Everything the comparison found.
+pub struct CompareOutcome {
+    pub adapter: String,
+    pub results: Vec<RunResult>,
+    pub sheets: Vec<SheetRow>,
+    /// Per scene: what was noticed while loading, and scenes that were skipped.
+    pub notes: Vec<String>,
+}
+
+/// Runs the comparison on `gpu`.
+///
+/// # Errors
+/// A technique cannot be built, or a readback fails. Scenes that cannot be loaded are
+/// skipped with a note.
+pub fn run_compare(
+    gpu: &GpuContext,
+    cfg: &BenchConfig,
+    cc: &CompareConfig,
+    after_scene: &mut dyn FnMut(&CompareOutcome) -> Result<(), BenchError>,
+) -> Result<CompareOutcome, BenchError> {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let mut notes = Vec::new();
+    let options = SceneOptions { max_cameras: cc.max_cameras, ..SceneOptions::default() };
+    let mut scenes = Vec::new();
+    for text in &cc.scenes {
+        let spec = SceneSpec::parse(text, &cfg.repo_root, &cfg.scenes_dir)?;
+        match BenchScene::load_ranked(&spec, &options, gpu) {
+            Ok(mut scene) => {
+                scene.keep_cameras(&cc.cameras);
+                for n in &scene.notes {
+                    notes.push(format!("{}: {n}", scene.name));
+                }
+                scenes.push(scene);
+            }
+            Err(e) => notes.push(format!("{}: skipped, cannot load: {e}", spec.name)),
+        }
+    }
+    let total: usize =
+        scenes.iter().map(|s| s.cameras.len()).sum::<usize>() * cc.resolutions.len() * cc.techniques.len();
+    let bar = ProgressBar::new(total as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let frames = FrameLoop::new(device, cfg);
+    let mut outcome =
+        CompareOutcome { adapter: gpu.describe(), results: Vec::new(), sheets: Vec::new(), notes };
+
+    for scene in &scenes {
+        // Metrics wait until the scene's timing is done: CPU threads busy with FLIP delay
+        // the frame loop's submissions, the GPU idles between frames and clocks down, and
+        // the timestamps of the runs beside them come out up to 2.5x slower (seen on the H100).
+        let mut pending = Vec::new();
+        let results = &mut outcome.results;
+        let sheets = &mut outcome.sheets;
+        let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
+        level.settings = scene.render_settings();
+        let ctx = TechniqueContext {
+            device,
+            queue,
+            level: &scene.level,
+            reflectors: &scene.reflectors,
+            render: scene.render_settings(),
+            plan_params: PlanParams::default(),
+        };
+        let mut techniques = Vec::new();
+        for spec in &cc.techniques {
+            techniques.push(build_technique(spec, &ctx)?);
+        }
+        for (cam_index, cam) in scene.cameras.iter().enumerate() {
+            for &res in &cc.resolutions {
+                let size = res.size();
+                level.prepare(device, queue, &cam.camera, size);
+                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("bench scene frame"),
+                });
+                level.encode_gbuffer(&mut encoder);
+                level.encode_reference(&mut encoder);
+                queue.submit([encoder.finish()]);
+                let reference = if res.pixels() <= cc.quality_max_pixels {
+                    Some(Arc::new(ReferenceFrame::new(FrameImages::read(device, queue, &level)?)))
+                } else {
+                    None
+                };
+                let sheet_here = cam_index == 0 && res == cc.sheet_resolution;
+                let mut sheet = match (&reference, sheet_here) {
+                    (Some(r), true) => {
+                        let window = crop_window(&r.on_screen);
+                        Some(SheetRow {
+                            scene: scene.name.clone(),
+                            camera: cam.name.clone(),
+                            resolution: res,
+                            window,
+                            columns: vec![
+                                ("scene".into(), visualize_scene(r, window, cfg.tone_map)),
+                                ("exact reflection".into(), visualize_reference(r, window, cfg.tone_map)),
+                            ],
+                        })
+                    }
+                    _ => None,
+                };
+                let output = output_target(device, size);
+                let message = format!("{} {} {res}", scene.name, cam.name);
+                log(&bar, &message);
+                bar.set_message(message);
+                for technique in techniques.iter_mut() {
+                    clear_output(device, queue, &output);
+                    let frame = BenchFrame {
+                        level: &level,
+                        reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+                    };
+                    let run = frames.run(device, queue, technique.as_mut(), &frame, &cam.camera, size);
+                    let id = results.len();
+                    let mut quality = None;
+                    if let Some(r) = &reference {
+                        match technique.output() {
+                            ReflectionOutput::Reference => quality = Some(Quality::exact(r)),
+                            ReflectionOutput::OutputTexture => {
+                                let image = read_rgba_f32(device, queue, &output.texture)?;
+                                if let Some(s) = sheet.as_mut() {
+                                    s.columns.push((
+                                        technique.label(),
+                                        visualize_technique(r, &image, s.window, cfg.tone_map),
+                                    ));
+                                }
+                                pending.push((id, Arc::clone(r), image));
+                            }
+                        }
+                    }
+                    results.push(RunResult {
+                        scene: scene.name.clone(),
+                        camera: cam.name.clone(),
+                        resolution: res,
+                        technique: technique.label(),
+                        family: technique.family(),
+                        timings: run.timings,
+                        timing_source: run.source,
+                        quality,
+                        plan: run.plan,
+                    });
+                    bar.inc(1);
+                }
+                if let Some(s) = sheet {
+                    sheets.push(s);
+                }
+            }
+        }
+        bar.set_message(format!("{}: waiting for the quality metrics", scene.name));
+        let mut pool = QualityPool::new(QualityPool::default_limit());
+        for (id, reference, image) in pending {
+            pool.submit(id, reference, image, cfg.tone_map);
+        }
+        for (id, q) in pool.finish() {
+            match q {
+                Ok(q) => outcome.results[id].quality = Some(q),
+                Err(e) => outcome
+                    .notes
+                    .push(format!("quality of run {id} ({}): {e}", outcome.results[id].technique)),
+            }
+        }
+        after_scene(&outcome)?;
+    }
+    bar.finish_with_message("done");
+    Ok(outcome)
+}
+
+/// Prints a line above the bar, or on stderr when the bar is hidden (not a terminal).
+pub fn log(bar: &ProgressBar, line: &str) {
+    if bar.is_hidden() {
+        eprintln!("{line}");
+    } else {
+        bar.println(line);
+    }
+}
+
+fn output_target(device: &wgpu::Device, size: [u32; 2]) -> Target {
+    let usage = wgpu::TextureUsages::STORAGE_BINDING
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC
+        | wgpu::TextureUsages::RENDER_ATTACHMENT;
+    Target::new(device, "bench technique output", size, REFLECTION_FORMAT, usage)
+}
+
+/// Clears the output to "no reflection" so that one technique never sees another's pixels.
+fn clear_output(device: &wgpu::Device, queue: &wgpu::Queue, output: &Target) {
+    let mut encoder =
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench clear output") });
+    {
+        let _pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+            label: Some("bench clear output"),
+            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                view: &output.view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                    store: wgpu::StoreOp::Store,
+                },
+            })],
+            depth_stencil_attachment: None,
+            timestamp_writes: None,
+            occlusion_query_set: None,
+            multiview_mask: None,
+        });
+    }
+    queue.submit([encoder.finish()]);
+}

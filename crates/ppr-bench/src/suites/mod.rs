@@ -1,0 +1,6 @@
+//! The bench's suites, one per question.
+
+pub mod compare;
+pub mod extract_trade;
+pub mod runtime;
+pub mod scaling;

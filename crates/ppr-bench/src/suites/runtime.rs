@@ -1,0 +1,184 @@
+//! Runtime numbers (issue 4): each PPR pass timed on real scenes, against the bandwidth
+//! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
+
+use ppr_runtime::{CLEAR_VALUE, PlanParams, ReflectionSettings};
+use ppr_testbed::gbuffer_targets::Target;
+use ppr_testbed::technique::REFLECTION_FORMAT;
+use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
+
+use crate::bandwidth::{CopyBandwidth, FrameFacts, PassBytes, measure_copy_bandwidth, pass_bytes};
+use crate::buffer_readback::read_buffer_u32;
+use crate::config::{BenchConfig, Resolution};
+use crate::error::BenchError;
+use crate::frame_loop::FrameLoop;
+use crate::ppr_runner::PprRunner;
+use crate::scene::{BenchScene, SceneOptions, SceneSpec};
+use crate::technique::BenchFrame;
+use crate::timing::{TimingSeries, TimingSource};
+
+/// What the runtime suite runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RuntimeConfig {
+    pub scenes: Vec<String>,
+    pub resolutions: Vec<Resolution>,
+    pub max_cameras: usize,
+    /// Size of each of the copy kernel's two buffers.
+    pub copy_bytes: u64,
+}
+
+/// One scene, camera and size.
+#[derive(Clone, Debug)]
+pub struct RuntimeRow {
+    pub scene: String,
+    pub camera: String,
+    pub resolution: Resolution,
+    /// The plan's passes and choices, as `FramePlan` prints them.
+    pub plan: String,
+    pub visible: usize,
+    pub facts: FrameFacts,
+    pub timings: TimingSeries,
+    pub source: TimingSource,
+    pub bytes: Vec<PassBytes>,
+}
+
+/// Everything the runtime suite found.
+pub struct RuntimeOutcome {
+    pub adapter: String,
+    pub bandwidth: Option<CopyBandwidth>,
+    pub rows: Vec<RuntimeRow>,
+    pub notes: Vec<String>,
+}
+
+/// Runs the suite.
+///
+/// # Errors
+/// A readback fails.
+pub fn run_runtime(
+    gpu: &GpuContext,
+    cfg: &BenchConfig,
+    rc: &RuntimeConfig,
+) -> Result<RuntimeOutcome, BenchError> {
+    let (device, queue) = (&gpu.device, &gpu.queue);
+    let reps = cfg.frames.timed.max(3);
+    let bandwidth = measure_copy_bandwidth(device, queue, rc.copy_bytes, reps);
+    if let Some(b) = bandwidth {
+        eprintln!(
+            "copy bandwidth: {:.1} GB/s ({} MiB moved in {:.4} ms)",
+            b.bytes_per_second() / 1e9,
+            b.bytes >> 20,
+            b.median_ms
+        );
+    }
+    let frames = FrameLoop::new(device, cfg);
+    let mut rows = Vec::new();
+    let mut notes = Vec::new();
+    let options = SceneOptions { max_cameras: rc.max_cameras, ..SceneOptions::default() };
+    for text in &rc.scenes {
+        let spec = SceneSpec::parse(text, &cfg.repo_root, &cfg.scenes_dir)?;
+        let scene = match BenchScene::load_ranked(&spec, &options, gpu) {
+            Ok(s) => s,
+            Err(e) => {
+                notes.push(format!("{}: skipped, cannot load: {e}", spec.name));
+                continue;
+            }
+        };
+        notes.extend(scene.notes.iter().map(|n| format!("{}: {n}", scene.name)));
+        let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
+        let mut ppr = PprRunner::new(
+            device,
+            queue,
+            &scene.reflectors,
+            "ppr",
+            ReflectionSettings::ALL,
+            PlanParams::default(),
+        );
+        for cam in &scene.cameras {
+            for &res in &rc.resolutions {
+                let size = res.size();
+                level.prepare(device, queue, &cam.camera, size);
+                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                    label: Some("runtime gbuffer"),
+                });
+                level.encode_gbuffer(&mut encoder);
+                queue.submit([encoder.finish()]);
+                let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+                let output = Target::new(device, "runtime output", size, REFLECTION_FORMAT, usage);
+                let frame = BenchFrame {
+                    level: &level,
+                    reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+                };
+                eprintln!("runtime: {} {} {res}", scene.name, cam.name);
+                let run = frames.run(device, queue, &mut ppr, &frame, &cam.camera, size);
+                let facts = frame_facts(device, queue, &mut ppr, size)?;
+                let renderer = ppr.renderer();
+                let visible = renderer.plan().map_or(0, |p| p.visible.len());
+                rows.push(RuntimeRow {
+                    scene: scene.name.clone(),
+                    camera: cam.name.clone(),
+                    resolution: res,
+                    plan: run.plan,
+                    visible,
+                    facts,
+                    timings: run.timings,
+                    source: run.source,
+                    bytes: pass_bytes(&facts),
+                });
+            }
+        }
+    }
+    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes })
+}
+
+/// Reads the last frame's active tiles and intermediate buffer back and counts what the
+/// passes touched.
+fn frame_facts(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    ppr: &mut PprRunner,
+    [w, h]: [u32; 2],
+) -> Result<FrameFacts, BenchError> {
+    let renderer = ppr.renderer();
+    let Some(plan) = renderer.plan().cloned() else {
+        return Ok(FrameFacts::default());
+    };
+    let tiles_x = w.div_ceil(16);
+    let tiles = u64::from(plan.tile_count());
+    let mut facts = FrameFacts {
+        pixels: u64::from(w) * u64::from(h),
+        tiles,
+        active_tiles: tiles,
+        indirect: plan.indirect,
+        written_pixels: 0,
+    };
+    if plan.is_empty() {
+        facts.active_tiles = 0;
+        return Ok(facts);
+    }
+    let active: Vec<u32> = if plan.indirect {
+        let words = match renderer.active_tiles_buffer() {
+            Some(b) => read_buffer_u32(device, queue, b)?,
+            None => Vec::new(),
+        };
+        let count = words.first().copied().unwrap_or(0) as usize;
+        words.iter().skip(4).take(count).copied().collect()
+    } else {
+        (0..tiles as u32).collect()
+    };
+    facts.active_tiles = active.len() as u64;
+    let intermediate = match renderer.intermediate_buffer() {
+        Some(b) => read_buffer_u32(device, queue, b)?,
+        None => Vec::new(),
+    };
+    let mut written = 0u64;
+    for tile in active {
+        let (tx, ty) = (tile % tiles_x, tile / tiles_x);
+        for y in ty * 16..((ty + 1) * 16).min(h) {
+            for x in tx * 16..((tx + 1) * 16).min(w) {
+                let v = intermediate.get((x + y * w) as usize).copied().unwrap_or(CLEAR_VALUE);
+                written += u64::from(v != CLEAR_VALUE);
+            }
+        }
+    }
+    facts.written_pixels = written;
+    Ok(facts)
+}

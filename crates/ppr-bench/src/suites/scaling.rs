@@ -1,0 +1,222 @@
+//! Scaling (issue 5): GPU time per pass against shape count on generated levels, with and
+//! without tile culling, and the two plan thresholds (tile culling from how many shapes,
+//! indirect dispatch up to which screen coverage).
+
+use ppr_format::ReflectorSet;
+use ppr_runtime::{Choice, PlanParams, ReflectionSettings};
+use ppr_testbed::gbuffer_targets::Target;
+use ppr_testbed::technique::REFLECTION_FORMAT;
+use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
+
+use crate::config::{BenchConfig, Resolution};
+use crate::error::BenchError;
+use crate::frame_loop::FrameLoop;
+use crate::ppr_runner::PprRunner;
+use crate::scaling::coverage_level::coverage_level;
+use crate::scaling::level_family::{GeneratedLevel, LevelFamily, generate};
+use crate::technique::BenchFrame;
+use crate::timing::{TimingSeries, TimingSource};
+
+/// What the scaling suite runs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScalingConfig {
+    pub families: Vec<LevelFamily>,
+    /// Shape counts of the main measurement.
+    pub counts: Vec<usize>,
+    /// Shape counts of the tile-culling threshold sweep.
+    pub threshold_counts: Vec<usize>,
+    /// Screen coverages of the indirect-dispatch threshold sweep.
+    pub coverages: Vec<f64>,
+    pub resolution: Resolution,
+}
+
+/// One measurement: a level, a plan choice, its times.
+#[derive(Clone, Debug)]
+pub struct ScalingRow {
+    /// `stairway`, `tiled-floor`, `facade` or `coverage`.
+    pub family: String,
+    /// Reflectors in the level.
+    pub shapes: usize,
+    /// What was forced: `culling on`, `culling off`, `indirect on`, ...
+    pub variant: String,
+    /// Visible shapes, as the plan saw them.
+    pub visible: usize,
+    /// Share of the screen the plan's screen rectangles cover.
+    pub coverage: f32,
+    /// Passes the plan ran.
+    pub passes: String,
+    pub timings: TimingSeries,
+    pub source: TimingSource,
+}
+
+impl ScalingRow {
+    /// Median of one pass (NaN when it did not run).
+    pub fn pass_ms(&self, name: &str) -> f64 {
+        self.timings.pass(name).map_or(f64::NAN, |s| s.median)
+    }
+
+    pub fn total_ms(&self) -> f64 {
+        self.timings.total().map_or(f64::NAN, |s| s.median)
+    }
+}
+
+/// Everything the scaling suite found.
+pub struct ScalingOutcome {
+    pub adapter: String,
+    pub resolution: Resolution,
+    /// Families × counts × culling on/off.
+    pub rows: Vec<ScalingRow>,
+    /// The tile-culling threshold sweep.
+    pub threshold_rows: Vec<ScalingRow>,
+    /// The indirect-dispatch sweep.
+    pub coverage_rows: Vec<ScalingRow>,
+}
+
+struct Measurer<'a> {
+    gpu: &'a GpuContext,
+    frames: FrameLoop,
+    size: [u32; 2],
+}
+
+impl Measurer<'_> {
+    fn run(&self, g: &GeneratedLevel, variants: &[(&str, PlanParams)]) -> Vec<ScalingRow> {
+        let (device, queue) = (&self.gpu.device, &self.gpu.queue);
+        // The G-buffer needs no reflector mask: PPR reads colour and depth only.
+        let mut level = LevelRenderer::new(device, queue, &g.level, &ReflectorSet::new(""));
+        level.prepare(device, queue, &g.camera, self.size);
+        let mut encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("scaling gbuffer") });
+        level.encode_gbuffer(&mut encoder);
+        queue.submit([encoder.finish()]);
+        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+        let output = Target::new(device, "scaling output", self.size, REFLECTION_FORMAT, usage);
+        let frame = BenchFrame {
+            level: &level,
+            reflection: ReflectionInputs::new(
+                &level.gbuffer().color.view,
+                &level.gbuffer().depth.view,
+                &output.view,
+            ),
+        };
+        let mut rows = Vec::new();
+        for (variant, params) in variants {
+            let mut ppr =
+                PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params);
+            let run = self.frames.run(device, queue, &mut ppr, &frame, &g.camera, self.size);
+            let plan = ppr.renderer().plan().cloned();
+            eprintln!(
+                "scaling: {} {} shapes, {variant}: {:.3} ms",
+                g.family.as_str(),
+                g.reflectors.reflectors.len(),
+                run.timings.total().map_or(f64::NAN, |s| s.median)
+            );
+            rows.push(ScalingRow {
+                family: g.family.as_str().into(),
+                shapes: g.reflectors.reflectors.len(),
+                variant: (*variant).into(),
+                visible: plan.as_ref().map_or(0, |p| p.visible.len()),
+                coverage: plan.as_ref().map_or(0.0, |p| p.coverage),
+                passes: plan.as_ref().map_or(String::new(), |p| p.passes().join(" → ")),
+                timings: run.timings,
+                source: run.source,
+            });
+        }
+        rows
+    }
+}
+
+fn culling(choice: Choice) -> PlanParams {
+    PlanParams { tile_culling: choice, ..PlanParams::default() }
+}
+
+/// Runs the suite.
+///
+/// # Errors
+/// None today; kept for readbacks to come.
+pub fn run_scaling(
+    gpu: &GpuContext,
+    cfg: &BenchConfig,
+    sc: &ScalingConfig,
+) -> Result<ScalingOutcome, BenchError> {
+    let m = Measurer { gpu, frames: FrameLoop::new(&gpu.device, cfg), size: sc.resolution.size() };
+    let on_off = [("culling off", culling(Choice::Off)), ("culling on", culling(Choice::On))];
+    let mut rows = Vec::new();
+    for &family in &sc.families {
+        for &n in &sc.counts {
+            rows.extend(m.run(&generate(family, n), &on_off));
+        }
+    }
+    let mut threshold_rows = Vec::new();
+    for &family in &sc.families {
+        for &n in &sc.threshold_counts {
+            // Counts already measured in the main sweep are reused.
+            let done: Vec<ScalingRow> =
+                rows.iter().filter(|r| r.family == family.as_str() && r.shapes == n).cloned().collect();
+            if done.is_empty() {
+                threshold_rows.extend(m.run(&generate(family, n), &on_off));
+            } else {
+                threshold_rows.extend(done);
+            }
+        }
+    }
+    let mut coverage_rows = Vec::new();
+    let indirect = |c| PlanParams { indirect: c, ..PlanParams::default() };
+    for &c in &sc.coverages {
+        let mut r = m.run(
+            &coverage_level(c),
+            &[("indirect off", indirect(Choice::Off)), ("indirect on", indirect(Choice::On))],
+        );
+        for row in &mut r {
+            row.family = "coverage".into();
+        }
+        coverage_rows.extend(r);
+    }
+    Ok(ScalingOutcome {
+        adapter: gpu.describe(),
+        resolution: sc.resolution,
+        rows,
+        threshold_rows,
+        coverage_rows,
+    })
+}
+
+/// The smallest shape count from which culling on is never slower than off (total time),
+/// for one family's sweep; `None` if culling never wins at the largest count.
+pub fn culling_crossover(rows: &[ScalingRow], family: &str) -> Option<usize> {
+    let mut counts: Vec<usize> = rows.iter().filter(|r| r.family == family).map(|r| r.shapes).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    let wins = |n: usize| {
+        let t = |v: &str| {
+            rows.iter()
+                .find(|r| r.family == family && r.shapes == n && r.variant == v)
+                .map(ScalingRow::total_ms)
+        };
+        matches!((t("culling on"), t("culling off")), (Some(on), Some(off)) if on <= off)
+    };
+    let mut crossover = None;
+    for &n in counts.iter().rev() {
+        if wins(n) {
+            crossover = Some(n);
+        } else {
+            break;
+        }
+    }
+    crossover
+}
+
+/// The largest measured coverage up to which indirect dispatch is never slower (total).
+pub fn indirect_crossover(rows: &[ScalingRow]) -> Option<f32> {
+    let mut covs: Vec<f32> = rows.iter().map(|r| r.coverage).collect();
+    covs.sort_by(f32::total_cmp);
+    covs.dedup();
+    let mut best = None;
+    for c in covs {
+        let t = |v: &str| rows.iter().find(|r| r.coverage == c && r.variant == v).map(ScalingRow::total_ms);
+        match (t("indirect on"), t("indirect off")) {
+            (Some(on), Some(off)) if on <= off => best = Some(c),
+            _ => break,
+        }
+    }
+    best
+}

@@ -1,0 +1,296 @@
+//! Techniques by name on the command line (`ppr`, `ppr-raw`, `exact`, `ssr-low:stride=32`),
+//! and the factory that builds them.
+
+use std::fmt;
+use std::str::FromStr;
+
+use ppr_baselines::{
+    HiZSettings, HiZSsrTechnique, PlanarReflectionTechnique, SsprSettings, SsprTechnique, SsrSettings,
+    SsrTechnique,
+};
+use ppr_format::ReflectorSet;
+use ppr_runtime::{Choice, PlanParams, ReflectionSettings};
+use ppr_testbed::{Level, ReflectionTechnique, RenderSettings};
+
+use crate::error::BenchError;
+use crate::exact_reference::ExactReference;
+use crate::ppr_runner::PprRunner;
+use crate::technique::{BenchTechnique, Family};
+use crate::trait_runner::TraitRunner;
+
+/// A technique name and its settings: `name` or `name:key=value,key=value`.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TechniqueSpec {
+    /// Technique name (see [`KNOWN_TECHNIQUES`]).
+    pub name: String,
+    /// Settings as written.
+    pub params: Vec<(String, String)>,
+}
+
+/// Every technique the bench can build, with what it is.
+pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
+    ("ppr-raw", "PPR, raw decoded intermediate buffer (no hole filling, no filtering)"),
+    ("ppr-holes", "PPR with hole filling"),
+    ("ppr-filter", "PPR with hole filling and bilinear filtering"),
+    ("ppr", "PPR with hole filling, filtering and anti-bleeding (the seed's final image)"),
+    ("exact", "the exact planar reflection (the testbed's reference: mirrored re-render per plane)"),
+    ("ssr-brute", "brute-force SSR, one-pixel steps [McGuire14]; thickness=metres"),
+    ("ssr-low", "low-quality SSR, 64-pixel steps + bisection; stride=, refine=, thickness="),
+    ("ssr-hiz", "Hi-Z SSR with its pyramid build [Uludag14]; iterations=, thickness= (none: seed)"),
+    ("sspr", "screen-space planar reflections, projection hash (Wildlands)"),
+    ("sspr-stretch", "SSPR with the edge stretch"),
+    ("planar", "planar reflection baseline: mirrored re-render per plane + copy to the output"),
+];
+
+/// The comparison's default list: every PPR setting, the exact reference, and the baselines
+/// with SSR step counts and thicknesses (`planar` is `exact` plus a copy: on request only).
+pub const DEFAULT_TECHNIQUES: [&str; 13] = [
+    "ppr-raw",
+    "ppr-holes",
+    "ppr-filter",
+    "ppr",
+    "exact",
+    "ssr-brute",
+    "ssr-low",
+    "ssr-low:stride=16,refine=4",
+    "ssr-low:stride=8,refine=3",
+    "ssr-low:thickness=1",
+    "ssr-hiz",
+    "sspr",
+    "sspr-stretch",
+];
+
+/// PPR settings accept `culling=on|off|auto` and `indirect=on|off|auto`.
+const PPR_KEYS: [&str; 2] = ["culling", "indirect"];
+
+/// Settings each baseline accepts.
+fn keys_of(name: &str) -> &'static [&'static str] {
+    match name {
+        n if n.starts_with("ppr") => &PPR_KEYS,
+        "ssr-brute" => &["thickness"],
+        "ssr-low" => &["stride", "refine", "thickness"],
+        "ssr-hiz" => &["iterations", "thickness"],
+        _ => &[],
+    }
+}
+
+impl TechniqueSpec {
+    /// A spec without settings.
+    pub fn named(name: &str) -> Self {
+        Self { name: name.into(), params: Vec::new() }
+    }
+
+    /// The label used in reports: the name and its settings (`ssr-low stride=32`).
+    pub fn label(&self) -> String {
+        let mut s = self.name.clone();
+        for (k, v) in &self.params {
+            s.push_str(&format!(" {k}={v}"));
+        }
+        s
+    }
+
+    fn param(&self, key: &str) -> Option<&str> {
+        self.params.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+
+    /// The comparison's default list ([`DEFAULT_TECHNIQUES`]).
+    pub fn defaults() -> Vec<Self> {
+        DEFAULT_TECHNIQUES.iter().filter_map(|t| t.parse().ok()).collect()
+    }
+}
+
+impl fmt::Display for TechniqueSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.name)?;
+        for (i, (k, v)) in self.params.iter().enumerate() {
+            write!(f, "{}{k}={v}", if i == 0 { ":" } else { "," })?;
+        }
+        Ok(())
+    }
+}
+
+impl FromStr for TechniqueSpec {
+    type Err = BenchError;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        let (name, rest) = text.split_once(':').unwrap_or((text, ""));
+        let name = name.trim();
+        if !KNOWN_TECHNIQUES.iter().any(|(n, _)| *n == name) {
+            let known: Vec<&str> = KNOWN_TECHNIQUES.iter().map(|(n, _)| *n).collect();
+            return Err(BenchError::Spec(format!(
+                "unknown technique `{name}` (known: {})",
+                known.join(", ")
+            )));
+        }
+        let mut params = Vec::new();
+        for part in rest.split(',').map(str::trim).filter(|p| !p.is_empty()) {
+            let (k, v) = part
+                .split_once('=')
+                .ok_or_else(|| BenchError::Spec(format!("technique `{text}`: `{part}` is not key=value")))?;
+            params.push((k.trim().to_owned(), v.trim().to_owned()));
+        }
+        let spec = Self { name: name.to_owned(), params };
+        spec.check_keys()?;
+        Ok(spec)
+    }
+}
+
+impl TechniqueSpec {
+    fn check_keys(&self) -> Result<(), BenchError> {
+        let allowed = keys_of(&self.name);
+        for (k, v) in &self.params {
+            if !allowed.contains(&k.as_str()) {
+                return Err(BenchError::Spec(format!(
+                    "technique `{}` has no setting `{k}` (settings: {})",
+                    self.name,
+                    if allowed.is_empty() { "none".to_string() } else { allowed.join(", ") }
+                )));
+            }
+            let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
+            match k.as_str() {
+                "culling" | "indirect" => {
+                    parse_choice(v).map_err(bad)?;
+                }
+                "stride" | "refine" | "iterations" => {
+                    v.parse::<u32>().map_err(|e| bad(format!("{k}: {e}")))?;
+                }
+                "thickness" if v == "none" && self.name == "ssr-hiz" => {}
+                "thickness" => {
+                    v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+}
+
+fn parse_choice(v: &str) -> Result<Choice, String> {
+    match v {
+        "on" => Ok(Choice::On),
+        "off" => Ok(Choice::Off),
+        "auto" => Ok(Choice::Auto),
+        _ => Err(format!("`{v}` is not on, off or auto")),
+    }
+}
+
+/// What building a technique needs.
+pub struct TechniqueContext<'a> {
+    pub device: &'a wgpu::Device,
+    pub queue: &'a wgpu::Queue,
+    /// The level (the planar baseline renders it again).
+    pub level: &'a Level,
+    pub reflectors: &'a ReflectorSet,
+    /// How the testbed renders the level (the planar baseline renders it again).
+    pub render: RenderSettings,
+    /// Plan parameters for PPR (settings in the spec override them).
+    pub plan_params: PlanParams,
+}
+
+/// Builds the technique `spec` names.
+///
+/// # Errors
+/// [`BenchError::Spec`] for an unknown name or setting.
+pub fn build_technique(
+    spec: &TechniqueSpec,
+    ctx: &TechniqueContext<'_>,
+) -> Result<Box<dyn BenchTechnique>, BenchError> {
+    spec.check_keys()?;
+    let settings = match spec.name.as_str() {
+        "ppr-raw" => Some(ReflectionSettings::RAW),
+        "ppr-holes" => Some(ReflectionSettings { holes: true, ..ReflectionSettings::RAW }),
+        "ppr-filter" => Some(ReflectionSettings { holes: true, filtering: true, ..ReflectionSettings::RAW }),
+        "ppr" => Some(ReflectionSettings::ALL),
+        _ => None,
+    };
+    if let Some(settings) = settings {
+        let mut params = ctx.plan_params;
+        if let Some(v) = spec.param("culling") {
+            params.tile_culling = parse_choice(v).map_err(BenchError::Spec)?;
+        }
+        if let Some(v) = spec.param("indirect") {
+            params.indirect = parse_choice(v).map_err(BenchError::Spec)?;
+        }
+        return Ok(Box::new(PprRunner::new(
+            ctx.device,
+            ctx.queue,
+            ctx.reflectors,
+            spec.label(),
+            settings,
+            params,
+        )));
+    }
+    let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
+    let num = |key: &str| spec.param(key).and_then(|v| v.parse::<f32>().ok());
+    let int = |key: &str| spec.param(key).and_then(|v| v.parse::<u32>().ok());
+    let runner =
+        |family, inner: Box<dyn ReflectionTechnique>| -> Result<Box<dyn BenchTechnique>, BenchError> {
+            Ok(Box::new(TraitRunner::new(spec.label(), family, inner)))
+        };
+    match spec.name.as_str() {
+        "exact" => Ok(Box::new(ExactReference::new(device, queue))),
+        "ssr-brute" | "ssr-low" => {
+            let mut s = if spec.name == "ssr-brute" {
+                SsrSettings::brute_force()
+            } else {
+                SsrSettings::low_quality()
+            };
+            s.stride = int("stride").unwrap_or(s.stride);
+            s.refine_steps = int("refine").unwrap_or(s.refine_steps);
+            s.thickness = num("thickness").unwrap_or(s.thickness);
+            runner(Family::Ssr, Box::new(SsrTechnique::new(device, queue, set, s)))
+        }
+        "ssr-hiz" => {
+            let mut s = HiZSettings::seed();
+            s.max_iterations = int("iterations").unwrap_or(s.max_iterations);
+            if let Some(t) = num("thickness") {
+                s.thickness = Some(t);
+            }
+            runner(Family::Ssr, Box::new(HiZSsrTechnique::new(device, queue, set, s)))
+        }
+        "sspr" => {
+            runner(Family::Sspr, Box::new(SsprTechnique::new(device, queue, set, SsprSettings::seed())))
+        }
+        "sspr-stretch" => runner(
+            Family::Sspr,
+            Box::new(SsprTechnique::new(device, queue, set, SsprSettings::with_edge_stretch())),
+        ),
+        "planar" => runner(
+            Family::Exact,
+            Box::new(PlanarReflectionTechnique::new(
+                device,
+                queue,
+                ctx.level,
+                set,
+                RenderSettings::default(),
+            )),
+        ),
+        other => Err(BenchError::Spec(format!("technique `{other}` cannot be built"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn specs_parse_and_print() {
+        let s: TechniqueSpec = "ppr:culling=off,indirect=on".parse().expect("spec");
+        assert_eq!(s.name, "ppr");
+        assert_eq!(s.label(), "ppr culling=off indirect=on");
+        assert_eq!(s.to_string(), "ppr:culling=off,indirect=on");
+        assert!("nope".parse::<TechniqueSpec>().is_err());
+        assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
+        assert!("exact:steps=3".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:stride=x".parse::<TechniqueSpec>().is_err());
+        assert_eq!(
+            "ssr-low:stride=16,refine=4".parse::<TechniqueSpec>().expect("ssr").label(),
+            "ssr-low stride=16 refine=4"
+        );
+        assert_eq!(TechniqueSpec::defaults().len(), DEFAULT_TECHNIQUES.len());
+        assert!("ppr:culling".parse::<TechniqueSpec>().is_err());
+        for (name, _) in KNOWN_TECHNIQUES {
+            assert_eq!(name.parse::<TechniqueSpec>().expect("known").label(), name);
+        }
+    }
+}

@@ -1,0 +1,51 @@
+//! Any testbed [`ReflectionTechnique`] (the baselines) as a bench technique: its own
+//! per-pass timings, the full G-buffer inputs.
+
+use ppr_runtime::Camera;
+use ppr_testbed::ReflectionTechnique;
+
+use crate::technique::{BenchFrame, BenchTechnique, Family};
+use crate::timing::PassTime;
+
+/// A boxed testbed technique with the bench's label and family.
+pub struct TraitRunner {
+    label: String,
+    family: Family,
+    inner: Box<dyn ReflectionTechnique>,
+}
+
+impl TraitRunner {
+    pub fn new(label: impl Into<String>, family: Family, inner: Box<dyn ReflectionTechnique>) -> Self {
+        Self { label: label.into(), family, inner }
+    }
+}
+
+impl BenchTechnique for TraitRunner {
+    fn label(&self) -> String {
+        self.label.clone()
+    }
+
+    fn family(&self) -> Family {
+        self.family
+    }
+
+    fn prepare(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        camera: &Camera,
+        size: [u32; 2],
+    ) -> String {
+        format!("{}: {}", self.inner.name(), self.inner.prepare(device, queue, camera, size))
+    }
+
+    fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, frame: &BenchFrame<'_>) {
+        self.inner.encode(encoder, &frame.reflection);
+    }
+
+    fn read_timings(&mut self, device: &wgpu::Device) -> Option<Vec<PassTime>> {
+        let passes: Vec<PassTime> =
+            self.inner.timings(device)?.into_iter().map(|(name, ms)| PassTime::new(name, ms)).collect();
+        (!passes.is_empty()).then_some(passes)
+    }
+}

@@ -1,0 +1,5 @@
+//! Integration tests of the bench: the library entry point end to end on the software
+//! adapter (llvmpipe through wgpu's GL backend where there is no GPU).
+
+mod quick_compare;
+mod scaling_levels;
