@@ -15,7 +15,7 @@ struct View {
 struct Material {
     base_color: vec4<f32>,
     emissive: vec4<f32>,  // w: 1 = unlit
-    params: vec4<f32>,    // x: metallic, yzw: unused
+    params: vec4<f32>,    // x: metallic, y: 1 = alpha blended, zw: unused
 }
 
 struct Draw {
@@ -78,7 +78,9 @@ fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> ForwardOut {
     let to_eye = -normalize(in.rel);
     let weight = draw.params.x * fresnel_schlick(f0, dot(n, to_eye));
     var out: ForwardOut;
-    out.color = vec4<f32>(rgb, base.a);
+    // Alpha: 1 for opaque surfaces; blended ones multiply it by (1 - their alpha) (see the
+    // pipeline's blend state), so it ends as the share of the opaque surface still seen.
+    out.color = vec4<f32>(rgb, select(1.0, base.a, material.params.y > 0.5));
     out.reflection_weight = vec4<f32>(weight, 0.0, 0.0, base.a);
     return out;
 }

@@ -85,7 +85,7 @@ impl FlyCamera {
             + Vec3::Y * axis(keys.up, keys.down);
         let Some(dir) = dir.try_normalize() else { return };
         let speed = if keys.fast { self.speed * 4.0 } else { self.speed };
-        self.position += dir.as_dvec3() * speed * dt.clamp(0.0, 0.25);
+        self.position += dir.as_dvec3() * speed * dt.max(0.0);
     }
 
     fn clamp_pitch(&mut self) {

@@ -128,7 +128,16 @@ impl ForwardPass {
             };
             let blend_state = match blend {
                 AlphaBlend::Opaque => None,
-                AlphaBlend::Blend => Some(wgpu::BlendState::ALPHA_BLENDING),
+                // Colour: "over". Alpha: multiplied by (1 - the surface's alpha), so the
+                // colour target's alpha tells how much of the opaque surface is still seen.
+                AlphaBlend::Blend => Some(wgpu::BlendState {
+                    color: wgpu::BlendState::ALPHA_BLENDING.color,
+                    alpha: wgpu::BlendComponent {
+                        src_factor: wgpu::BlendFactor::Zero,
+                        dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
+                        operation: wgpu::BlendOperation::Add,
+                    },
+                }),
             };
             let target = |format| {
                 Some(wgpu::ColorTargetState {
