@@ -13,11 +13,14 @@
 //   with the smallest plane distance writes (each pixel reflected at most once per
 //   orientation). The visible list is sorted by group, and so are the tile lists.
 // - OCCLUDER_TESTS: test the ray to the reflection point against the shape's occluders.
+// - LAYERS: glass panels and water planes with atlas regions exist this frame (without
+//   them the layer loop is compiled out).
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
 
 override TILE_CULLING: bool = false;
 override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
+override LAYERS: bool = false;
 override DEBUG_WRITES: bool = false;
 
 const TILE_SIZE: u32 = 16u;
@@ -40,7 +43,8 @@ var<workgroup> tile_depth_min: atomic<u32>;
 var<workgroup> tile_depth_max: atomic<u32>;
 var<workgroup> tile_list: array<u32, TILE_LIST_CAPACITY>;
 var<workgroup> tile_list_len: u32;
-var<workgroup> scan: array<u32, GROUP_THREADS>;
+// One bit per thread of a chunk: which shapes passed (ranks come from popcounts).
+var<workgroup> pass_bits: array<atomic<u32>, 8>;
 
 fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     for (var k = 0u; k < s.occluder_count; k++) {
@@ -81,7 +85,11 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
     let t = tv.xy;
     let index = t.x + t.y * frame.size.x;
     if ((frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u) {
-        atomicMin(&intermediate[index], value);
+        // A plain load first: where a squeezed reflection maps many pixels onto one, most
+        // writes lose, and a load is cheaper than an atomic.
+        if (atomicLoad(&intermediate[index]) > value) {
+            atomicMin(&intermediate[index], value);
+        }
     } else if ((frame.flags & PPR_FLAG_WRITE_LAST) != 0u) {
         atomicStore(&intermediate[index], value);
     } else {
@@ -141,34 +149,49 @@ fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
 }
 
 // Conservative tile test: may any point of the tile's world-space bounds (the convex hull
-// of `corners`) be reflected by `s` into its rectangle? Mirroring is affine and the
-// central projection from the camera onto the plane keeps convexity for points behind the
-// plane, so the rectangle of the projected corners bounds every pixel's reflection point.
+// of `corners`, indexed by bits: x = 1, y = 2, depth = 4) be reflected by `s` into its
+// rectangle? Only the part of the hull in front of the plane can be reflected; it is the
+// convex hull of the front corners and of the points where the hull's edges cross the
+// plane. Mirroring is affine and the central projection from the camera onto the plane
+// keeps convexity for points behind it, so the rectangle spanned by the projections of
+// those points bounds every pixel's reflection point. (A crossing point lies on the plane:
+// it is its own reflection point.)
 fn tile_may_reflect(s: Shape, corners: array<vec3<f32>, 8>) -> bool {
+    var d: array<f32, 8>;
     var any_front = false;
-    var all_front = true;
-    var lo = vec2<f32>(3.0e38);
-    var hi = vec2<f32>(-3.0e38);
     var reach = 0.0;
     for (var i = 0u; i < 8u; i++) {
-        let c = corners[i];
-        let d = dot(c, s.normal) - s.plane_dist;
-        any_front = any_front || d > 0.0;
-        all_front = all_front && d > 0.0;
-        let m = c - 2.0 * d * s.normal;
-        let hit = m * (s.plane_dist / dot(m, s.normal));
-        let l = hit - s.center;
-        let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-        lo = min(lo, uv);
-        hi = max(hi, uv);
-        reach = max(reach, length(c));
+        d[i] = dot(corners[i], s.normal) - s.plane_dist;
+        any_front = any_front || d[i] > 0.0;
+        reach = max(reach, length(corners[i]));
     }
     if (!any_front) {
         return false;
     }
-    if (!all_front) {
-        // The tile straddles the plane: its front part's reflection is unbounded here.
-        return true;
+    var lo = vec2<f32>(3.0e38);
+    var hi = vec2<f32>(-3.0e38);
+    for (var i = 0u; i < 8u; i++) {
+        let c = corners[i];
+        if (d[i] > 0.0) {
+            let m = c - 2.0 * d[i] * s.normal;
+            let hit = m * (s.plane_dist / dot(m, s.normal));
+            let l = hit - s.center;
+            let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
+            lo = min(lo, uv);
+            hi = max(hi, uv);
+        }
+        // The three edges from corner i to corners with one more bit set.
+        for (var b = 1u; b < 8u; b <<= 1u) {
+            let j = i | b;
+            if (j == i || (d[i] > 0.0) == (d[j] > 0.0)) {
+                continue;
+            }
+            let crossing = mix(c, corners[j], d[i] / (d[i] - d[j]));
+            let l = crossing - s.center;
+            let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
+            lo = min(lo, uv);
+            hi = max(hi, uv);
+        }
     }
     // Margin for the f32 error of per-pixel positions against the corners'.
     let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
@@ -205,29 +228,34 @@ fn build_tile_list(lid: u32, tile_origin: vec2<u32>, depth_ok: bool, depth: f32)
     }
     let empty_tile = dmin_bits > dmax_bits;
     var count = 0u;
+    let word = lid / 32u;
+    let below = (1u << (lid % 32u)) - 1u;
     for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
-        let k = base + lid;
-        var passes = 0u;
-        if (!empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], corners)) {
-            passes = 1u;
+        if (lid < 8u) {
+            atomicStore(&pass_bits[lid], 0u);
         }
-        // Inclusive prefix sum of the pass flags (Hillis-Steele) keeps the list ordered.
-        scan[lid] = passes;
         workgroupBarrier();
-        for (var step = 1u; step < GROUP_THREADS; step <<= 1u) {
-            var add = 0u;
-            if (lid >= step) {
-                add = scan[lid - step];
+        let k = base + lid;
+        let passes = !empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], corners);
+        if (passes) {
+            atomicOr(&pass_bits[word], 1u << (lid % 32u));
+        }
+        workgroupBarrier();
+        // Ordered compaction: a passing thread's slot is the number of passing threads
+        // before it, so the list keeps the visible order (sorted by parallel group).
+        var rank = countOneBits(atomicLoad(&pass_bits[word]) & below);
+        var total = 0u;
+        for (var w = 0u; w < 8u; w++) {
+            let bits = countOneBits(atomicLoad(&pass_bits[w]));
+            total += bits;
+            if (w < word) {
+                rank += bits;
             }
-            workgroupBarrier();
-            scan[lid] += add;
-            workgroupBarrier();
         }
-        let slot = count + scan[lid] - passes;
-        if (passes == 1u && slot < TILE_LIST_CAPACITY) {
-            tile_list[slot] = k;
+        if (passes && count + rank < TILE_LIST_CAPACITY) {
+            tile_list[count + rank] = k;
         }
-        count += scan[GROUP_THREADS - 1u];
+        count += total;
         workgroupBarrier();
     }
     return min(count, TILE_LIST_CAPACITY + 1u);
@@ -258,7 +286,7 @@ fn main(
             use_list = true;
         }
     }
-    if (!depth_ok || (count == 0u && frame.layer_count == 0u)) {
+    if (!depth_ok || (count == 0u && !LAYERS)) {
         return;
     }
 
@@ -302,7 +330,7 @@ fn main(
         written |= 1u << (best_k & 31u);
     }
     // Layer reflectors (few): each writes its own atlas region.
-    for (var l = 0u; l < frame.layer_count; l++) {
+    for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
         let layer = layers[l];
         let s = shapes[layer.shape];
         let dist = reflecting_distance(p, min_dist, s);

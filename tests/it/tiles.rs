@@ -25,6 +25,37 @@ impl Rng {
     }
 }
 
+/// Puddles: many small coplanar mirrors on the floor (one plane, one parallel group), the
+/// case where a tile test that gives up on tiles straddling the plane culls nothing.
+fn puddle_floor(rng: &mut Rng) -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    s.quad(
+        DVec3::new(0.0, -0.001, 0.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [12.0, 12.0],
+        Albedo::Solid(Vec3::splat(0.3)),
+    );
+    s.quad(DVec3::new(0.0, 3.0, -10.0), DVec3::X, DVec3::Y, [12.0, 3.0], Albedo::Waves(0.3));
+    for _ in 0..3 {
+        let c = DVec3::new(rng.range(-4.0, 4.0), 0.0, rng.range(-8.0, 0.0));
+        let colour = Vec3::new(rng.next() as f32, rng.next() as f32, rng.next() as f32);
+        s.cuboid(c - DVec3::new(0.4, 0.0, 0.4), c + DVec3::new(0.4, rng.range(0.5, 2.0), 0.4), colour);
+    }
+    for i in 0..24 {
+        let c =
+            DVec3::new(-5.0 + (i % 6) as f64 * 2.0 + rng.range(-0.3, 0.3), 0.0, -9.0 + (i / 6) as f64 * 2.5);
+        s.mirror(
+            &format!("puddle {i}"),
+            c,
+            DVec3::X,
+            DVec3::NEG_Z,
+            [rng.range(0.3, 0.8), rng.range(0.3, 0.8)],
+        );
+    }
+    s
+}
+
 /// A random soup of mirrors (a stairway of parallel steps when `parallel`, else all
 /// orientations different) among boxes, inside a room of coloured walls.
 fn random_scene(rng: &mut Rng, parallel: bool) -> AnalyticScene {
@@ -104,9 +135,9 @@ fn debug_masks(r: &ReflectionRenderer) -> Vec<u32> {
 fn tile_culling_keeps_every_write_of_the_plain_loop_under_the_parallel_rule() {
     let mut rng = Rng(0x5eed_0001);
     let mut checked = 0usize;
-    for case in 0..8 {
+    for case in 0..10 {
         let parallel = case % 2 == 0;
-        let scene = random_scene(&mut rng, parallel);
+        let scene = if case >= 8 { puddle_floor(&mut rng) } else { random_scene(&mut rng, parallel) };
         let camera = random_camera(&mut rng);
         let frame = scene.render(&camera, SIZE);
         let gpu = GpuFrame::upload(&frame);

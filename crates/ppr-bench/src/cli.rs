@@ -84,6 +84,10 @@ pub struct RuntimeArgs {
     /// MiB in each buffer of the copy kernel that measures the bandwidth.
     #[arg(long, default_value_t = 256)]
     pub copy_mib: u64,
+    /// Also run every scene with the glass/water layers and normal maps off (rows
+    /// `<scene> (features off)`): what those features cost when a level has them.
+    #[arg(long)]
+    pub features_off: bool,
 }
 
 /// Options of `scaling`.
@@ -291,6 +295,7 @@ where
                 resolutions: pick(&a.resolutions, cfg.quick, &[TINY], &[Resolution::HD, Resolution::UHD]),
                 max_cameras: if cfg.quick { 1 } else { a.max_cameras },
                 copy_bytes: if cfg.quick { 1 << 20 } else { a.copy_mib << 20 },
+                features_off: a.features_off,
             };
             let outcome = run_runtime(&gpu, &cfg, &rc)?;
             write_runtime_report(&cfg.out_dir, &outcome, &command_line)

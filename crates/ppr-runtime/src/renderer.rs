@@ -186,6 +186,7 @@ impl ReflectionRenderer {
             tile_culling: plan.tile_culling,
             parallel_rule: plan.parallel_rule,
             occluder_tests: plan.occluder_tests,
+            layers: !plan.layers.is_empty(),
             debug_writes: self.debug_writes,
         }
     }

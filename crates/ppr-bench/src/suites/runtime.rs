@@ -1,7 +1,7 @@
 //! Runtime numbers (issue 4): each PPR pass timed on real scenes, against the bandwidth
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
-use ppr_runtime::{CLEAR_VALUE, PlanParams, ReflectionSettings};
+use ppr_runtime::{CLEAR_VALUE, Choice, PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
@@ -24,6 +24,8 @@ pub struct RuntimeConfig {
     pub max_cameras: usize,
     /// Size of each of the copy kernel's two buffers.
     pub copy_bytes: u64,
+    /// Also run every scene with glass/water layers and normal maps off.
+    pub features_off: bool,
 }
 
 /// One scene, camera and size.
@@ -84,45 +86,46 @@ pub fn run_runtime(
         };
         notes.extend(scene.notes.iter().map(|n| format!("{}: {n}", scene.name)));
         let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
-        let mut ppr = PprRunner::new(
-            device,
-            queue,
-            &scene.reflectors,
-            "ppr",
-            ReflectionSettings::ALL,
-            PlanParams::default(),
-        );
-        for cam in &scene.cameras {
-            for &res in &rc.resolutions {
-                let size = res.size();
-                level.prepare(device, queue, &cam.camera, size);
-                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                    label: Some("runtime gbuffer"),
-                });
-                level.encode_gbuffer(&mut encoder);
-                queue.submit([encoder.finish()]);
-                let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-                let output = Target::new(device, "runtime output", size, REFLECTION_FORMAT, usage);
-                let frame = BenchFrame {
-                    level: &level,
-                    reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
-                };
-                eprintln!("runtime: {} {} {res}", scene.name, cam.name);
-                let run = frames.run(device, queue, &mut ppr, &frame, &cam.camera, size);
-                let facts = frame_facts(device, queue, &mut ppr, size)?;
-                let renderer = ppr.renderer();
-                let visible = renderer.plan().map_or(0, |p| p.visible.len());
-                rows.push(RuntimeRow {
-                    scene: scene.name.clone(),
-                    camera: cam.name.clone(),
-                    resolution: res,
-                    plan: run.plan,
-                    visible,
-                    facts,
-                    timings: run.timings,
-                    source: run.source,
-                    bytes: pass_bytes(&facts),
-                });
+        let mut variants = vec![(String::new(), PlanParams::default())];
+        if rc.features_off {
+            let off = PlanParams { layers: Choice::Off, normal_maps: Choice::Off, ..PlanParams::default() };
+            variants.push((" (features off)".to_owned(), off));
+        }
+        for (suffix, params) in variants {
+            let mut ppr =
+                PprRunner::new(device, queue, &scene.reflectors, "ppr", ReflectionSettings::ALL, params);
+            for cam in &scene.cameras {
+                for &res in &rc.resolutions {
+                    let size = res.size();
+                    level.prepare(device, queue, &cam.camera, size);
+                    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
+                        label: Some("runtime gbuffer"),
+                    });
+                    level.encode_gbuffer(&mut encoder);
+                    queue.submit([encoder.finish()]);
+                    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+                    let output = Target::new(device, "runtime output", size, REFLECTION_FORMAT, usage);
+                    let frame = BenchFrame {
+                        level: &level,
+                        reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+                    };
+                    eprintln!("runtime: {} {} {res}", scene.name, cam.name);
+                    let run = frames.run(device, queue, &mut ppr, &frame, &cam.camera, size);
+                    let facts = frame_facts(device, queue, &mut ppr, size)?;
+                    let renderer = ppr.renderer();
+                    let visible = renderer.plan().map_or(0, |p| p.visible.len());
+                    rows.push(RuntimeRow {
+                        scene: format!("{}{suffix}", scene.name),
+                        camera: cam.name.clone(),
+                        resolution: res,
+                        plan: run.plan,
+                        visible,
+                        facts,
+                        timings: run.timings,
+                        source: run.source,
+                        bytes: pass_bytes(&facts),
+                    });
+                }
             }
         }
     }

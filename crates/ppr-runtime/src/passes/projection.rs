@@ -17,6 +17,8 @@ pub struct ProjectionVariant {
     pub parallel_rule: bool,
     /// Occluder tests.
     pub occluder_tests: bool,
+    /// Glass and water layers exist this frame.
+    pub layers: bool,
     /// Record per source pixel which visible shapes it wrote for.
     pub debug_writes: bool,
 }
@@ -72,6 +74,7 @@ impl ProjectionPass {
             ("TILE_CULLING", flag(v.tile_culling)),
             ("PARALLEL_RULE", flag(v.parallel_rule)),
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
+            ("LAYERS", flag(v.layers)),
             ("DEBUG_WRITES", flag(v.debug_writes)),
         ];
         let label = format!("ppr projection {v:?}");
