@@ -90,8 +90,11 @@ pub fn set_line(file: &str, status: &SetStatus) -> TextLine {
             TextLine::new(format!("set: waiting for {file} ({why})"), TextColour::Warning)
         }
         SetStatus::Current { reflectors, reloads, .. } => {
-            let reloaded =
-                if *reloads > 1 { format!(", reloaded {} times", reloads - 1) } else { String::new() };
+            let reloaded = match reloads.saturating_sub(1) {
+                0 => String::new(),
+                1 => ", reloaded once".to_owned(),
+                n => format!(", reloaded {n} times"),
+            };
             TextLine::new(format!("set: {file}: {reflectors} reflectors{reloaded}"), TextColour::Good)
         }
         SetStatus::Refused { message, keeping } => {
