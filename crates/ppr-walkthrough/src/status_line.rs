@@ -21,6 +21,7 @@ pub struct StatusInputs<'a> {
     pub set_status: &'a SetStatus,
     pub settings: ReflectionSettings,
     pub view: ViewMode,
+    /// Fly speed, shown with the keys.
     pub speed: f64,
     /// Times the device was lost and recreated.
     pub device_recoveries: u32,
@@ -126,12 +127,12 @@ pub fn status_lines(s: &StatusInputs<'_>) -> Vec<TextLine> {
     let st = s.settings;
     lines.push(TextLine::new(
         format!(
-            "[H] holes {}  [F] filtering {}  [B] anti-bleeding {}  [V] view: {}  speed {:.2} m/s",
+            "[H] holes {}  [F] filtering {}  [B] anti-bleeding {}  [V] view: {}{}",
             on_off(st.holes),
             on_off(st.filtering),
             on_off(st.anti_bleeding),
             s.view.label(),
-            s.speed
+            if s.keys { format!("  speed {:.2} m/s", s.speed) } else { String::new() }
         ),
         TextColour::Dim,
     ));

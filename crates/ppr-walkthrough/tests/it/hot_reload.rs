@@ -137,7 +137,10 @@ fn polling_never_stalls_the_render_loop() {
         "[hot reload] 20 000 reflectors arrived after {:.0?}; longest poll {longest_poll:?}",
         start.elapsed()
     );
-    assert!(longest_poll < Duration::from_millis(5), "a poll took {longest_poll:?}");
+    // Parsing and validating 20 000 reflectors takes a few hundred milliseconds here; a
+    // poll that did any of it would take that long. 50 ms leaves room for a loaded machine
+    // descheduling the test thread.
+    assert!(longest_poll < Duration::from_millis(50), "a poll took {longest_poll:?}");
 }
 
 fn write_big_set(path: &Path, n: usize) {
