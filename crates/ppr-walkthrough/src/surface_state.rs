@@ -3,7 +3,9 @@
 //!
 //! - a resize only records the new size; the surface is configured once, before the next
 //!   frame (a drag-resize sends many events);
-//! - a zero-sized (minimised) window renders nothing and the loop waits for events;
+//! - a minimised window renders nothing and the loop waits for events: a zero size
+//!   (Windows), or hidden (X11 iconifies without a resize: `Window::is_minimized` or
+//!   `WindowEvent::Occluded` say so);
 //! - `Outdated`, `Suboptimal` and `Lost` reconfigure (`Lost` recreates the surface first);
 //! - `Timeout` and `Occluded` skip the frame; `Validation` skips it and reconfigures.
 
@@ -65,6 +67,7 @@ pub enum AfterAcquire {
 pub struct SurfaceState {
     window_size: [u32; 2],
     configured: Option<[u32; 2]>,
+    hidden: bool,
     /// Acquires that failed in a row (reported on screen; the loop never gives up).
     pub failures_in_a_row: u32,
 }
@@ -72,7 +75,7 @@ pub struct SurfaceState {
 impl SurfaceState {
     /// A window of `size` whose surface is not configured yet.
     pub fn new(size: [u32; 2]) -> Self {
-        Self { window_size: size, configured: None, failures_in_a_row: 0 }
+        Self { window_size: size, configured: None, hidden: false, failures_in_a_row: 0 }
     }
 
     /// The window was resized (or minimised: a zero size).
@@ -85,9 +88,14 @@ impl SurfaceState {
         self.window_size
     }
 
-    /// Whether the window has no area.
+    /// The window was minimised or hidden (`true`), or shown again (`false`).
+    pub fn set_hidden(&mut self, hidden: bool) {
+        self.hidden = hidden;
+    }
+
+    /// Whether there is nothing to draw into: no area, or hidden.
     pub fn minimised(&self) -> bool {
-        self.window_size[0] == 0 || self.window_size[1] == 0
+        self.hidden || self.window_size[0] == 0 || self.window_size[1] == 0
     }
 
     /// Decides what happens before the frame is recorded.
@@ -165,6 +173,11 @@ mod tests {
         assert_eq!(s.before_frame(), BeforeFrame::SkipMinimised);
         s.resized([800, 600]);
         assert_eq!(s.before_frame(), BeforeFrame::Render, "same size as configured: no reconfigure");
+        // X11 iconifies without a resize.
+        s.set_hidden(true);
+        assert_eq!(s.before_frame(), BeforeFrame::SkipMinimised);
+        s.set_hidden(false);
+        assert_eq!(s.before_frame(), BeforeFrame::Render);
     }
 
     #[test]

@@ -59,6 +59,7 @@ pub fn run_window(args: Args) -> Result<()> {
         sets: ReflectorSetState::new("not read yet"),
         keys: MoveKeys::default(),
         looking: false,
+        occluded: false,
         camera_index: 0,
         window: None,
         session: None,
@@ -130,6 +131,8 @@ struct WalkthroughApp {
     keys: MoveKeys,
     /// The right mouse button is held: mouse motion turns the camera.
     looking: bool,
+    /// The last `WindowEvent::Occluded`.
+    occluded: bool,
     camera_index: usize,
     settings: ppr_runtime::ReflectionSettings,
     view: ViewMode,
@@ -370,6 +373,7 @@ impl ApplicationHandler for WalkthroughApp {
                 };
                 self.fly.scroll(notches);
             }
+            WindowEvent::Occluded(occluded) => self.occluded = occluded,
             WindowEvent::Focused(false) => {
                 self.keys = MoveKeys::default();
                 self.looking = false;
@@ -392,6 +396,8 @@ impl ApplicationHandler for WalkthroughApp {
             event_loop.exit();
             return;
         }
+        let iconified = self.window.as_ref().and_then(|w| w.is_minimized()).unwrap_or(false);
+        self.surface.set_hidden(self.occluded || iconified);
         if self.surface.minimised() {
             // Nothing to draw: sleep until the window comes back (the watcher keeps the
             // set current meanwhile).
