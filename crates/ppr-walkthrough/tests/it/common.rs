@@ -11,7 +11,8 @@ pub fn asset(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets").join(name)
 }
 
-/// GPU tests take this lock: llvmpipe on two cores gains nothing from running them at once.
+/// GPU tests take this lock (llvmpipe on two cores gains nothing from running them at
+/// once), and so do the timed hot-reload tests, so that no frame competes with their clock.
 pub fn gpu_lock() -> MutexGuard<'static, ()> {
     static LOCK: Mutex<()> = Mutex::new(());
     LOCK.lock().unwrap_or_else(|e| e.into_inner())

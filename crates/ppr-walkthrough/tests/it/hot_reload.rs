@@ -9,6 +9,8 @@ use glam::{DVec2, DVec3};
 use ppr_format::{Reflector, ReflectorKind, ReflectorSet};
 use ppr_walkthrough::hot_reload::{ReflectorSetState, ReflectorSetWatcher, ReloadEvent, SetStatus};
 
+use crate::common::gpu_lock;
+
 /// A valid set of `n` floor mirrors side by side.
 fn floor_set(n: usize) -> ReflectorSet {
     let mut set = ReflectorSet::new("test.glb");
@@ -41,6 +43,7 @@ fn reflectors(state: &ReflectorSetState) -> Option<usize> {
 
 #[test]
 fn a_changed_set_is_picked_up_within_a_second_and_a_broken_one_is_refused() {
+    let _alone = gpu_lock();
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("level.ppr.json");
     floor_set(2).save(&path).expect("first set saved");
@@ -112,6 +115,7 @@ fn a_missing_file_is_waited_for() {
 /// (20 000 reflectors, several MB) is parsed on the watcher's thread while the loop polls.
 #[test]
 fn polling_never_stalls_the_render_loop() {
+    let _alone = gpu_lock();
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("big.ppr.json");
     floor_set(1).save(&path).expect("small set saved");
