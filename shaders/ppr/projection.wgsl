@@ -22,6 +22,8 @@ override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
 override LAYERS: bool = false;
 override DEBUG_WRITES: bool = false;
+// Debug: record, per pixel, its tile's candidate-list length instead of write bits.
+override DEBUG_TILE_LISTS: bool = false;
 
 const TILE_SIZE: u32 = 16u;
 const GROUP_THREADS: u32 = 256u;
@@ -39,12 +41,14 @@ const TILE_LIST_CAPACITY: u32 = 256u;
 @group(0) @binding(7) var<storage, read> layers: array<Layer>;
 @group(0) @binding(8) var<storage, read_write> atlas: array<atomic<u32>>;
 
-var<workgroup> tile_depth_min: atomic<u32>;
-var<workgroup> tile_depth_max: atomic<u32>;
+// The box of the tile's pixel positions (ordered float bits per axis).
+var<workgroup> tile_box_min: array<atomic<u32>, 3>;
+var<workgroup> tile_box_max: array<atomic<u32>, 3>;
 var<workgroup> tile_list: array<u32, TILE_LIST_CAPACITY>;
 var<workgroup> tile_list_len: u32;
-// One bit per thread of a chunk: which shapes passed (ranks come from popcounts).
-var<workgroup> pass_bits: array<atomic<u32>, 8>;
+// Per thread of a chunk: whether its shape passed; packed into words for the ranks.
+var<workgroup> pass_flags: array<u32, GROUP_THREADS>;
+var<workgroup> pass_words: array<u32, 8>;
 
 fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     for (var k = 0u; k < s.occluder_count; k++) {
@@ -148,108 +152,156 @@ fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
     return write_projection(pixel, mirrored);
 }
 
-// Conservative tile test: may any point of the tile's world-space bounds (the convex hull
-// of `corners`, indexed by bits: x = 1, y = 2, depth = 4) be reflected by `s` into its
-// rectangle? Only the part of the hull in front of the plane can be reflected; it is the
-// convex hull of the front corners and of the points where the hull's edges cross the
-// plane. Mirroring is affine and the central projection from the camera onto the plane
-// keeps convexity for points behind it, so the rectangle spanned by the projections of
-// those points bounds every pixel's reflection point. (A crossing point lies on the plane:
-// it is its own reflection point.)
-fn tile_may_reflect(s: Shape, corners: array<vec3<f32>, 8>) -> bool {
-    var d: array<f32, 8>;
-    var any_front = false;
-    var reach = 0.0;
-    for (var i = 0u; i < 8u; i++) {
-        d[i] = dot(corners[i], s.normal) - s.plane_dist;
-        any_front = any_front || d[i] > 0.0;
-        reach = max(reach, length(corners[i]));
-    }
-    if (!any_front) {
-        return false;
-    }
-    var lo = vec2<f32>(3.0e38);
-    var hi = vec2<f32>(-3.0e38);
-    for (var i = 0u; i < 8u; i++) {
-        let c = corners[i];
-        if (d[i] > 0.0) {
-            let m = c - 2.0 * d[i] * s.normal;
-            let hit = m * (s.plane_dist / dot(m, s.normal));
-            let l = hit - s.center;
-            let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-            lo = min(lo, uv);
-            hi = max(hi, uv);
-        }
-        // The three edges from corner i to corners with one more bit set.
-        for (var b = 1u; b < 8u; b <<= 1u) {
-            let j = i | b;
-            if (j == i || (d[i] > 0.0) == (d[j] > 0.0)) {
-                continue;
-            }
-            let crossing = mix(c, corners[j], d[i] / (d[i] - d[j]));
-            let l = crossing - s.center;
-            let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-            lo = min(lo, uv);
-            hi = max(hi, uv);
-        }
-    }
-    // Margin for the f32 error of per-pixel positions against the corners'.
-    let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
-    let half = vec2<f32>(s.half_u, s.half_v) + margin;
-    return all(hi >= -half) && all(lo <= half);
+// Rectangle coordinates of where a front point `c` (plane distance `d` > 0) is reflected.
+fn reflected_uv(s: Shape, c: vec3<f32>, d: f32) -> vec2<f32> {
+    let m = c - 2.0 * d * s.normal;
+    let l = m * (s.plane_dist / dot(m, s.normal)) - s.center;
+    return vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
 }
 
-// Builds the tile's candidate list in workgroup memory (ordered like `visible`).
+// Bounds accumulated by the tile test: (lo.xy, hi.xy) in rectangle coordinates.
+struct UvBounds {
+    lo: vec2<f32>,
+    hi: vec2<f32>,
+}
+
+fn add_corner(b: UvBounds, s: Shape, c: vec3<f32>, d: f32) -> UvBounds {
+    if (!(d > 0.0)) {
+        return b;
+    }
+    let uv = reflected_uv(s, c, d);
+    return UvBounds(min(b.lo, uv), max(b.hi, uv));
+}
+
+// Where the edge a–b crosses the plane, if it does (a point on the plane is its own
+// reflection point).
+fn add_crossing(b: UvBounds, s: Shape, a: vec3<f32>, da: f32, c: vec3<f32>, dc: f32) -> UvBounds {
+    if ((da > 0.0) == (dc > 0.0)) {
+        return b;
+    }
+    let l = mix(a, c, da / (da - dc)) - s.center;
+    let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
+    return UvBounds(min(b.lo, uv), max(b.hi, uv));
+}
+
+// Conservative tile test: may any point of the box [lo, hi] (the tile's pixel positions)
+// be reflected by `s` into its rectangle? Only the part of the box in front of the plane
+// can be reflected; it is the convex hull of the front corners and of the points where
+// the box's edges cross the plane. Mirroring is affine and the central projection from
+// the camera onto the plane keeps convexity for points behind it, so the rectangle
+// spanned by the projections of those points bounds every pixel's reflection point.
+// Written out corner by corner and edge by edge: no dynamically indexed arrays.
+fn tile_may_reflect(s: Shape, lo: vec3<f32>, hi: vec3<f32>) -> bool {
+    let c0 = vec3<f32>(lo.x, lo.y, lo.z);
+    let c1 = vec3<f32>(hi.x, lo.y, lo.z);
+    let c2 = vec3<f32>(lo.x, hi.y, lo.z);
+    let c3 = vec3<f32>(hi.x, hi.y, lo.z);
+    let c4 = vec3<f32>(lo.x, lo.y, hi.z);
+    let c5 = vec3<f32>(hi.x, lo.y, hi.z);
+    let c6 = vec3<f32>(lo.x, hi.y, hi.z);
+    let c7 = vec3<f32>(hi.x, hi.y, hi.z);
+    let n = s.normal;
+    let d0 = dot(c0, n) - s.plane_dist;
+    let d1 = dot(c1, n) - s.plane_dist;
+    let d2 = dot(c2, n) - s.plane_dist;
+    let d3 = dot(c3, n) - s.plane_dist;
+    let d4 = dot(c4, n) - s.plane_dist;
+    let d5 = dot(c5, n) - s.plane_dist;
+    let d6 = dot(c6, n) - s.plane_dist;
+    let d7 = dot(c7, n) - s.plane_dist;
+    if (!(max(max(max(d0, d1), max(d2, d3)), max(max(d4, d5), max(d6, d7))) > 0.0)) {
+        return false;
+    }
+    var b = UvBounds(vec2<f32>(3.0e38), vec2<f32>(-3.0e38));
+    b = add_corner(b, s, c0, d0);
+    b = add_corner(b, s, c1, d1);
+    b = add_corner(b, s, c2, d2);
+    b = add_corner(b, s, c3, d3);
+    b = add_corner(b, s, c4, d4);
+    b = add_corner(b, s, c5, d5);
+    b = add_corner(b, s, c6, d6);
+    b = add_corner(b, s, c7, d7);
+    b = add_crossing(b, s, c0, d0, c1, d1);
+    b = add_crossing(b, s, c2, d2, c3, d3);
+    b = add_crossing(b, s, c4, d4, c5, d5);
+    b = add_crossing(b, s, c6, d6, c7, d7);
+    b = add_crossing(b, s, c0, d0, c2, d2);
+    b = add_crossing(b, s, c1, d1, c3, d3);
+    b = add_crossing(b, s, c4, d4, c6, d6);
+    b = add_crossing(b, s, c5, d5, c7, d7);
+    b = add_crossing(b, s, c0, d0, c4, d4);
+    b = add_crossing(b, s, c1, d1, c5, d5);
+    b = add_crossing(b, s, c2, d2, c6, d6);
+    b = add_crossing(b, s, c3, d3, c7, d7);
+    // Margin for the f32 error of per-pixel positions against the box's.
+    let reach = max(length(lo), length(hi));
+    let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
+    let half = vec2<f32>(s.half_u, s.half_v) + margin;
+    return all(b.hi >= -half) && all(b.lo <= half);
+}
+
+// Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).
+fn ordered_bits(x: f32) -> u32 {
+    let b = bitcast<u32>(x);
+    return select(b | 0x80000000u, ~b, (b & 0x80000000u) != 0u);
+}
+
+fn from_ordered_bits(u: u32) -> f32 {
+    return bitcast<f32>(select(~u, u & 0x7fffffffu, (u & 0x80000000u) != 0u));
+}
+
+// Builds the tile's candidate list in workgroup memory (ordered like `visible`), from the
+// axis-aligned box of the tile's pixel positions (`p`, valid when `has_point`): on a
+// plane seen at an angle this box is a thin slab, far tighter than the tile's frustum
+// slice between its nearest and farthest depth.
 // Returns the list length, or TILE_LIST_CAPACITY + 1 when it overflowed.
-fn build_tile_list(lid: u32, tile_origin: vec2<u32>, depth_ok: bool, depth: f32) -> u32 {
+fn build_tile_list(lid: u32, has_point: bool, p: vec3<f32>) -> u32 {
+    if (lid < 3u) {
+        atomicStore(&tile_box_min[lid], 0xffffffffu);
+        atomicStore(&tile_box_max[lid], 0u);
+    }
     if (lid == 0u) {
-        atomicStore(&tile_depth_min, 0x7f800000u);
-        atomicStore(&tile_depth_max, 0u);
         tile_list_len = 0u;
     }
     workgroupBarrier();
-    if (depth_ok) {
-        // Non-negative floats order like their bits.
-        atomicMin(&tile_depth_min, bitcast<u32>(depth));
-        atomicMax(&tile_depth_max, bitcast<u32>(depth));
+    if (has_point) {
+        for (var c = 0u; c < 3u; c++) {
+            atomicMin(&tile_box_min[c], ordered_bits(p[c]));
+            atomicMax(&tile_box_max[c], ordered_bits(p[c]));
+        }
     }
     workgroupBarrier();
-    let dmin_bits = atomicLoad(&tile_depth_min);
-    let dmax_bits = atomicLoad(&tile_depth_max);
-    var corners: array<vec3<f32>, 8>;
-    let lo = vec2<f32>(tile_origin);
-    let hi = min(lo + f32(TILE_SIZE), frame.resolution.xy);
-    let dmin = bitcast<f32>(dmin_bits);
-    let dmax = bitcast<f32>(dmax_bits);
-    for (var i = 0u; i < 8u; i++) {
-        let x = select(lo.x, hi.x, (i & 1u) != 0u);
-        let y = select(lo.y, hi.y, (i & 2u) != 0u);
-        corners[i] = ppr_unproject(vec2<f32>(x, y), select(dmin, dmax, (i & 4u) != 0u));
+    let empty_tile = atomicLoad(&tile_box_min[0]) > atomicLoad(&tile_box_max[0]);
+    var box_lo = vec3<f32>(0.0);
+    var box_hi = vec3<f32>(0.0);
+    for (var c = 0u; c < 3u; c++) {
+        box_lo[c] = from_ordered_bits(atomicLoad(&tile_box_min[c]));
+        box_hi[c] = from_ordered_bits(atomicLoad(&tile_box_max[c]));
     }
-    let empty_tile = dmin_bits > dmax_bits;
     var count = 0u;
     let word = lid / 32u;
-    let below = (1u << (lid % 32u)) - 1u;
     for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
-        if (lid < 8u) {
-            atomicStore(&pass_bits[lid], 0u);
-        }
-        workgroupBarrier();
         let k = base + lid;
-        let passes = !empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], corners);
-        if (passes) {
-            atomicOr(&pass_bits[word], 1u << (lid % 32u));
+        let passes = !empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], box_lo, box_hi);
+        pass_flags[lid] = select(0u, 1u, passes);
+        workgroupBarrier();
+        // Ordered compaction: eight threads pack the flags into words, then a passing
+        // thread's slot is the number of passing threads before it (popcounts).
+        if (lid < 8u) {
+            var bits = 0u;
+            for (var t = 0u; t < 32u; t++) {
+                bits |= pass_flags[lid * 32u + t] << t;
+            }
+            pass_words[lid] = bits;
         }
         workgroupBarrier();
-        // Ordered compaction: a passing thread's slot is the number of passing threads
-        // before it, so the list keeps the visible order (sorted by parallel group).
-        var rank = countOneBits(atomicLoad(&pass_bits[word]) & below);
+        var rank = countOneBits(pass_words[word] & ((1u << (lid % 32u)) - 1u));
         var total = 0u;
         for (var w = 0u; w < 8u; w++) {
-            let bits = countOneBits(atomicLoad(&pass_bits[w]));
-            total += bits;
+            let n = countOneBits(pass_words[w]);
+            total += n;
             if (w < word) {
-                rank += bits;
+                rank += n;
             }
         }
         if (passes && count + rank < TILE_LIST_CAPACITY) {
@@ -275,23 +327,27 @@ fn main(
         depth_ok = ppr_is_valid_depth(depth);
     }
 
+    var p = vec3<f32>(0.0);
+    if (depth_ok) {
+        p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
+        depth_ok = ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30));
+    }
+
     // In the tiled variant, the candidates are the tile's list (visible positions);
     // otherwise, or when the list overflowed, every visible shape.
     var count = frame.visible_count;
     var use_list = false;
     if (TILE_CULLING) {
-        let listed = build_tile_list(lid, wid.xy * TILE_SIZE, depth_ok, depth);
+        let listed = build_tile_list(lid, depth_ok, p);
         if (listed <= TILE_LIST_CAPACITY) {
             count = listed;
             use_list = true;
         }
     }
-    if (!depth_ok || (count == 0u && !LAYERS)) {
-        return;
+    if (DEBUG_TILE_LISTS && all(gid.xy < frame.size)) {
+        debug_writes[gid.x + gid.y * frame.size.x] = select(0xffffffffu, count, use_list);
     }
-
-    let p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
-    if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z)) || any(abs(p) >= vec3<f32>(1e30))) {
+    if (!depth_ok || (count == 0u && !LAYERS)) {
         return;
     }
     let min_dist = frame.plane_epsilon * length(p);
@@ -346,7 +402,7 @@ fn main(
         }
         write_layer(gid.xy, mirrored, layer);
     }
-    if (DEBUG_WRITES) {
+    if (DEBUG_WRITES && !DEBUG_TILE_LISTS) {
         debug_writes[gid.x + gid.y * frame.size.x] = written;
     }
 }

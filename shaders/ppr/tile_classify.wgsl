@@ -1,5 +1,5 @@
 // Tile classification: finds the 16x16 tiles where some pixel lies on a visible reflector
-// and appends them to the active-tile list, so that the clear and the reflection passes
+// (or on a layer reflector, through which one may be seen) and appends them to the active-tile list, so that the clear and the reflection passes
 // run (indirectly) only there. Per tile, the visible shapes whose screen rectangle touches
 // the tile are first gathered in workgroup memory (one thread per shape); each pixel then
 // tests whether it lies on one of them. A second entry point turns the count into
@@ -34,6 +34,9 @@ struct ActiveTileCounter {
 // Per tile: 1 when active, 0 when not (so that reads across a tile border can tell
 // whether the neighbouring tile was cleared this frame).
 @group(0) @binding(7) var<storage, read_write> tile_flags: array<u32>;
+// Layer reflectors (glass, water): a reflector seen through one has the layer's depth, so
+// a pixel on a layer also makes its tile active.
+@group(0) @binding(8) var<storage, read> layers: array<Layer>;
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
@@ -84,12 +87,15 @@ fn classify(
             let p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
             let overflow = listed > LIST_CAPACITY;
             let n = select(listed, frame.visible_count, overflow);
-            for (var i = 0u; i < n; i++) {
-                let s = shapes[select(list[i], visible[i], overflow)];
-                if (lies_on(p, s)) {
-                    atomicOr(&shows_reflector, 1u);
-                    break;
-                }
+            var on_reflector = false;
+            for (var i = 0u; i < n && !on_reflector; i++) {
+                on_reflector = lies_on(p, shapes[select(list[i], visible[i], overflow)]);
+            }
+            for (var l = 0u; l < frame.layer_count && !on_reflector; l++) {
+                on_reflector = lies_on(p, shapes[layers[l].shape]);
+            }
+            if (on_reflector) {
+                atomicOr(&shows_reflector, 1u);
             }
         }
     }

@@ -65,31 +65,99 @@ fn a_glass_panel_over_a_floor_mirror_reflects_both() {
     let cam = camera();
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
-    let mut r = renderer();
-    r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&s.reflector_set());
-    let out = run(&mut r, &gpu, &cam);
-    eprintln!("{}", out.plan);
-    assert_eq!(out.plan.layers.len(), 1, "the glass panel gets a layer");
-    assert!(out.plan.passes().contains(&"layers"));
-
-    let glass_px = frame.glass.iter().filter(|g| g.is_some()).count();
     let through_glass =
         |i: usize| frame.glass[i].is_some() && frame.mirror[i].is_some() && frame.on_screen[i];
-    let mirror_under_glass =
-        compare(&frame, &out.pixels, |i| through_glass(i) && interior(&frame, 0, |_| true)[i]);
-    let glass =
-        compare_layer(&frame, &out.layer_pixels, &frame.glass_reference, |i| frame.glass_on_screen[i]);
-    let layer_elsewhere =
-        out.layer_pixels.iter().enumerate().filter(|(i, p)| frame.glass[*i].is_none() && p.w > 0.5).count();
-    eprintln!(
-        "glass pixels {glass_px}: layer vs glass reference {glass:?}\n  mirror seen through the glass, main output {mirror_under_glass:?}\n  layer pixels outside the glass {layer_elsewhere}"
+    // Full-screen passes, then indirect ones: a mirror seen through the glass has the
+    // glass's depth, and its tiles must still be classified active.
+    let mut outputs = Vec::new();
+    for indirect in [Choice::Off, Choice::On] {
+        let mut r = renderer();
+        r.plan_params.indirect = indirect;
+        r.set_reflectors(&s.reflector_set());
+        let out = run(&mut r, &gpu, &cam);
+        eprintln!("{}", out.plan);
+        assert_eq!(out.plan.indirect, indirect == Choice::On);
+        assert_eq!(out.plan.layers.len(), 1, "the glass panel gets a layer");
+        assert!(out.plan.passes().contains(&"layers"));
+
+        let glass_px = frame.glass.iter().filter(|g| g.is_some()).count();
+        let mirror_under_glass =
+            compare(&frame, &out.pixels, |i| through_glass(i) && interior(&frame, 0, |_| true)[i]);
+        let glass =
+            compare_layer(&frame, &out.layer_pixels, &frame.glass_reference, |i| frame.glass_on_screen[i]);
+        let layer_elsewhere = out
+            .layer_pixels
+            .iter()
+            .enumerate()
+            .filter(|(i, p)| frame.glass[*i].is_none() && p.w > 0.5)
+            .count();
+        eprintln!(
+            "indirect {indirect:?}, glass pixels {glass_px}: layer vs glass reference {glass:?}\n  mirror seen through the glass, main output {mirror_under_glass:?}\n  layer pixels outside the glass {layer_elsewhere}"
+        );
+        assert!(glass.pixels > 500, "{glass:?}");
+        // Away from silhouettes, like the main reflection (35 dB there; see tests/it/reflection.rs).
+        assert!(glass.psnr >= 30.0, "{glass:?}");
+        assert!(mirror_under_glass.pixels > 300 && mirror_under_glass.psnr >= 20.0, "{mirror_under_glass:?}");
+        assert_eq!(layer_elsewhere, 0, "the layer output covers only glass pixels");
+        outputs.push(out.pixels);
+    }
+    let differing =
+        (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i] != outputs[1][i]).count();
+    assert_eq!(differing, 0, "indirect dispatch changes the mirror seen through the glass");
+}
+
+#[test]
+fn indirect_dispatch_keeps_a_mirror_seen_through_glass_written_to_depth() {
+    // A renderer whose depth pass writes the glass (the testbed's does): the mirror under
+    // a large glass table is then not in the depth buffer, and the tiles that show it only
+    // through the glass must still be classified active (the classification counts layers).
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    s.glass("glass top", DVec3::new(0.0, 0.7, -3.0), DVec3::X, DVec3::NEG_Z, [3.4, 2.6]);
+    // Looking down at the table, so that whole tiles show the mirror only through it.
+    let cam = Camera::look_at(
+        DVec3::new(0.0, 2.6, -0.5),
+        DVec3::new(0.0, 0.0, -3.5),
+        Vec3::Y,
+        Projection::default(),
     );
-    assert!(glass.pixels > 500, "{glass:?}");
-    // Away from silhouettes, like the main reflection (35 dB there; see tests/it/reflection.rs).
-    assert!(glass.psnr >= 30.0, "{glass:?}");
-    assert!(mirror_under_glass.pixels > 300 && mirror_under_glass.psnr >= 20.0, "{mirror_under_glass:?}");
-    assert_eq!(layer_elsewhere, 0, "the layer output covers only glass pixels");
+    let mut frame = s.render(&cam, SIZE);
+    for (d, g) in frame.depth.iter_mut().zip(&frame.glass_depth) {
+        if let Some(g) = g {
+            *d = *g;
+        }
+    }
+    let gpu = GpuFrame::upload(&frame);
+    let mut outputs = Vec::new();
+    for indirect in [Choice::Off, Choice::On] {
+        let mut r = renderer();
+        r.plan_params.indirect = indirect;
+        r.set_reflectors(&s.reflector_set());
+        let out = run(&mut r, &gpu, &cam);
+        assert_eq!(out.plan.indirect, indirect == Choice::On, "{}", out.plan);
+        outputs.push(out.pixels);
+    }
+    let through_glass = |i: usize| frame.glass[i].is_some() && frame.mirror[i].is_some();
+    let shown = (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i].w > 0.5).count();
+    let differing =
+        (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i] != outputs[1][i]).count();
+    eprintln!("{shown} reflections under the glass; {differing} differ with indirect dispatch");
+    // Tiles (16 px) that show the mirror only through the glass: what the test is about.
+    let [w, h] = SIZE;
+    let glass_only_tiles = (0..w.div_ceil(16) * h.div_ceil(16))
+        .filter(|t| {
+            let (tx, ty) = (t % w.div_ceil(16), t / w.div_ceil(16));
+            (0..256).all(|k| {
+                let (x, y) = (tx * 16 + k % 16, ty * 16 + k / 16);
+                x >= w || y >= h || through_glass((y * w + x) as usize)
+            })
+        })
+        .count();
+    eprintln!("{glass_only_tiles} tiles show the mirror only through the glass");
+    assert!(glass_only_tiles >= 10, "{glass_only_tiles}");
+    assert!(shown > 2000, "{shown}");
+    assert_eq!(differing, 0, "indirect dispatch loses the mirror seen through the glass");
 }
 
 #[test]

@@ -287,3 +287,34 @@ fn a_frame_without_visible_reflectors_dispatches_nothing() {
     assert_eq!(out.plan.visible.len(), 1, "{}", out.plan);
     assert!(r.last_dispatch_count() >= 3);
 }
+
+#[test]
+fn tile_lists_stay_short_on_coplanar_puddles() {
+    // Culling must pay where many shapes share a plane: a floor tile lists only the
+    // puddles its pixels can reflect into, not all of them.
+    let mut rng = Rng(0x5eed_0005);
+    let scene = puddle_floor(&mut rng);
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 3.0, 4.0),
+        DVec3::new(0.0, 0.0, -5.0),
+        Vec3::Y,
+        Projection::default(),
+    );
+    let frame = scene.render(&camera, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = configured(true, Choice::On);
+    r.debug_tile_lists = true;
+    r.set_reflectors(&grouped_set(&scene));
+    let out = run(&mut r, &gpu, &camera);
+    let lengths = debug_masks(&r);
+    let listed: Vec<u32> = lengths.iter().copied().filter(|&n| n != u32::MAX).collect();
+    let overflowed = lengths.len() - listed.len();
+    let mean = listed.iter().map(|&n| f64::from(n)).sum::<f64>() / listed.len().max(1) as f64;
+    let longest = listed.iter().copied().max().unwrap_or(0);
+    eprintln!(
+        "{} visible puddles: mean list {mean:.2}, longest {longest}, {overflowed} pixels without a list",
+        out.plan.visible.len()
+    );
+    assert!(out.plan.visible.len() >= 20);
+    assert!(mean <= 0.25 * out.plan.visible.len() as f64, "mean list {mean}");
+}

@@ -113,14 +113,18 @@ impl GpuFrame {
         let output = texture(
             "test output",
             ppr_runtime::OUTPUT_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             None,
             8,
         );
         let layer_output = texture(
             "test layer output",
             ppr_runtime::OUTPUT_FORMAT,
-            wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             None,
             8,
         );
@@ -207,9 +211,24 @@ fn write_depth(src: &wgpu::Texture, dst: &wgpu::Texture) {
     g.queue.submit([encoder.finish()]);
 }
 
-/// Runs the renderer once on an uploaded frame and reads everything back.
+/// Runs the renderer once on an uploaded frame and reads everything back. The outputs are
+/// zeroed first, so that what an earlier run wrote cannot pass for this run's result
+/// (indirect dispatch leaves pixels outside the active tiles untouched).
 pub fn run(renderer: &mut ReflectionRenderer, frame: &GpuFrame, camera: &Camera) -> Output {
     let g = gpu();
+    let zeros = vec![0u8; (frame.size[0] * frame.size[1] * 8) as usize];
+    for t in [&frame.output, &frame.layer_output] {
+        g.queue.write_texture(
+            t.as_image_copy(),
+            &zeros,
+            wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(frame.size[0] * 8),
+                rows_per_image: None,
+            },
+            t.size(),
+        );
+    }
     let plan = renderer.prepare(camera, frame.size).clone();
     let color = frame.color.create_view(&Default::default());
     let aspect = if frame.depth.format().has_depth_aspect() {

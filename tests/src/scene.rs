@@ -245,6 +245,7 @@ impl AnalyticScene {
             glass: vec![None; n],
             glass_reference: vec![Vec3::ZERO; n],
             glass_on_screen: vec![false; n],
+            glass_depth: vec![None; n],
             far_depth: camera.projection.far_depth(),
         };
         let project = |p_rel: DVec3| {
@@ -304,6 +305,7 @@ impl AnalyticScene {
                     f.glass[i] = q.mirror;
                     f.glass_reference[i] = c;
                     f.glass_on_screen[i] = on_screen;
+                    f.glass_depth[i] = Some(project(dir * t).2 as f32);
                 }
                 let Some((t, colour, qi)) = opaque else { continue };
                 f.color[i] = colour;
@@ -351,6 +353,9 @@ pub struct Frame {
     pub glass_reference: Vec<Vec3>,
     /// Glass pixels whose reflected point is visible on screen.
     pub glass_on_screen: Vec<bool>,
+    /// The depth of the glass panel at glass pixels (what a renderer whose depth pass
+    /// writes glass would have in its depth buffer).
+    pub glass_depth: Vec<Option<f32>>,
 }
 
 impl Frame {
@@ -369,6 +374,7 @@ impl Frame {
             glass: self.glass.clone(),
             glass_reference: self.glass_reference.clone(),
             glass_on_screen: self.glass_on_screen.clone(),
+            glass_depth: self.glass_depth.clone(),
         }
     }
 

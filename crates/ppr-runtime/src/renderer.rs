@@ -107,6 +107,9 @@ pub struct ReflectionRenderer {
     /// Record per source pixel which visible shapes it wrote for (debug; see
     /// [`Self::debug_writes_buffer`]).
     pub debug_writes: bool,
+    /// With `debug_writes`: record each pixel's tile candidate-list length (0xffffffff:
+    /// the list overflowed or there is none) instead of the write bits.
+    pub debug_tile_lists: bool,
     /// Use this encoding instead of the one the plan picks for the viewport (e.g. the
     /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
     /// fit the viewport ([`EncodingLayout::fits_viewport`]) or long offsets are dropped.
@@ -136,6 +139,7 @@ impl ReflectionRenderer {
             write_mode: WriteMode::default(),
             debug_writes: false,
             encoding_override: None,
+            debug_tile_lists: false,
             classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
             projection: ProjectionPass::new(device),
@@ -188,6 +192,7 @@ impl ReflectionRenderer {
             occluder_tests: plan.occluder_tests,
             layers: !plan.layers.is_empty(),
             debug_writes: self.debug_writes,
+            debug_tile_lists: self.debug_writes && self.debug_tile_lists,
         }
     }
 
@@ -284,6 +289,7 @@ impl ReflectionRenderer {
                     active_tiles: &b.active_tiles,
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
+                    layers: &b.layers,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

@@ -21,6 +21,8 @@ pub struct ProjectionVariant {
     pub layers: bool,
     /// Record per source pixel which visible shapes it wrote for.
     pub debug_writes: bool,
+    /// Record per pixel its tile's candidate-list length instead (needs `debug_writes`).
+    pub debug_tile_lists: bool,
 }
 
 /// Buffers and views the projection pass reads and writes.
@@ -76,6 +78,7 @@ impl ProjectionPass {
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
             ("LAYERS", flag(v.layers)),
             ("DEBUG_WRITES", flag(v.debug_writes)),
+            ("DEBUG_TILE_LISTS", flag(v.debug_tile_lists)),
         ];
         let label = format!("ppr projection {v:?}");
         let pipeline = compute_pipeline(device, &label, &self.layout, &self.module, "main", &constants);

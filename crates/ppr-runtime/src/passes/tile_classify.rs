@@ -18,6 +18,8 @@ pub struct ClassifyBindings<'a> {
     pub active_tiles: &'a wgpu::Buffer,
     pub dispatch_args: &'a wgpu::Buffer,
     pub tile_flags: &'a wgpu::Buffer,
+    /// Layer reflectors of the frame (glass, water): reflectors seen through them count.
+    pub layers: &'a wgpu::Buffer,
 }
 
 /// The tile classification pass (two dispatches: classify, then finalize the arguments).
@@ -40,6 +42,7 @@ impl TileClassifyPass {
                 storage_entry(5, false),
                 storage_entry(6, false),
                 storage_entry(7, false),
+                storage_entry(8, true),
             ],
         });
         let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
@@ -70,6 +73,7 @@ impl TileClassifyPass {
                 wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
             ],
         })
     }
