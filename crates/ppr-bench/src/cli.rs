@@ -85,7 +85,9 @@ pub struct RuntimeArgs {
     #[arg(long, default_value_t = 256)]
     pub copy_mib: u64,
     /// Also run every scene with the glass/water layers and normal maps off (rows
-    /// `<scene> (features off)`): what those features cost when a level has them.
+    /// `<scene> (features off)`): what those features cost when a level has them; and with
+    /// every reflector marked as normal-mapped (rows `<scene> (normal maps)`): what the
+    /// normal-map variant of the reflection pass costs.
     #[arg(long)]
     pub features_off: bool,
 }

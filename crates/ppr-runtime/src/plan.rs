@@ -54,8 +54,9 @@ pub struct PlanParams {
     pub tile_culling: Choice,
     /// With `Auto`, tile culling runs from this many visible shapes on. Measured on an
     /// H100 at 3840×2160 (docs/perf/scaling.md): building the tile lists costs a fixed
-    /// ~0.34 ms there, repaid from 32 shapes on a window facade and 128 on a stairway (never
-    /// on coplanar floor tiles); at 64 the stairway loses 0.06 ms and the facade gains 0.66.
+    /// 0.13–0.21 ms there, repaid from 16 shapes on a window facade, 32 on puddles of one
+    /// floor and 64 on a stairway; at 32 the stairway loses 0.012 ms, the floor gains 0.13
+    /// and the facade 0.35.
     pub tile_culling_min_shapes: usize,
     /// Among parallel shapes, only the nearest plane reflects a pixel. `Auto`: with tile
     /// culling.
@@ -83,7 +84,7 @@ impl Default for PlanParams {
     fn default() -> Self {
         Self {
             tile_culling: Choice::Auto,
-            tile_culling_min_shapes: 64,
+            tile_culling_min_shapes: 32,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
             indirect_max_coverage: 0.3,

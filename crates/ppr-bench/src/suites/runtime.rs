@@ -86,14 +86,18 @@ pub fn run_runtime(
         };
         notes.extend(scene.notes.iter().map(|n| format!("{}: {n}", scene.name)));
         let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
-        let mut variants = vec![(String::new(), PlanParams::default())];
+        let mut variants = vec![(String::new(), PlanParams::default(), scene.reflectors.clone())];
         if rc.features_off {
             let off = PlanParams { layers: Choice::Off, normal_maps: Choice::Off, ..PlanParams::default() };
-            variants.push((" (features off)".to_owned(), off));
+            variants.push((" (features off)".to_owned(), off, scene.reflectors.clone()));
+            let mut normal_mapped = scene.reflectors.clone();
+            for r in &mut normal_mapped.reflectors {
+                r.normal_map = true;
+            }
+            variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped));
         }
-        for (suffix, params) in variants {
-            let mut ppr =
-                PprRunner::new(device, queue, &scene.reflectors, "ppr", ReflectionSettings::ALL, params);
+        for (suffix, params, reflectors) in variants {
+            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params);
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
                     let size = res.size();
