@@ -88,6 +88,14 @@ pub enum InspectorError {
     /// The GPU refused work (validation or out of memory), caught in an error scope.
     #[error("GPU error: {0}")]
     Gpu(String),
+    /// The manual-edit record beside a set (`*.edits.json`) could not be read or written.
+    #[error("{}: manual-edit record: {reason}", path.display())]
+    EditsFile {
+        /// The edits file.
+        path: PathBuf,
+        /// What went wrong.
+        reason: String,
+    },
     /// Writing an image (screenshot) failed.
     #[error("{}: cannot write image: {reason}", path.display())]
     Image {

@@ -13,6 +13,7 @@ pub mod camera_control;
 pub mod commands;
 pub mod document;
 pub mod edit_history;
+pub mod edits_file;
 pub mod error;
 pub mod extraction_job;
 pub mod extraction_panel;

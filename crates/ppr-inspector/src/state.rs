@@ -14,6 +14,7 @@ use crate::camera_control::CameraRig;
 use crate::commands::EditCommand;
 use crate::document::Document;
 use crate::edit_history::{EditHistory, HistoryEntry};
+use crate::edits_file;
 use crate::error::InspectorError;
 use crate::extraction_job::{ExtractionJob, JobEvent, JobRequest, LevelSource};
 use crate::manual_edits::carry_edits;
@@ -215,12 +216,24 @@ impl InspectorState {
     pub fn open_set(&mut self, path: &Path) {
         match ReflectorSet::load(path) {
             Ok(set) => {
-                let doc = Document::from_set(set);
-                self.messages.info(format!(
-                    "loaded {} reflectors from {}",
-                    doc.set.reflectors.len(),
-                    path.display()
-                ));
+                let mut doc = Document::from_set(set);
+                let mut loaded =
+                    format!("loaded {} reflectors from {}", doc.set.reflectors.len(), path.display());
+                match edits_file::load(path, &doc.set) {
+                    Ok(Some(edits)) => {
+                        let n = edits.edited.len() + edits.replacements.len();
+                        loaded.push_str(&format!(
+                            " and {n} manual edit(s) from {}",
+                            edits_file::edits_path(path).display()
+                        ));
+                        doc.edits = edits;
+                    }
+                    Ok(None) => {}
+                    Err(e) => self
+                        .messages
+                        .warning(format!("{e}; re-extraction will not keep earlier manual edits")),
+                }
+                self.messages.info(loaded);
                 self.saved_revision = Some(doc.revision);
                 self.doc = Some(doc);
                 self.set_path = Some(path.to_owned());
@@ -483,10 +496,12 @@ impl InspectorState {
     pub fn save_as(&mut self, path: &Path) -> Result<(), InspectorError> {
         let doc = self.doc.as_ref().ok_or_else(|| InspectorError::Missing("nothing to save".into()))?;
         doc.set.save(path)?;
+        // The set is saved; its edits go beside it (a failure is reported, the set stays).
+        let edits = edits_file::save(path, &doc.edits);
         self.saved_revision = Some(doc.revision);
         self.set_path = Some(path.to_owned());
         self.messages.info(format!("saved {} reflectors to {}", doc.set.reflectors.len(), path.display()));
-        Ok(())
+        edits
     }
 
     /// Runs `result`, logging its error.

@@ -348,3 +348,52 @@ fn opening_a_level_with_a_saved_set_skips_extraction() {
     assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "no extraction replaced it");
     assert_eq!(state.default_set_path(), Some(path));
 }
+
+#[test]
+fn manual_edits_survive_save_reopen_and_reextraction() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("room.ppr.json");
+    let edits_path = ppr_inspector::edits_file::edits_path(&path);
+    assert_eq!(edits_path, dir.path().join("room.ppr.edits.json"));
+
+    let doc = demo_document(&ExtractParams::default());
+    let mirror = id_named(&doc, "mirror on mirror_wall");
+    let puddle = id_named(&doc, "puddle on puddle_a");
+    let water = id_named(&doc, "water on water_surface");
+    let mut state = state_with(doc);
+    assert!(state.apply(EditCommand::Rename { id: mirror, name: "hero mirror".into() }));
+    assert!(state.apply(EditCommand::SetEnabled { id: puddle, enabled: false }));
+    assert!(state.apply(EditCommand::Split { id: water, axis: SplitAxis::V, at: 0.5 }));
+    state.save_as(&path).expect("saved");
+    assert!(edits_path.exists(), "the edits are saved beside the set");
+    let saved = state.set().expect("set").clone();
+
+    // Reopen (a new session): the set is the file's, and re-extraction keeps the edits.
+    let mut reopened = InspectorState::default();
+    reopened.open_level(&demo_level_path(), Some(&path));
+    assert!(reopened.wait_for_job(Duration::from_secs(120)));
+    assert_eq!(reopened.set(), Some(&saved));
+    let loaded = reopened.messages.entries().iter().any(|m| m.text.contains("3 manual edit(s)"));
+    assert!(loaded, "{:?}", reopened.messages.entries());
+    reopened.reextract().expect("starts");
+    assert!(reopened.wait_for_job(Duration::from_secs(120)));
+    let set = reopened.set().expect("set");
+    assert_eq!(set.by_id(mirror).map(|r| r.name.as_str()), Some("hero mirror"));
+    assert_eq!(set.by_id(puddle).map(|r| r.enabled), Some(false));
+    assert!(set.by_id(water).is_none(), "the split water stays split");
+    assert_eq!(set.reflectors.iter().filter(|r| r.name.starts_with("water on water_surface [")).count(), 2);
+
+    // Saving a set without edits removes the stale record.
+    let mut fresh = state_with(demo_document(&ExtractParams::default()));
+    fresh.save_as(&path).expect("saved");
+    assert!(!edits_path.exists(), "no edits, no record");
+
+    // A broken record is a warning that names the file; the set still opens.
+    std::fs::write(&edits_path, "{ not json").expect("written");
+    let mut broken = InspectorState::default();
+    broken.open_set(&path);
+    assert!(broken.set().is_some());
+    let warning =
+        broken.messages.entries().iter().find(|m| m.severity == Severity::Warning).expect("a warning");
+    assert!(warning.text.contains("room.ppr.edits.json"), "{}", warning.text);
+}
