@@ -6,9 +6,12 @@
 // Variants (pipeline-overridable constants, chosen by the FramePlan):
 // - TILE_CULLING: each 16x16 workgroup first builds, in workgroup memory, the list of
 //   visible shapes that may reflect some pixel of its tile (one thread per shape; a
-//   conservative test of the tile's mirrored world-space bounds against the rectangle);
-//   a tile without candidates does nothing more. Otherwise every pixel loops over all
-//   visible shapes.
+//   conservative test of the tile's mirrored world-space bounds against the rectangle,
+//   tile_test.wgsl); a tile without candidates does nothing more. Otherwise every pixel
+//   loops over all visible shapes.
+// - SUPER_TILES (with TILE_CULLING): the candidates a tile tests are its 64x64
+//   super-tile's list (super_tile_lists.wgsl, dispatched just before) instead of every
+//   visible shape; a tile whose own list overflows falls back to that list.
 // - PARALLEL_RULE: among shapes of one parallel group that reflect a pixel, only the one
 //   with the smallest plane distance writes (each pixel reflected at most once per
 //   orientation). The visible list is sorted by group, and so are the tile lists.
@@ -18,6 +21,7 @@
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
 
 override TILE_CULLING: bool = false;
+override SUPER_TILES: bool = false;
 override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
 override LAYERS: bool = false;
@@ -26,8 +30,7 @@ override DEBUG_WRITES: bool = false;
 override DEBUG_TILE_LISTS: bool = false;
 
 const TILE_SIZE: u32 = 16u;
-const GROUP_THREADS: u32 = 256u;
-// Capacity of a tile's shape list; a tile with more candidates loops over all shapes.
+// Capacity of a tile's shape list; a tile with more candidates loops over all of them.
 const TILE_LIST_CAPACITY: u32 = 256u;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
@@ -40,15 +43,10 @@ const TILE_LIST_CAPACITY: u32 = 256u;
 // Layer reflectors (glass, water) and their atlas (layer_reflection.wgsl reads it).
 @group(0) @binding(7) var<storage, read> layers: array<Layer>;
 @group(0) @binding(8) var<storage, read_write> atlas: array<atomic<u32>>;
+// Super-tile counts and lists (super_tile_lists.wgsl), read with SUPER_TILES.
+@group(0) @binding(9) var<storage, read> super_lists: array<u32>;
 
-// The box of the tile's pixel positions (ordered float bits per axis).
-var<workgroup> tile_box_min: array<atomic<u32>, 3>;
-var<workgroup> tile_box_max: array<atomic<u32>, 3>;
 var<workgroup> tile_list: array<u32, TILE_LIST_CAPACITY>;
-var<workgroup> tile_list_len: u32;
-// Per thread of a chunk: whether its shape passed; packed into words for the ranks.
-var<workgroup> pass_flags: array<u32, GROUP_THREADS>;
-var<workgroup> pass_words: array<u32, 8>;
 
 fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     for (var k = 0u; k < s.occluder_count; k++) {
@@ -152,164 +150,65 @@ fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
     return write_projection(pixel, mirrored);
 }
 
-// Rectangle coordinates of where a front point `c` (plane distance `d` > 0) is reflected.
-fn reflected_uv(s: Shape, c: vec3<f32>, d: f32) -> vec2<f32> {
-    let m = c - 2.0 * d * s.normal;
-    let l = m * (s.plane_dist / dot(m, s.normal)) - s.center;
-    return vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
+// The shapes a tile considers: `count` positions in `visible`, listed in `super_lists`
+// from `start` (`listed`) or all of them.
+struct Candidates {
+    count: u32,
+    start: u32,
+    listed: bool,
 }
 
-// Bounds accumulated by the tile test: (lo.xy, hi.xy) in rectangle coordinates.
-struct UvBounds {
-    lo: vec2<f32>,
-    hi: vec2<f32>,
-}
-
-fn add_corner(b: UvBounds, s: Shape, c: vec3<f32>, d: f32) -> UvBounds {
-    if (!(d > 0.0)) {
-        return b;
+fn tile_candidates(wid: vec3<u32>) -> Candidates {
+    var c = Candidates(frame.visible_count, 0u, false);
+    if (SUPER_TILES) {
+        let grid = super_tile_grid();
+        let st = wid.x / (SUPER_TILE_SIZE / TILE_SIZE) + (wid.y / (SUPER_TILE_SIZE / TILE_SIZE)) * grid.x;
+        let n = super_lists[st];
+        if (n <= SUPER_LIST_CAPACITY) {
+            c = Candidates(n, grid.y + st * SUPER_LIST_CAPACITY, true);
+        }
     }
-    let uv = reflected_uv(s, c, d);
-    return UvBounds(min(b.lo, uv), max(b.hi, uv));
+    return c;
 }
 
-// Where the edge a–b crosses the plane, if it does (a point on the plane is its own
-// reflection point).
-fn add_crossing(b: UvBounds, s: Shape, a: vec3<f32>, da: f32, c: vec3<f32>, dc: f32) -> UvBounds {
-    if ((da > 0.0) == (dc > 0.0)) {
-        return b;
+// Position in `visible` of candidate `i`.
+fn candidate(c: Candidates, i: u32) -> u32 {
+    if (c.listed) {
+        return super_lists[c.start + i];
     }
-    let l = mix(a, c, da / (da - dc)) - s.center;
-    let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-    return UvBounds(min(b.lo, uv), max(b.hi, uv));
+    return i;
 }
 
-// Conservative tile test: may any point of the box [lo, hi] (the tile's pixel positions)
-// be reflected by `s` into its rectangle? Only the part of the box in front of the plane
-// can be reflected; it is the convex hull of the front corners and of the points where
-// the box's edges cross the plane. Mirroring is affine and the central projection from
-// the camera onto the plane keeps convexity for points behind it, so the rectangle
-// spanned by the projections of those points bounds every pixel's reflection point.
-// Written out corner by corner and edge by edge: no dynamically indexed arrays.
-fn tile_may_reflect(s: Shape, lo: vec3<f32>, hi: vec3<f32>) -> bool {
-    let c0 = vec3<f32>(lo.x, lo.y, lo.z);
-    let c1 = vec3<f32>(hi.x, lo.y, lo.z);
-    let c2 = vec3<f32>(lo.x, hi.y, lo.z);
-    let c3 = vec3<f32>(hi.x, hi.y, lo.z);
-    let c4 = vec3<f32>(lo.x, lo.y, hi.z);
-    let c5 = vec3<f32>(hi.x, lo.y, hi.z);
-    let c6 = vec3<f32>(lo.x, hi.y, hi.z);
-    let c7 = vec3<f32>(hi.x, hi.y, hi.z);
-    let n = s.normal;
-    let d0 = dot(c0, n) - s.plane_dist;
-    let d1 = dot(c1, n) - s.plane_dist;
-    let d2 = dot(c2, n) - s.plane_dist;
-    let d3 = dot(c3, n) - s.plane_dist;
-    let d4 = dot(c4, n) - s.plane_dist;
-    let d5 = dot(c5, n) - s.plane_dist;
-    let d6 = dot(c6, n) - s.plane_dist;
-    let d7 = dot(c7, n) - s.plane_dist;
-    if (!(max(max(max(d0, d1), max(d2, d3)), max(max(d4, d5), max(d6, d7))) > 0.0)) {
-        return false;
-    }
-    var b = UvBounds(vec2<f32>(3.0e38), vec2<f32>(-3.0e38));
-    b = add_corner(b, s, c0, d0);
-    b = add_corner(b, s, c1, d1);
-    b = add_corner(b, s, c2, d2);
-    b = add_corner(b, s, c3, d3);
-    b = add_corner(b, s, c4, d4);
-    b = add_corner(b, s, c5, d5);
-    b = add_corner(b, s, c6, d6);
-    b = add_corner(b, s, c7, d7);
-    b = add_crossing(b, s, c0, d0, c1, d1);
-    b = add_crossing(b, s, c2, d2, c3, d3);
-    b = add_crossing(b, s, c4, d4, c5, d5);
-    b = add_crossing(b, s, c6, d6, c7, d7);
-    b = add_crossing(b, s, c0, d0, c2, d2);
-    b = add_crossing(b, s, c1, d1, c3, d3);
-    b = add_crossing(b, s, c4, d4, c6, d6);
-    b = add_crossing(b, s, c5, d5, c7, d7);
-    b = add_crossing(b, s, c0, d0, c4, d4);
-    b = add_crossing(b, s, c1, d1, c5, d5);
-    b = add_crossing(b, s, c2, d2, c6, d6);
-    b = add_crossing(b, s, c3, d3, c7, d7);
-    // Margin for the f32 error of per-pixel positions against the box's.
-    let reach = max(length(lo), length(hi));
-    let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
-    let half = vec2<f32>(s.half_u, s.half_v) + margin;
-    return all(b.hi >= -half) && all(b.lo <= half);
-}
-
-// Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).
-fn ordered_bits(x: f32) -> u32 {
-    let b = bitcast<u32>(x);
-    return select(b | 0x80000000u, ~b, (b & 0x80000000u) != 0u);
-}
-
-fn from_ordered_bits(u: u32) -> f32 {
-    return bitcast<f32>(select(~u, u & 0x7fffffffu, (u & 0x80000000u) != 0u));
-}
-
-// Builds the tile's candidate list in workgroup memory (ordered like `visible`), from the
-// axis-aligned box of the tile's pixel positions (`p`, valid when `has_point`): on a
-// plane seen at an angle this box is a thin slab, far tighter than the tile's frustum
-// slice between its nearest and farthest depth.
+// Builds the tile's list in workgroup memory (positions in `visible`, in its order) from
+// the candidates and the axis-aligned box of the tile's pixel positions (`p`, valid when
+// `has_point`): on a plane seen at an angle this box is a thin slab, far tighter than the
+// tile's frustum slice between its nearest and farthest depth.
 // Returns the list length, or TILE_LIST_CAPACITY + 1 when it overflowed.
-fn build_tile_list(lid: u32, has_point: bool, p: vec3<f32>) -> u32 {
-    if (lid < 3u) {
-        atomicStore(&tile_box_min[lid], 0xffffffffu);
-        atomicStore(&tile_box_max[lid], 0u);
-    }
-    if (lid == 0u) {
-        tile_list_len = 0u;
-    }
-    workgroupBarrier();
+fn build_tile_list(lid: u32, has_point: bool, p: vec3<f32>, cand: Candidates) -> u32 {
+    var lo = vec3<f32>(3.0e38);
+    var hi = vec3<f32>(-3.0e38);
     if (has_point) {
-        for (var c = 0u; c < 3u; c++) {
-            atomicMin(&tile_box_min[c], ordered_bits(p[c]));
-            atomicMax(&tile_box_max[c], ordered_bits(p[c]));
+        lo = p;
+        hi = p;
+    }
+    let box = workgroup_box(lid, lo, hi);
+    let empty_tile = box.lo.x > box.hi.x;
+    var count = 0u;
+    for (var base = 0u; base < cand.count; base += TILE_GROUP_THREADS) {
+        let i = base + lid;
+        var k = 0u;
+        var passes = false;
+        if (!empty_tile && i < cand.count) {
+            k = candidate(cand, i);
+            passes = tile_may_reflect(shapes[visible[k]], box.lo, box.hi);
         }
+        let r = chunk_rank(lid, passes);
+        if (passes && count + r.x < TILE_LIST_CAPACITY) {
+            tile_list[count + r.x] = k;
+        }
+        count += r.y;
     }
     workgroupBarrier();
-    let empty_tile = atomicLoad(&tile_box_min[0]) > atomicLoad(&tile_box_max[0]);
-    var box_lo = vec3<f32>(0.0);
-    var box_hi = vec3<f32>(0.0);
-    for (var c = 0u; c < 3u; c++) {
-        box_lo[c] = from_ordered_bits(atomicLoad(&tile_box_min[c]));
-        box_hi[c] = from_ordered_bits(atomicLoad(&tile_box_max[c]));
-    }
-    var count = 0u;
-    let word = lid / 32u;
-    for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
-        let k = base + lid;
-        let passes = !empty_tile && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], box_lo, box_hi);
-        pass_flags[lid] = select(0u, 1u, passes);
-        workgroupBarrier();
-        // Ordered compaction: eight threads pack the flags into words, then a passing
-        // thread's slot is the number of passing threads before it (popcounts).
-        if (lid < 8u) {
-            var bits = 0u;
-            for (var t = 0u; t < 32u; t++) {
-                bits |= pass_flags[lid * 32u + t] << t;
-            }
-            pass_words[lid] = bits;
-        }
-        workgroupBarrier();
-        var rank = countOneBits(pass_words[word] & ((1u << (lid % 32u)) - 1u));
-        var total = 0u;
-        for (var w = 0u; w < 8u; w++) {
-            let n = countOneBits(pass_words[w]);
-            total += n;
-            if (w < word) {
-                rank += n;
-            }
-        }
-        if (passes && count + rank < TILE_LIST_CAPACITY) {
-            tile_list[count + rank] = k;
-        }
-        count += total;
-        workgroupBarrier();
-    }
     return min(count, TILE_LIST_CAPACITY + 1u);
 }
 
@@ -319,26 +218,20 @@ fn main(
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
-    let in_view = all(gid.xy < frame.size);
-    var depth = 1.0;
-    var depth_ok = false;
-    if (in_view) {
-        depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
-        depth_ok = ppr_is_valid_depth(depth);
-    }
+    let position = tile_pixel_position(gid.xy);
+    let depth_ok = position.w > 0.0;
+    let p = position.xyz;
 
-    var p = vec3<f32>(0.0);
-    if (depth_ok) {
-        p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
-        depth_ok = ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30));
-    }
-
-    // In the tiled variant, the candidates are the tile's list (visible positions);
-    // otherwise, or when the list overflowed, every visible shape.
+    // In the tiled variant, the candidates are the tile's list (positions in `visible`);
+    // otherwise, or when the list overflowed, every candidate (the super-tile's list or
+    // every visible shape).
+    var cand = Candidates(frame.visible_count, 0u, false);
     var count = frame.visible_count;
     var use_list = false;
     if (TILE_CULLING) {
-        let listed = build_tile_list(lid, depth_ok, p);
+        cand = tile_candidates(wid);
+        count = cand.count;
+        let listed = build_tile_list(lid, depth_ok, p, cand);
         if (listed <= TILE_LIST_CAPACITY) {
             count = listed;
             use_list = true;
@@ -360,6 +253,8 @@ fn main(
         var k = i;
         if (use_list) {
             k = tile_list[i];
+        } else if (cand.listed) {
+            k = super_lists[cand.start + i];
         }
         let s = shapes[visible[k]];
         if (PARALLEL_RULE && s.parallel_group != group) {

@@ -1,8 +1,10 @@
 //! Tile culling, indirect dispatch and the frame plan on random scenes and cameras:
-//! culling never loses a write, tiles cover every reflector pixel, an empty frame
+//! culling (flat tile lists and super-tile lists) never loses a write, overflowing lists
+//! fall back without losing one, tiles cover every reflector pixel, an empty frame
 //! dispatches nothing.
 
 use glam::{DVec3, Vec3, Vec4};
+use ppr_runtime::passes::super_tile_lists::{SUPER_LIST_CAPACITY, super_tile_grid};
 use ppr_runtime::{Camera, Choice, Projection, ReflectionRenderer};
 
 use ppr_tests::gpu::read_buffer;
@@ -118,9 +120,23 @@ fn grouped_set(scene: &AnalyticScene) -> ppr_format::ReflectorSet {
     set
 }
 
-fn configured(tile_culling: bool, parallel_rule: Choice) -> ReflectionRenderer {
+/// How the projection pass culls shapes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Culling {
+    /// Every pixel loops over every visible shape.
+    Plain,
+    /// Per-tile lists built from every visible shape.
+    Tiles,
+    /// Per-tile lists built from their super-tile's list.
+    SuperTiles,
+}
+
+const CULLED: [Culling; 2] = [Culling::Tiles, Culling::SuperTiles];
+
+fn configured(culling: Culling, parallel_rule: Choice) -> ReflectionRenderer {
     let mut r = renderer();
-    r.plan_params.tile_culling = if tile_culling { Choice::On } else { Choice::Off };
+    r.plan_params.tile_culling = if culling == Culling::Plain { Choice::Off } else { Choice::On };
+    r.plan_params.super_tiles = if culling == Culling::SuperTiles { Choice::On } else { Choice::Off };
     r.plan_params.parallel_rule = parallel_rule;
     r.plan_params.indirect = Choice::Off;
     r.debug_writes = true;
@@ -143,24 +159,28 @@ fn tile_culling_keeps_every_write_of_the_plain_loop_under_the_parallel_rule() {
         let gpu = GpuFrame::upload(&frame);
         let set = grouped_set(&scene);
 
-        let mut plain = configured(false, Choice::On);
+        let mut plain = configured(Culling::Plain, Choice::On);
         plain.set_reflectors(&set);
         run(&mut plain, &gpu, &camera);
-        let mut tiled = configured(true, Choice::On);
-        tiled.set_reflectors(&set);
-        let out = run(&mut tiled, &gpu, &camera);
-        assert!(out.plan.tile_culling && out.plan.parallel_rule, "{}", out.plan);
-
-        let (a, b) = (debug_masks(&plain), debug_masks(&tiled));
-        let missing = a.iter().zip(&b).filter(|(p, t)| *p & !*t != 0).count();
-        let extra = a.iter().zip(&b).filter(|(p, t)| *t & !*p != 0).count();
+        let a = debug_masks(&plain);
         let writes: usize = a.iter().map(|m| m.count_ones() as usize).sum();
-        eprintln!(
-            "case {case} ({} visible, parallel {parallel}): {writes} writes, {missing} lost by culling, {extra} extra",
-            out.plan.visible.len()
-        );
-        assert_eq!(missing, 0, "tile culling lost writes in case {case}");
-        assert_eq!(extra, 0, "culling only removes candidates; case {case}");
+        for culling in CULLED {
+            let mut tiled = configured(culling, Choice::On);
+            tiled.set_reflectors(&set);
+            let out = run(&mut tiled, &gpu, &camera);
+            assert!(out.plan.tile_culling && out.plan.parallel_rule, "{}", out.plan);
+            assert_eq!(out.plan.super_tiles, culling == Culling::SuperTiles, "{}", out.plan);
+
+            let b = debug_masks(&tiled);
+            let missing = a.iter().zip(&b).filter(|(p, t)| *p & !*t != 0).count();
+            let extra = a.iter().zip(&b).filter(|(p, t)| *t & !*p != 0).count();
+            eprintln!(
+                "case {case} ({} visible, parallel {parallel}, {culling:?}): {writes} writes, {missing} lost by culling, {extra} extra",
+                out.plan.visible.len()
+            );
+            assert_eq!(missing, 0, "{culling:?} lost writes in case {case}");
+            assert_eq!(extra, 0, "culling only removes candidates; case {case}, {culling:?}");
+        }
         checked += writes;
     }
     assert!(checked > 3_000, "the random scenes must produce writes: {checked}");
@@ -179,18 +199,23 @@ fn without_parallel_shapes_culling_changes_no_pixel() {
             set.reflectors.iter().map(|r| r.parallel_group).collect();
         assert_eq!(groups.len(), set.reflectors.len(), "no two mirrors parallel");
 
-        let mut plain = configured(false, Choice::Auto);
+        let mut plain = configured(Culling::Plain, Choice::Auto);
         plain.set_reflectors(&set);
         let a = run(&mut plain, &gpu, &camera);
-        let mut tiled = configured(true, Choice::Auto);
-        tiled.set_reflectors(&set);
-        let b = run(&mut tiled, &gpu, &camera);
-        assert!(!a.plan.parallel_rule && b.plan.parallel_rule);
         let bits = |o: &[Vec4]| o.iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
         let written = a.pixels.iter().filter(|p| p.w > 0.5).count();
         eprintln!("case {case}: {} visible, {written} reflection pixels", a.plan.visible.len());
-        assert_eq!(a.intermediate, b.intermediate, "intermediate buffers differ in case {case}");
-        assert!(bits(&a.pixels) == bits(&b.pixels), "images differ in case {case}");
+        for culling in CULLED {
+            let mut tiled = configured(culling, Choice::Auto);
+            tiled.set_reflectors(&set);
+            let b = run(&mut tiled, &gpu, &camera);
+            assert!(!a.plan.parallel_rule && b.plan.parallel_rule);
+            assert_eq!(
+                a.intermediate, b.intermediate,
+                "intermediate buffers differ in case {case}, {culling:?}"
+            );
+            assert!(bits(&a.pixels) == bits(&b.pixels), "images differ in case {case}, {culling:?}");
+        }
     }
 }
 
@@ -302,7 +327,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     );
     let frame = scene.render(&camera, SIZE);
     let gpu = GpuFrame::upload(&frame);
-    let mut r = configured(true, Choice::On);
+    let mut r = configured(Culling::Tiles, Choice::On);
     r.debug_tile_lists = true;
     r.set_reflectors(&grouped_set(&scene));
     let out = run(&mut r, &gpu, &camera);
@@ -317,4 +342,119 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     );
     assert!(out.plan.visible.len() >= 20);
     assert!(mean <= 0.25 * out.plan.visible.len() as f64, "mean list {mean}");
+
+    // Built from super-tile lists, every tile lists the same shapes: a super-tile's list
+    // holds every shape any of its tiles would list (the box test is monotone), and the
+    // super-tile lists themselves are shorter than the visible list.
+    let mut s = configured(Culling::SuperTiles, Choice::On);
+    s.debug_tile_lists = true;
+    s.set_reflectors(&grouped_set(&scene));
+    let out = run(&mut s, &gpu, &camera);
+    assert!(out.plan.super_tiles, "{}", out.plan);
+    assert_eq!(debug_masks(&s), lengths, "tile lists differ when built from super-tile lists");
+    let counts = super_tile_counts(&s);
+    eprintln!("super-tile lists: {counts:?} of {} visible", out.plan.visible.len());
+    assert!(counts.iter().all(|&n| n as usize <= out.plan.visible.len()), "{counts:?}");
+    assert!(counts.iter().any(|&n| (n as usize) < out.plan.visible.len()), "{counts:?}");
+}
+
+/// A floor of `n` small coplanar puddles (one parallel group) in a grid, under a wall and
+/// boxes: enough shapes in one place that tile and super-tile lists overflow.
+fn dense_puddles(n: usize) -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    s.quad(
+        DVec3::new(0.0, -0.001, -4.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [8.0, 8.0],
+        Albedo::Solid(Vec3::splat(0.3)),
+    );
+    s.quad(DVec3::new(0.0, 3.0, -8.0), DVec3::X, DVec3::Y, [8.0, 3.0], Albedo::Waves(0.3));
+    s.cuboid(DVec3::new(-1.0, 0.0, -5.0), DVec3::new(0.0, 1.5, -4.0), Vec3::new(0.9, 0.2, 0.1));
+    s.cuboid(DVec3::new(1.0, 0.0, -3.0), DVec3::new(1.6, 0.8, -2.4), Vec3::new(0.1, 0.3, 0.9));
+    let side = (n as f64).sqrt().ceil() as usize;
+    let pitch = 6.0 / side as f64;
+    for i in 0..n {
+        let c = DVec3::new(-3.0 + (i % side) as f64 * pitch, 0.0, -7.0 + (i / side) as f64 * pitch);
+        s.mirror(&format!("puddle {i}"), c, DVec3::X, DVec3::NEG_Z, [0.4 * pitch, 0.4 * pitch]);
+    }
+    s
+}
+
+/// The super-tile list lengths of the last frame (over capacity: overflowed).
+fn super_tile_counts(r: &ReflectionRenderer) -> Vec<u32> {
+    let (x, y) = super_tile_grid(SIZE);
+    let words: Vec<u32> =
+        bytemuck::pod_collect_to_vec(&read_buffer(r.super_tile_lists_buffer().expect("buffers")));
+    words[..(x * y) as usize].to_vec()
+}
+
+#[test]
+fn overflowing_tile_and_super_tile_lists_lose_no_write() {
+    // 1 200 puddles in view: tiles that see the wall list more than 256 of them and
+    // super-tiles more than 1 024, so both fallbacks run (a tile to its super-tile's list,
+    // a super-tile to every visible shape). Under the parallel rule the intermediate buffer
+    // is then exactly the plain loop's.
+    let scene = dense_puddles(1200);
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 2.5, 1.5),
+        DVec3::new(0.0, 0.0, -4.5),
+        Vec3::Y,
+        Projection { fov_y: 1.2, ..Default::default() },
+    );
+    let frame = scene.render(&camera, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let set = grouped_set(&scene);
+    let mut plain = configured(Culling::Plain, Choice::On);
+    plain.set_reflectors(&set);
+    let a = run(&mut plain, &gpu, &camera);
+    let written = a.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+    assert!(a.plan.visible.len() > 1024, "{}", a.plan);
+    assert!(written > 500, "the puddles must reflect something: {written}");
+    for culling in CULLED {
+        let mut r = configured(culling, Choice::On);
+        r.debug_tile_lists = true;
+        r.set_reflectors(&set);
+        let b = run(&mut r, &gpu, &camera);
+        let lengths = debug_masks(&r);
+        let overflowed = lengths.iter().filter(|&&n| n == u32::MAX).count();
+        let counts = super_tile_counts(&r);
+        let super_overflowed = counts.iter().filter(|&&n| n > SUPER_LIST_CAPACITY).count();
+        eprintln!(
+            "{culling:?}: {} visible, {written} written, {overflowed} pixels in tiles whose list overflowed, \
+             {super_overflowed} of {} super-tiles overflowed",
+            b.plan.visible.len(),
+            counts.len()
+        );
+        assert!(overflowed > 0, "some tile list must overflow ({culling:?})");
+        if culling == Culling::SuperTiles {
+            assert!(super_overflowed > 0, "some super-tile list must overflow: {counts:?}");
+            assert!(super_overflowed < counts.len(), "and some must not: {counts:?}");
+        }
+        assert_eq!(a.intermediate, b.intermediate, "{culling:?} changed the intermediate buffer");
+    }
+}
+
+#[test]
+fn super_tiles_run_from_the_plan_threshold() {
+    let scene = dense_puddles(200);
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 2.5, 1.5),
+        DVec3::new(0.0, 0.0, -4.5),
+        Vec3::Y,
+        Projection { fov_y: 1.2, ..Default::default() },
+    );
+    let frame = scene.render(&camera, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let set = grouped_set(&scene);
+    let mut r = renderer();
+    r.set_reflectors(&set);
+    let out = run(&mut r, &gpu, &camera);
+    let n = out.plan.visible.len();
+    assert!(n >= r.plan_params.super_tiles_min_shapes, "{}", out.plan);
+    assert!(out.plan.tile_culling && out.plan.super_tiles, "{}", out.plan);
+    assert!(out.plan.to_string().contains("super-tiles"), "{}", out.plan);
+    r.plan_params.super_tiles_min_shapes = n + 1;
+    let out = run(&mut r, &gpu, &camera);
+    assert!(out.plan.tile_culling && !out.plan.super_tiles, "{}", out.plan);
 }

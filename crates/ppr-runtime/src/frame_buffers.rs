@@ -3,6 +3,7 @@
 use wgpu::util::DeviceExt;
 
 use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape};
+use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
 use crate::plan::FramePlan;
 use crate::plan::MAX_LAYERS;
@@ -23,6 +24,8 @@ pub(crate) struct FrameBuffers {
     pub layers: wgpu::Buffer,
     /// Atlas of the layer reflectors' regions (grown on demand).
     pub atlas: wgpu::Buffer,
+    /// Super-tile counts and lists (full size only once a plan uses super-tiles).
+    pub super_lists: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -78,6 +81,11 @@ impl FrameBuffers {
                 (4 * u64::from(plan.layer_pixels)).next_multiple_of(16),
                 readable,
             ),
+            super_lists: buffer(
+                "ppr super-tile lists",
+                if plan.super_tiles { super_lists_size(plan.viewport) } else { 16 },
+                readable,
+            ),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
@@ -90,5 +98,6 @@ impl FrameBuffers {
             && self.shape_count == table.shapes.len()
             && self.debug == debug
             && self.atlas.size() >= 4 * u64::from(plan.layer_pixels)
+            && (!plan.super_tiles || self.super_lists.size() >= super_lists_size(plan.viewport))
     }
 }

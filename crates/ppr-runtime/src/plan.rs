@@ -58,6 +58,13 @@ pub struct PlanParams {
     /// floor and 64 on a stairway; at 32 the stairway loses 0.012 ms, the floor gains 0.13
     /// and the facade 0.35.
     pub tile_culling_min_shapes: usize,
+    /// With tile culling, a first pass lists per 64 × 64-pixel super-tile the shapes that
+    /// may reflect into it, and each 16 × 16 tile tests only its super-tile's list (the
+    /// per-tile test is otherwise O(tiles × shapes)).
+    pub super_tiles: Choice,
+    /// With `Auto`, super-tile lists are built from this many visible shapes on (measured
+    /// in docs/perf/scaling.md).
+    pub super_tiles_min_shapes: usize,
     /// Among parallel shapes, only the nearest plane reflects a pixel. `Auto`: with tile
     /// culling.
     pub parallel_rule: Choice,
@@ -85,6 +92,8 @@ impl Default for PlanParams {
         Self {
             tile_culling: Choice::Auto,
             tile_culling_min_shapes: 32,
+            super_tiles: Choice::Auto,
+            super_tiles_min_shapes: 128,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
             indirect_max_coverage: 0.3,
@@ -133,6 +142,9 @@ pub struct FramePlan {
     pub occluder_tests: bool,
     /// Whether the projection pass builds per-tile shape lists.
     pub tile_culling: bool,
+    /// Whether the tile lists are built from per-super-tile lists (a pass before the
+    /// projection, timed with it).
+    pub super_tiles: bool,
     /// Whether only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
     /// Whether tiles are classified and the clear and reflection passes run indirectly.
@@ -170,6 +182,7 @@ impl FramePlan {
             transparent_skipped: 0,
             occluder_tests: false,
             tile_culling: false,
+            super_tiles: false,
             parallel_rule: false,
             indirect: false,
             coverage: 0.0,
@@ -226,6 +239,8 @@ impl FramePlan {
         let covered: f64 = plan.screen_rects.iter().map(|r| r.area() as f64).sum();
         plan.coverage = (covered / screen).min(1.0) as f32;
         plan.tile_culling = params.tile_culling.decide(plan.visible.len() >= params.tile_culling_min_shapes);
+        plan.super_tiles = plan.tile_culling
+            && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
         plan.parallel_rule = params.parallel_rule.decide(plan.tile_culling);
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         plan
@@ -289,7 +304,11 @@ impl FramePlan {
             (true, true) => "clear (tiles)",
             (true, false) => "clear",
         });
-        passes.push(if self.tile_culling { "projection (tiled)" } else { "projection" });
+        passes.push(match (self.tile_culling, self.super_tiles) {
+            (true, true) => "projection (super-tiles, tiled)",
+            (true, false) => "projection (tiled)",
+            (false, _) => "projection",
+        });
         if has_main {
             passes.push(match (self.indirect, self.normal_maps) {
                 (true, true) => "reflection (tiles, normal maps)",

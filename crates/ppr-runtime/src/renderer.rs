@@ -13,9 +13,11 @@ use crate::passes::clear::ClearBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
+use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::ClassifyBindings;
 use crate::passes::{
-    ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass, TileClassifyPass,
+    ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass, SuperTileListPass,
+    TileClassifyPass,
 };
 use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
@@ -116,6 +118,7 @@ pub struct ReflectionRenderer {
     pub encoding_override: Option<EncodingLayout>,
     classify: TileClassifyPass,
     clear: ClearPass,
+    super_tile_lists: SuperTileListPass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
     layer_reflection: LayerReflectionPass,
@@ -142,6 +145,7 @@ impl ReflectionRenderer {
             debug_tile_lists: false,
             classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
+            super_tile_lists: SuperTileListPass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
             layer_reflection: LayerReflectionPass::new(device),
@@ -188,6 +192,7 @@ impl ReflectionRenderer {
     fn variant(&self, plan: &FramePlan) -> ProjectionVariant {
         ProjectionVariant {
             tile_culling: plan.tile_culling,
+            super_tiles: plan.super_tiles,
             parallel_rule: plan.parallel_rule,
             occluder_tests: plan.occluder_tests,
             layers: !plan.layers.is_empty(),
@@ -347,12 +352,29 @@ impl ReflectionRenderer {
                     debug_writes: &b.debug_writes,
                     layers: &b.layers,
                     atlas: &b.atlas,
+                    super_lists: &b.super_lists,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr projection"),
                 timestamp_writes: timestamps(2),
             });
+            if plan.super_tiles {
+                // In the projection's compute pass: its timestamps cover the lists too, and
+                // the projection's dispatch sees this one's writes.
+                let lists = self.super_tile_lists.bind_group(
+                    device,
+                    &SuperTileBindings {
+                        uniforms: &b.uniforms,
+                        depth: inputs.depth,
+                        shapes: &b.shapes,
+                        visible: &b.visible,
+                        super_lists: &b.super_lists,
+                    },
+                );
+                self.super_tile_lists.encode(&mut pass, &lists, plan.viewport);
+                count(1);
+            }
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
             count(1);
         }
@@ -438,6 +460,12 @@ impl ReflectionRenderer {
     /// written for the `k`-th shape of the plan's visible list.
     pub fn debug_writes_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().filter(|_| self.debug_writes).map(|b| &b.debug_writes)
+    }
+
+    /// The super-tile counts and lists of the last frame that built them (layout in
+    /// `shaders/ppr/super_tile_lists.wgsl`), for debug views and tests.
+    pub fn super_tile_lists_buffer(&self) -> Option<&wgpu::Buffer> {
+        self.buffers.as_ref().map(|b| &b.super_lists)
     }
 
     /// The active-tile list of the last frame (count, 3 × padding, tile indices), for debug

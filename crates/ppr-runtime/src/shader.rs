@@ -1,7 +1,8 @@
 //! Assembles each pass's WGSL with the shared modules (WGSL has no `#include`).
 //!
 //! Every pass gets `encoding.wgsl` and `common.wgsl`; passes that declare
-//! `frame: FrameUniforms` may add [`VIEW`]; the reflection passes add [`SHADING`] too.
+//! `frame: FrameUniforms` may add [`VIEW`]; the tile-culling passes add [`TILE_TEST`], the
+//! reflection passes [`SHADING`].
 
 /// The shared declarations every pass sees: encoding, then frame and shape types.
 const SHARED: &str = concat!(
@@ -13,6 +14,10 @@ const SHARED: &str = concat!(
 
 /// Pixel ↔ camera-relative position and depth validity (needs `frame`).
 pub const VIEW: &str = include_str!("../../../shaders/ppr/view.wgsl");
+
+/// Tile culling: the box test, the tile box, ordered compaction, the super-tile grid
+/// (needs `frame`, `depth_tex` and [`VIEW`]).
+pub const TILE_TEST: &str = include_str!("../../../shaders/ppr/tile_test.wgsl");
 
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
@@ -55,7 +60,8 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
     vec![
         ("clear", source(clear::WGSL)),
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
-        ("projection", source_with(&[VIEW], projection::WGSL)),
+        ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
+        ("projection", source_with(&[VIEW, TILE_TEST], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
     ]

@@ -1,5 +1,5 @@
-//! `scaling.md`, `scaling.csv` and `scaling.png`: cost against shape count, and the plan's
-//! two thresholds.
+//! `scaling.md`, `scaling.csv` and `scaling.png`: cost against shape count without tile
+//! culling, with flat tile lists and with super-tile lists, and the plan's thresholds.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -8,7 +8,12 @@ use crate::error::BenchError;
 use crate::report::csv_file::{CsvTable, num};
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
-use crate::suites::scaling::{ScalingOutcome, ScalingRow, culling_crossover, indirect_crossover};
+use crate::suites::scaling::{
+    CULLING_OFF, CULLING_ON, SUPER_TILES, ScalingOutcome, ScalingRow, crossover, indirect_crossover,
+};
+
+/// The culling variants, in table and plot order.
+const VARIANTS: [&str; 3] = [CULLING_OFF, CULLING_ON, SUPER_TILES];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {
@@ -101,22 +106,30 @@ pub fn write_scaling_report(
         "#off: total",
         "#on: projection",
         "#on: total",
+        "#super: projection",
+        "#super: total",
         "#on: overhead",
+        "#super: overhead",
         "#best: overhead",
     ]);
+    let first = counts.first().copied().unwrap_or(1);
+    // The fastest variant's total at a count.
+    let best = |f: &str, n: usize| {
+        VARIANTS
+            .iter()
+            .filter_map(|v| find(&o.rows, f, n, v))
+            .map(ScalingRow::total_ms)
+            .fold(f64::NAN, f64::min)
+    };
     for f in &families {
-        let base =
-            |v: &str| find(&o.rows, f, counts.first().copied().unwrap_or(1), v).map(ScalingRow::total_ms);
-        let base_best = match (base("culling off"), base("culling on")) {
-            (Some(a), Some(b)) => a.min(b),
-            _ => f64::NAN,
-        };
+        let base = |v: &str| find(&o.rows, f, first, v).map_or(f64::NAN, ScalingRow::total_ms);
         for &n in &counts {
-            let (Some(off), Some(on)) =
-                (find(&o.rows, f, n, "culling off"), find(&o.rows, f, n, "culling on"))
+            let (Some(off), Some(on)) = (find(&o.rows, f, n, CULLING_OFF), find(&o.rows, f, n, CULLING_ON))
             else {
                 continue;
             };
+            let sup = find(&o.rows, f, n, SUPER_TILES);
+            let sup_ms = |get: fn(&ScalingRow) -> f64| sup.map_or(f64::NAN, get);
             t.push(vec![
                 f.clone(),
                 n.to_string(),
@@ -125,8 +138,11 @@ pub fn write_scaling_report(
                 ms(off.total_ms()),
                 ms(on.pass_ms("projection")),
                 ms(on.total_ms()),
-                ms(on.total_ms() - base("culling on").unwrap_or(f64::NAN)),
-                ms(off.total_ms().min(on.total_ms()) - base_best),
+                ms(sup_ms(|r| r.pass_ms("projection"))),
+                ms(sup_ms(ScalingRow::total_ms)),
+                ms(on.total_ms() - base(CULLING_ON)),
+                ms(sup_ms(ScalingRow::total_ms) - base(SUPER_TILES)),
+                ms(best(f, n) - best(f, first)),
             ]);
         }
     }
@@ -134,19 +150,21 @@ pub fn write_scaling_report(
     md.push_str(&t.render());
     let _ = writeln!(
         md,
-        "\nGrowth of the total (culling on) between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
+        "\n(`on`: tile lists built from every visible shape; `super`: from 64 × 64-pixel \
+         super-tile lists, whose pass is timed inside the projection.)\n\n\
+         Growth of the total between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
     );
     for f in &families {
-        let mut parts = Vec::new();
-        for w in counts.windows(2) {
-            if let (Some(a), Some(b)) =
-                (find(&o.rows, f, w[0], "culling on"), find(&o.rows, f, w[1], "culling on"))
-            {
-                let k = (b.total_ms() / a.total_ms()).ln() / (w[1] as f64 / w[0] as f64).ln();
-                parts.push(format!("{}→{}: {k:.2}", w[0], w[1]));
+        for v in [CULLING_ON, SUPER_TILES] {
+            let mut parts = Vec::new();
+            for w in counts.windows(2) {
+                if let (Some(a), Some(b)) = (find(&o.rows, f, w[0], v), find(&o.rows, f, w[1], v)) {
+                    let k = (b.total_ms() / a.total_ms()).ln() / (w[1] as f64 / w[0] as f64).ln();
+                    parts.push(format!("{}→{}: {k:.2}", w[0], w[1]));
+                }
             }
+            let _ = writeln!(md, "- {f}, {v}: {}", parts.join(", "));
         }
-        let _ = writeln!(md, "- {f}: {}", parts.join(", "));
     }
     let _ = writeln!(md, "\nEvery pass of every row is in `scaling.csv`.\n");
 
@@ -155,35 +173,46 @@ pub fn write_scaling_report(
         "#shapes",
         "#culling off: total ms",
         "#culling on: total ms",
-        "faster",
+        "#super-tiles: total ms",
+        "fastest",
     ]);
     let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();
     tcounts.sort_unstable();
     tcounts.dedup();
     for f in &families {
         for &n in &tcounts {
-            let (Some(off), Some(on)) =
-                (find(&o.threshold_rows, f, n, "culling off"), find(&o.threshold_rows, f, n, "culling on"))
-            else {
+            let rows: Vec<Option<&ScalingRow>> =
+                VARIANTS.iter().map(|v| find(&o.threshold_rows, f, n, v)).collect();
+            if rows[0].is_none() || rows[1].is_none() {
                 continue;
-            };
-            t.push(vec![
-                f.clone(),
-                n.to_string(),
-                ms(off.total_ms()),
-                ms(on.total_ms()),
-                if on.total_ms() <= off.total_ms() { "on".into() } else { "off".into() },
-            ]);
+            }
+            let fastest = VARIANTS
+                .iter()
+                .zip(&rows)
+                .filter_map(|(v, r)| r.map(|r| (*v, r.total_ms())))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or("—", |(v, _)| v);
+            let mut row = vec![f.clone(), n.to_string()];
+            row.extend(rows.iter().map(|r| ms(r.map_or(f64::NAN, ScalingRow::total_ms))));
+            row.push(fastest.into());
+            t.push(row);
         }
     }
-    let _ = writeln!(md, "## Tile-culling threshold (`PlanParams::tile_culling_min_shapes`)\n");
+    let _ = writeln!(
+        md,
+        "## Culling thresholds (`PlanParams::tile_culling_min_shapes`, `super_tiles_min_shapes`)\n"
+    );
     md.push_str(&t.render());
     for f in &families {
-        let c = culling_crossover(&o.threshold_rows, f);
+        let never = || "— (never)".to_string();
+        let c = crossover(&o.threshold_rows, f, CULLING_ON, CULLING_OFF);
+        let s = crossover(&o.threshold_rows, f, SUPER_TILES, CULLING_ON);
         let _ = writeln!(
             md,
-            "- {f}: culling is never slower from {} shapes on",
-            c.map_or("— (never)".into(), |n| n.to_string())
+            "- {f}: culling is never slower than none from {} shapes on; super-tiles never slower \
+             than flat tile lists from {} shapes on",
+            c.map_or_else(never, |n| n.to_string()),
+            s.map_or_else(never, |n| n.to_string())
         );
     }
     let _ = writeln!(md, "\n## Indirect-dispatch threshold (`PlanParams::indirect_max_coverage`)\n");
@@ -232,7 +261,7 @@ pub fn write_scaling_report(
     let plot_path = dir.join("scaling.png");
     let mut series = Vec::new();
     for (k, f) in families.iter().enumerate() {
-        for (j, v) in ["culling off", "culling on"].iter().enumerate() {
+        for (j, v) in VARIANTS.iter().enumerate() {
             let points: Vec<PlotPoint> = counts
                 .iter()
                 .filter_map(|&n| find(&o.rows, f, n, v))
@@ -240,7 +269,7 @@ pub fn write_scaling_report(
                 .collect();
             series.push(PlotSeries {
                 name: format!("{f}, {v}"),
-                color: PALETTE[(2 * k + j) % PALETTE.len()],
+                color: PALETTE[(VARIANTS.len() * k + j) % PALETTE.len()],
                 points,
                 line: true,
             });

@@ -1,6 +1,7 @@
-//! Scaling (issue 5): GPU time per pass against shape count on generated levels, with and
-//! without tile culling, and the two plan thresholds (tile culling from how many shapes,
-//! indirect dispatch up to which screen coverage).
+//! Scaling (issue 5): GPU time per pass against shape count on generated levels, without
+//! tile culling, with flat tile lists and with super-tile lists, and the plan's thresholds
+//! (tile culling and super-tiles from how many shapes, indirect dispatch up to which
+//! screen coverage).
 
 use ppr_format::ReflectorSet;
 use ppr_runtime::{Choice, PlanParams, ReflectionSettings};
@@ -37,7 +38,8 @@ pub struct ScalingRow {
     pub family: String,
     /// Reflectors in the level.
     pub shapes: usize,
-    /// What was forced: `culling on`, `culling off`, `indirect on`, ...
+    /// What was forced: `culling off`, `culling on` (flat tile lists), `super-tiles`,
+    /// `indirect on`, ...
     pub variant: String,
     /// Visible shapes, as the plan saw them.
     pub visible: usize,
@@ -64,7 +66,7 @@ impl ScalingRow {
 pub struct ScalingOutcome {
     pub adapter: String,
     pub resolution: Resolution,
-    /// Families × counts × culling on/off.
+    /// Families × counts × culling off / on / super-tiles.
     pub rows: Vec<ScalingRow>,
     /// The tile-culling threshold sweep.
     pub threshold_rows: Vec<ScalingRow>,
@@ -125,9 +127,16 @@ impl Measurer<'_> {
     }
 }
 
-fn culling(choice: Choice) -> PlanParams {
-    PlanParams { tile_culling: choice, ..PlanParams::default() }
+fn culling(tile_culling: Choice, super_tiles: Choice) -> PlanParams {
+    PlanParams { tile_culling, super_tiles, ..PlanParams::default() }
 }
+
+/// Variant names of the culling sweeps.
+pub const CULLING_OFF: &str = "culling off";
+/// Tile culling with tile lists built from every visible shape.
+pub const CULLING_ON: &str = "culling on";
+/// Tile culling with tile lists built from super-tile lists.
+pub const SUPER_TILES: &str = "super-tiles";
 
 /// Runs the suite.
 ///
@@ -139,7 +148,11 @@ pub fn run_scaling(
     sc: &ScalingConfig,
 ) -> Result<ScalingOutcome, BenchError> {
     let m = Measurer { gpu, frames: FrameLoop::new(&gpu.device, cfg), size: sc.resolution.size() };
-    let on_off = [("culling off", culling(Choice::Off)), ("culling on", culling(Choice::On))];
+    let on_off = [
+        (CULLING_OFF, culling(Choice::Off, Choice::Off)),
+        (CULLING_ON, culling(Choice::On, Choice::Off)),
+        (SUPER_TILES, culling(Choice::On, Choice::On)),
+    ];
     let mut rows = Vec::new();
     for &family in &sc.families {
         for &n in &sc.counts {
@@ -180,9 +193,9 @@ pub fn run_scaling(
     })
 }
 
-/// The smallest shape count from which culling on is never slower than off (total time),
-/// for one family's sweep; `None` if culling never wins at the largest count.
-pub fn culling_crossover(rows: &[ScalingRow], family: &str) -> Option<usize> {
+/// The smallest shape count from which `faster` is never slower than `slower` (total
+/// time), for one family's sweep; `None` if it does not win at the largest count.
+pub fn crossover(rows: &[ScalingRow], family: &str, faster: &str, slower: &str) -> Option<usize> {
     let mut counts: Vec<usize> = rows.iter().filter(|r| r.family == family).map(|r| r.shapes).collect();
     counts.sort_unstable();
     counts.dedup();
@@ -192,7 +205,7 @@ pub fn culling_crossover(rows: &[ScalingRow], family: &str) -> Option<usize> {
                 .find(|r| r.family == family && r.shapes == n && r.variant == v)
                 .map(ScalingRow::total_ms)
         };
-        matches!((t("culling on"), t("culling off")), (Some(on), Some(off)) if on <= off)
+        matches!((t(faster), t(slower)), (Some(on), Some(off)) if on <= off)
     };
     let mut crossover = None;
     for &n in counts.iter().rev() {

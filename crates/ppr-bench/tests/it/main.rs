@@ -2,4 +2,5 @@
 //! adapter (llvmpipe through wgpu's GL backend where there is no GPU).
 
 mod quick_compare;
+mod quick_scaling;
 mod scaling_levels;

@@ -4,12 +4,14 @@ pub mod clear;
 pub mod layer_reflection;
 pub mod projection;
 pub mod reflection;
+pub mod super_tile_lists;
 pub mod tile_classify;
 
 pub use clear::ClearPass;
 pub use layer_reflection::LayerReflectionPass;
 pub use projection::{ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
+pub use super_tile_lists::SuperTileListPass;
 pub use tile_classify::TileClassifyPass;
 
 /// Workgroup edge of the 2-D per-pixel passes (16 × 16 = 256 threads), as in the WGSL.

@@ -13,6 +13,9 @@ pub const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
 pub struct ProjectionVariant {
     /// Per-tile shape lists in workgroup memory.
     pub tile_culling: bool,
+    /// With `tile_culling`: tiles take their candidates from their super-tile's list
+    /// ([`super::SuperTileListPass`], dispatched first).
+    pub super_tiles: bool,
     /// Only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
     /// Occluder tests.
@@ -36,6 +39,8 @@ pub struct ProjectionBindings<'a> {
     pub debug_writes: &'a wgpu::Buffer,
     pub layers: &'a wgpu::Buffer,
     pub atlas: &'a wgpu::Buffer,
+    /// Super-tile counts and lists (read with `super_tiles`; any buffer otherwise).
+    pub super_lists: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
@@ -59,9 +64,15 @@ impl ProjectionPass {
                 storage_entry(6, false),
                 storage_entry(7, true),
                 storage_entry(8, false),
+                storage_entry(9, true),
             ],
         });
-        let module = crate::shader::module_with(device, "ppr projection", &[crate::shader::VIEW], WGSL);
+        let module = crate::shader::module_with(
+            device,
+            "ppr projection",
+            &[crate::shader::VIEW, crate::shader::TILE_TEST],
+            WGSL,
+        );
         let mut pass = Self { module, layout, pipelines: HashMap::new() };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
@@ -74,6 +85,7 @@ impl ProjectionPass {
         }
         let constants = [
             ("TILE_CULLING", flag(v.tile_culling)),
+            ("SUPER_TILES", flag(v.tile_culling && v.super_tiles)),
             ("PARALLEL_RULE", flag(v.parallel_rule)),
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
             ("LAYERS", flag(v.layers)),
@@ -99,6 +111,7 @@ impl ProjectionPass {
                 wgpu::BindGroupEntry { binding: 6, resource: b.debug_writes.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 7, resource: b.layers.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 8, resource: b.atlas.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: b.super_lists.as_entire_binding() },
             ],
         })
     }
