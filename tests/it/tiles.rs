@@ -451,7 +451,10 @@ fn super_tiles_run_from_the_plan_threshold() {
     r.set_reflectors(&set);
     let out = run(&mut r, &gpu, &camera);
     let n = out.plan.visible.len();
-    assert!(n >= r.plan_params.super_tiles_min_shapes, "{}", out.plan);
+    assert!(n >= r.plan_params.tile_culling_min_shapes && n < 512, "{}", out.plan);
+    assert_eq!(out.plan.super_tiles, n >= r.plan_params.super_tiles_min_shapes, "{}", out.plan);
+    r.plan_params.super_tiles_min_shapes = n;
+    let out = run(&mut r, &gpu, &camera);
     assert!(out.plan.tile_culling && out.plan.super_tiles, "{}", out.plan);
     assert!(out.plan.to_string().contains("super-tiles"), "{}", out.plan);
     r.plan_params.super_tiles_min_shapes = n + 1;

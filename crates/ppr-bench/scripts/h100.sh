@@ -38,7 +38,7 @@ elif [ "$MODE" = compare ]; then
 else
   step runtime 45 $B runtime $C --out $R/runtime
   step compare 320 $B compare $C --out $R/compare --scene demo --scene kitchen --scene small
-  step scaling 115 $B scaling $C --out $R/scaling
+  step scaling 175 $B scaling $C --out $R/scaling
   step trade 75 $B extract-trade $C --out $R/trade
 fi
 cd "$OUT" && tar czf results.tgz results && rm -rf results

@@ -59,7 +59,8 @@ pub enum Suite {
     /// Each PPR pass on the demo level and the kitchen against its bandwidth floor, with the
     /// copy bandwidth measured in the same run (runtime.md, runtime.csv).
     Runtime(RuntimeArgs),
-    /// Generated levels with 1 to 10 000 reflectors, tile culling on and off, and the plan's
+    /// Generated levels with 1 to 10 000 reflectors, without tile culling, with flat tile
+    /// lists and with super-tile lists, and the plan's
     /// two thresholds (scaling.md, scaling.csv, scaling.png).
     Scaling(ScalingArgs),
     /// Extraction settings per scene: rectangles against coverage and their GPU cost

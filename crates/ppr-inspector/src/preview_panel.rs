@@ -48,10 +48,15 @@ pub fn show(ui: &mut Ui, state: &mut InspectorState, frame: Option<&PreviewFrame
     ui.label(RichText::new("GPU time per pass").strong());
     match (&frame.timings, frame.timestamps) {
         (Some(t), _) => {
-            for (name, ms) in t.passes() {
-                if let Some(ms) = ms {
-                    ui.label(RichText::new(format!("{name:<11} {ms:8.3} ms")).monospace().small());
-                }
+            for ((name, ms), ran) in t.passes().into_iter().zip(frame.passes_recorded) {
+                // A pass that ran keeps its line when the adapter's timestamps for it were
+                // unusable (llvmpipe's GL timer queries, now and then).
+                let text = match ms {
+                    Some(ms) => format!("{name:<11} {ms:8.3} ms"),
+                    None if ran => format!("{name:<11} {:>8} ms", "–"),
+                    None => continue,
+                };
+                ui.label(RichText::new(text).monospace().small());
             }
             ui.label(RichText::new(format!("{:<11} {:8.3} ms", "total", t.total_ms())).monospace().small());
         }

@@ -38,6 +38,9 @@ pub struct PreviewFrame {
     pub plan: String,
     /// GPU time per pass, when the device measures it.
     pub timings: Option<PassTimings>,
+    /// Which timed passes ran (in [`PassTimings::passes`] order): a pass that ran without
+    /// a time had timestamps the adapter got wrong.
+    pub passes_recorded: [bool; 5],
     /// Whether the device has timestamps at all.
     pub timestamps: bool,
     /// Quality against the reference (difference mode only).
@@ -156,6 +159,7 @@ impl ViewportRenderer {
         queue.submit([encoder.finish()]);
         let timestamps = self.ppr.renderer().has_timestamps();
         let timings = self.ppr.renderer().read_timings();
+        let passes_recorded = self.ppr.renderer().passes_recorded();
 
         let tone_map = ToneMap::default();
         let params = CompositeParams { reflectivity: settings.reflectivity };
@@ -193,7 +197,7 @@ impl ViewportRenderer {
             }
         };
         let image = ColorImage::from_rgb([size[0] as usize, size[1] as usize], rgb.as_raw());
-        Ok(PreviewFrame { image, plan, timings, timestamps, quality })
+        Ok(PreviewFrame { image, plan, timings, passes_recorded, timestamps, quality })
     }
 }
 

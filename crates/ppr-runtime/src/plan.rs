@@ -62,8 +62,10 @@ pub struct PlanParams {
     /// may reflect into it, and each 16 × 16 tile tests only its super-tile's list (the
     /// per-tile test is otherwise O(tiles × shapes)).
     pub super_tiles: Choice,
-    /// With `Auto`, super-tile lists are built from this many visible shapes on (measured
-    /// in docs/perf/scaling.md).
+    /// With `Auto`, super-tile lists are built from this many visible shapes on. Provisional:
+    /// measured only on Mesa's llvmpipe at 640×360 (docs/perf/scaling.md, "Super-tile
+    /// lists"), where they are never slower than flat tile lists from 512 shapes on in all
+    /// three generated families; not yet timed on a GPU.
     pub super_tiles_min_shapes: usize,
     /// Among parallel shapes, only the nearest plane reflects a pixel. `Auto`: with tile
     /// culling.
@@ -93,7 +95,7 @@ impl Default for PlanParams {
             tile_culling: Choice::Auto,
             tile_culling_min_shapes: 32,
             super_tiles: Choice::Auto,
-            super_tiles_min_shapes: 128,
+            super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
             indirect_max_coverage: 0.3,

@@ -22,7 +22,7 @@ use crate::passes::{
 use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
-use crate::timestamps::{PassTimer, PassTimings};
+use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
 
 /// Pixels within this fraction of their camera distance from a reflector's plane count as
 /// lying on it and are not reflected by it (else a reflector reflects itself). 1e-4 covers
@@ -443,10 +443,19 @@ impl ReflectionRenderer {
     /// Waits for the last submitted frame and returns its GPU time per pass, when the
     /// device supports timestamps and the last plan ran passes.
     pub fn read_timings(&self) -> Option<PassTimings> {
-        let plan = self.plan.as_ref().filter(|p| !p.is_empty())?;
+        self.timer.as_ref()?.read(&self.device, self.passes_recorded())
+    }
+
+    /// Which timed passes (classify, clear, projection, reflection, layers, as in
+    /// [`PassTimings::passes`]) the last [`Self::encode`] recorded. A pass recorded but
+    /// without a time in [`Self::read_timings`] had timestamps the adapter got wrong.
+    pub fn passes_recorded(&self) -> [bool; TIMED_PASSES as usize] {
+        let Some(plan) = self.plan.as_ref().filter(|p| !p.is_empty()) else {
+            return [false; TIMED_PASSES as usize];
+        };
         let has_main = !plan.visible.is_empty();
         let layers = !plan.layers.is_empty() && self.layer_output_given.get();
-        self.timer.as_ref()?.read(&self.device, [plan.indirect && has_main, true, true, has_main, layers])
+        [plan.indirect && has_main, true, true, has_main, layers]
     }
 
     /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for
