@@ -381,6 +381,19 @@ fn dense_puddles(n: usize) -> AnalyticScene {
     s
 }
 
+/// [`dense_puddles`] seen from above the near edge: the camera, the uploaded frame, the set.
+fn dense_puddles_frame(n: usize) -> (Camera, GpuFrame, ppr_format::ReflectorSet) {
+    let scene = dense_puddles(n);
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 2.5, 1.5),
+        DVec3::new(0.0, 0.0, -4.5),
+        Vec3::Y,
+        Projection { fov_y: 1.2, ..Default::default() },
+    );
+    let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+    (camera, gpu, grouped_set(&scene))
+}
+
 /// The super-tile list lengths of the last frame (over capacity: overflowed).
 fn super_tile_counts(r: &ReflectionRenderer) -> Vec<u32> {
     let (x, y) = super_tile_grid(SIZE);
@@ -395,16 +408,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     // super-tiles more than 1 024, so both fallbacks run (a tile to its super-tile's list,
     // a super-tile to every visible shape). Under the parallel rule the intermediate buffer
     // is then exactly the plain loop's.
-    let scene = dense_puddles(1200);
-    let camera = Camera::look_at(
-        DVec3::new(0.0, 2.5, 1.5),
-        DVec3::new(0.0, 0.0, -4.5),
-        Vec3::Y,
-        Projection { fov_y: 1.2, ..Default::default() },
-    );
-    let frame = scene.render(&camera, SIZE);
-    let gpu = GpuFrame::upload(&frame);
-    let set = grouped_set(&scene);
+    let (camera, gpu, set) = dense_puddles_frame(1200);
     let mut plain = configured(Culling::Plain, Choice::On);
     plain.set_reflectors(&set);
     let a = run(&mut plain, &gpu, &camera);
@@ -437,16 +441,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
 
 #[test]
 fn super_tiles_run_from_the_plan_threshold() {
-    let scene = dense_puddles(200);
-    let camera = Camera::look_at(
-        DVec3::new(0.0, 2.5, 1.5),
-        DVec3::new(0.0, 0.0, -4.5),
-        Vec3::Y,
-        Projection { fov_y: 1.2, ..Default::default() },
-    );
-    let frame = scene.render(&camera, SIZE);
-    let gpu = GpuFrame::upload(&frame);
-    let set = grouped_set(&scene);
+    let (camera, gpu, set) = dense_puddles_frame(200);
     let mut r = renderer();
     r.set_reflectors(&set);
     let out = run(&mut r, &gpu, &camera);
