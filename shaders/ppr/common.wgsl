@@ -78,7 +78,12 @@ struct Shape {
     occluder_start: u32,
     occluder_count: u32,
     parallel_group: u32,
-    _pad: u32,
+    // dot(center, axis_u), dot(center, axis_v), computed in f64 on the CPU.
+    center_u: f32,
+    center_v: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 // Whether the ray from the camera (origin) to `p` crosses `s` before reaching `p`

@@ -3,40 +3,56 @@
 // encoded screen offset into the intermediate buffer where the pixel is reflected.
 // Seed: PPR_ProjectionPassWrite, and the bonus slides' "multiple parallel shapes".
 //
+// Each workgroup covers a 32x32-pixel block, each thread four pixels (one in each 16x16
+// quarter, so that every load of the block is coalesced): the four depths are loaded
+// before any work, and each shape's test (five planes, ShapeTest in tile_test.wgsl) is
+// loaded once for the four pixels.
+//
 // Variants (pipeline-overridable constants, chosen by the FramePlan):
-// - TILE_CULLING: each 16x16 workgroup first builds, in workgroup memory, the list of
-//   visible shapes that may reflect some pixel of its tile (one thread per shape; a
-//   conservative test of the tile's mirrored world-space bounds against the rectangle,
-//   tile_test.wgsl); a tile without candidates does nothing more. Otherwise every pixel
-//   loops over all visible shapes.
-// - SUPER_TILES (with TILE_CULLING): the candidates a tile tests are its 64x64
-//   super-tile's list (super_tile_lists.wgsl, dispatched just before) instead of every
-//   visible shape; a tile whose own list overflows falls back to that list.
+// - TILE_CULLING: each block's pixels test only the block's list of the visible shapes
+//   that may reflect some pixel of it (block_lists.wgsl, dispatched just before: the box
+//   of the block's pixel positions against each shape's five planes). Otherwise every
+//   pixel loops over all visible shapes.
+// - SUPER_TILES (with TILE_CULLING): the block lists were built from 64x64 super-tiles'
+//   lists (super_tile_lists.wgsl); a block whose own list overflowed takes its
+//   super-tile's list instead of every visible shape.
+// - SOURCE_BOXES: each visible shape comes with the screen box of the pixels that may
+//   reflect into it (computed on the CPU, source_box.rs); a block that does not overlap
+//   it skips the shape (a uniform branch: the whole workgroup skips together).
 // - PARALLEL_RULE: among shapes of one parallel group that reflect a pixel, only the one
 //   with the smallest plane distance writes (each pixel reflected at most once per
-//   orientation). The visible list is sorted by group, and so are the tile lists.
-// - OCCLUDER_TESTS: test the ray to the reflection point against the shape's occluders.
+//   orientation). The visible list is sorted by group, and so are the block lists.
+// - DEPTH_OCCLUSION: a reflection is not written where the surface seen at its target
+//   pixel lies in front of the reflector's plane (something stands between the camera
+//   and the reflection point there): one depth read per write, whatever occludes.
+// - OCCLUDER_TESTS: the seed's test instead: the ray to the reflection point against the
+//   shape's list of occluding reflectors (from the extractor).
 // - LAYERS: glass panels and water planes with atlas regions exist this frame (without
 //   them the layer loop is compiled out).
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
+// - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
+//   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
+//   without writing.
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
 override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
+override DEPTH_OCCLUSION: bool = false;
 override LAYERS: bool = false;
 override DEBUG_WRITES: bool = false;
-// Debug: record, per pixel, its tile's candidate-list length instead of write bits.
+// Debug: record, per pixel, its block's candidate-list length instead of write bits.
 override DEBUG_TILE_LISTS: bool = false;
+override SOURCE_BOXES: bool = false;
+override ABLATION: u32 = 0u;
 
-const TILE_SIZE: u32 = 16u;
-// Capacity of a tile's shape list; a tile with more candidates loops over all of them.
-const TILE_LIST_CAPACITY: u32 = 256u;
+const NO_SHAPE: u32 = 0xffffffffu;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> shapes: array<Shape>;
-@group(0) @binding(3) var<storage, read> visible: array<u32>;
+// Per visible shape (in plan order), then per layer: its test planes, shape index, group.
+@group(0) @binding(3) var<storage, read> tests: array<ShapeTest>;
 @group(0) @binding(4) var<storage, read> occluders: array<u32>;
 @group(0) @binding(5) var<storage, read_write> intermediate: array<atomic<u32>>;
 @group(0) @binding(6) var<storage, read_write> debug_writes: array<u32>;
@@ -45,13 +61,30 @@ const TILE_LIST_CAPACITY: u32 = 256u;
 @group(0) @binding(8) var<storage, read_write> atlas: array<atomic<u32>>;
 // Super-tile counts and lists (super_tile_lists.wgsl), read with SUPER_TILES.
 @group(0) @binding(9) var<storage, read> super_lists: array<u32>;
+// Per visible shape, then per layer: the screen box (min.xy, max.xy exclusive) of the
+// pixels that may reflect into it, read with SOURCE_BOXES.
+@group(0) @binding(10) var<storage, read> source_boxes: array<vec4<u32>>;
+// Block counts and lists (block_lists.wgsl), read with TILE_CULLING.
+@group(0) @binding(11) var<storage, read> block_lists: array<u32>;
 
-var<workgroup> tile_list: array<u32, TILE_LIST_CAPACITY>;
+// Whether the ray from the camera to `hit` crosses occluder `o` before reaching it: the
+// test of ppr_segment_hits_shape without a division (t = plane_dist / dot(hit, n) must lie
+// in (0, 0.9999), and the crossing point in the rectangle, each multiplied out by dn).
+fn occluder_hit(hit: vec3<f32>, o: Shape) -> bool {
+    let dn = dot(hit, o.normal);
+    let pd = o.plane_dist;
+    if (!(abs(dn) > 1e-20) || !((pd > 0.0) == (dn > 0.0)) || !(abs(pd) < 0.9999 * abs(dn))) {
+        return false;
+    }
+    let lu = dot(hit, o.axis_u) * pd - o.center_u * dn;
+    let lv = dot(hit, o.axis_v) * pd - o.center_v * dn;
+    return abs(lu) <= o.half_u * abs(dn) && abs(lv) <= o.half_v * abs(dn);
+}
 
 fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
     for (var k = 0u; k < s.occluder_count; k++) {
         let o = shapes[occluders[s.occluder_start + k]];
-        if ((o.flags & PPR_SHAPE_OCCLUDES) != 0u && ppr_segment_hits_shape(hit, o)) {
+        if ((o.flags & PPR_SHAPE_OCCLUDES) != 0u && occluder_hit(hit, o)) {
             return true;
         }
     }
@@ -74,11 +107,41 @@ fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
     // Whole part from integer pixels, so that it points exactly at the source pixel.
     let t = min(vec2<u32>(target_crd), frame.size - 1u);
     let whole = vec2<i32>(t) - vec2<i32>(pixel);
+    if (ABLATION == 4u) {
+        return vec3<u32>(t, (t.x ^ (t.y << 12u)) & 0x7fffffffu);
+    }
     return vec3<u32>(t, ppr_encode_parts(whole, target_crd - vec2<f32>(t) - 0.5, frame.encoding));
 }
 
-// Writes the reflection of `pixel` into the main intermediate buffer.
-fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
+// Whether the surface the depth buffer shows at pixel `t` lies in front of the plane
+// (normal `n`, distance `d` from the camera) by more than its on-plane tolerance: then
+// something stands between the camera and any reflection point of that plane there.
+// A glass panel with a layer this frame does not count: games may write glass to depth,
+// and what lies behind it is still seen (and reflected) through it.
+fn occluded_at(t: vec2<u32>, n: vec3<f32>, d: f32) -> bool {
+    let q = tile_pixel_position(t);
+    if (!(q.w > 0.0 && dot(q.xyz, n) - d > q.w)) {
+        return false;
+    }
+    for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
+        if (layers[l].kind == PPR_KIND_TRANSPARENT && on_shape(q, shapes[layers[l].shape])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// Whether the position `q` (its on-plane tolerance in w) lies on shape `s`'s rectangle.
+fn on_shape(q: vec4<f32>, s: Shape) -> bool {
+    let l = q.xyz - s.center;
+    return abs(dot(q.xyz, s.normal) - s.plane_dist) <= q.w
+        && abs(dot(l, s.axis_u)) <= s.half_u + q.w
+        && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
+}
+
+// Writes the reflection of `pixel` into the main intermediate buffer (not where the plane
+// `n`, `d` is occluded at the target, with DEPTH_OCCLUSION).
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32) -> bool {
     let tv = projection_target(pixel, mirrored);
     let value = tv.z;
     if (value == PPR_CLEAR_VALUE) {
@@ -86,13 +149,27 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
     }
     let t = tv.xy;
     let index = t.x + t.y * frame.size.x;
-    if ((frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u) {
-        // A plain load first: where a squeezed reflection maps many pixels onto one, most
-        // writes lose, and a load is cheaper than an atomic.
-        if (atomicLoad(&intermediate[index]) > value) {
-            atomicMin(&intermediate[index], value);
+    if (ABLATION == 5u) {
+        if (value == 0x12345u) {
+            atomicStore(&intermediate[index], value);
         }
-    } else if ((frame.flags & PPR_FLAG_WRITE_LAST) != 0u) {
+        return true;
+    }
+    let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
+    // A plain load first: where a squeezed reflection maps many pixels onto one, most
+    // writes lose, and a load is cheaper than the occlusion test and the atomic. Not with
+    // DEBUG_WRITES: what a pixel is recorded as having written must not depend on the
+    // order of other writes (the buffer ends the same: an occluded write never lowers a
+    // value).
+    if (mode == 0u && !DEBUG_WRITES && atomicLoad(&intermediate[index]) <= value) {
+        return true;
+    }
+    if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
+        return false;
+    }
+    if (mode == 0u) {
+        atomicMin(&intermediate[index], value);
+    } else if ((mode & PPR_FLAG_WRITE_LAST) != 0u) {
         atomicStore(&intermediate[index], value);
     } else {
         // The largest offset wins; the clear value counts as empty, so plain atomicMax
@@ -112,33 +189,21 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>) -> bool {
     return true;
 }
 
-// Writes the reflection of `pixel` into layer `l`'s atlas region (if it lands there).
-fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer) {
+// Writes the reflection of `pixel` into layer `l`'s atlas region (if it lands there and,
+// with DEPTH_OCCLUSION, the layer's plane `s` is not occluded there).
+fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     let tv = projection_target(pixel, mirrored);
     if (tv.z == PPR_CLEAR_VALUE || any(tv.xy < l.rect_min) || any(tv.xy >= l.rect_max)) {
+        return;
+    }
+    if (DEPTH_OCCLUSION && occluded_at(tv.xy, s.normal, s.plane_dist)) {
         return;
     }
     let local = tv.xy - l.rect_min;
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
-// The per-pixel test of shape `s`: the pixel is in front of its plane and its reflection
-// point lies in the rectangle. Returns the plane distance, or -1 when the test fails.
-fn reflecting_distance(p: vec3<f32>, min_dist: f32, s: Shape) -> f32 {
-    let dist = dot(p, s.normal) - s.plane_dist;
-    if (!(dist > min_dist)) {
-        return -1.0;
-    }
-    let mirrored = p - 2.0 * dist * s.normal;
-    let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-    let l = hit - s.center;
-    if (abs(dot(l, s.axis_u)) > s.half_u || abs(dot(l, s.axis_v)) > s.half_v) {
-        return -1.0;
-    }
-    return dist;
-}
-
-// Occluder tests and the write, for a shape that passed `reflecting_distance`.
+// Occluder tests and the write, for a shape that passed its test.
 fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
     let mirrored = p - 2.0 * dist * s.normal;
     if (OCCLUDER_TESTS) {
@@ -147,10 +212,69 @@ fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
             return false;
         }
     }
-    return write_projection(pixel, mirrored);
+    return write_projection(pixel, mirrored, s.normal, s.plane_dist);
 }
 
-// The shapes a tile considers: `count` positions in `visible`, listed in `super_lists`
+// The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
+// is lane j of each. Invalid pixels (no rendered surface) have tolerance 0.
+struct Quad {
+    x: vec4<f32>,
+    y: vec4<f32>,
+    z: vec4<f32>,
+    // On-plane tolerance (ppr_on_plane_tolerance): points closer to a plane than this are
+    // taken as lying on it; 0 for an invalid pixel.
+    tolerance: vec4<f32>,
+}
+
+fn quad_position(q: Quad, j: u32) -> vec3<f32> {
+    return vec3<f32>(q.x[j], q.y[j], q.z[j]);
+}
+
+// The four depth loads go out before any of them is used.
+fn load_quad(base: vec2<u32>) -> Quad {
+    let a = tile_pixel_position(quad_pixel(base, 0u));
+    let b = tile_pixel_position(quad_pixel(base, 1u));
+    let c = tile_pixel_position(quad_pixel(base, 2u));
+    let d = tile_pixel_position(quad_pixel(base, 3u));
+    return Quad(
+        vec4<f32>(a.x, b.x, c.x, d.x),
+        vec4<f32>(a.y, b.y, c.y, d.y),
+        vec4<f32>(a.z, b.z, c.z, d.z),
+        vec4<f32>(a.w, b.w, c.w, d.w),
+    );
+}
+
+fn quad_plane(q: Quad, pl: vec4<f32>) -> vec4<f32> {
+    return q.x * pl.x + q.y * pl.y + q.z * pl.z + pl.w;
+}
+
+// Each pixel's distance from the shape's plane where the shape reflects it into its
+// rectangle (in front of the plane by more than the tolerance, inside the pyramid), else -1.
+fn quad_test(q: Quad, t: ShapeTest) -> vec4<f32> {
+    let dist = quad_plane(q, t.plane);
+    let inside = min(
+        min(quad_plane(q, t.side0), quad_plane(q, t.side1)),
+        min(quad_plane(q, t.side2), quad_plane(q, t.side3)),
+    );
+    let passes = q.tolerance > vec4<f32>(0.0) & dist > q.tolerance & inside >= vec4<f32>(0.0);
+    return select(vec4<f32>(-1.0), dist, passes);
+}
+
+// The reflection of one pixel (position `p`, `dist` in front of the layer's plane, inside
+// its pyramid) into layer `layer`'s atlas region.
+fn layer_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, layer: Layer) {
+    let s = shapes[layer.shape];
+    let mirrored = p - 2.0 * dist * s.normal;
+    if (OCCLUDER_TESTS) {
+        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+        if (is_occluded(hit, s)) {
+            return;
+        }
+    }
+    write_layer(pixel, mirrored, layer, s);
+}
+
+// The shapes a block considers: `count` positions in `visible`, listed in `super_lists`
 // from `start` (`listed`) or all of them.
 struct Candidates {
     count: u32,
@@ -158,11 +282,12 @@ struct Candidates {
     listed: bool,
 }
 
-fn tile_candidates(wid: vec3<u32>) -> Candidates {
+fn block_candidates(wid: vec3<u32>) -> Candidates {
     var c = Candidates(frame.visible_count, 0u, false);
     if (SUPER_TILES) {
         let grid = super_tile_grid();
-        let st = wid.x / (SUPER_TILE_SIZE / TILE_SIZE) + (wid.y / (SUPER_TILE_SIZE / TILE_SIZE)) * grid.x;
+        let per = SUPER_TILE_SIZE / BLOCK_SIZE;
+        let st = wid.x / per + (wid.y / per) * grid.x;
         let n = super_lists[st];
         if (n <= SUPER_LIST_CAPACITY) {
             c = Candidates(n, grid.y + st * SUPER_LIST_CAPACITY, true);
@@ -179,125 +304,142 @@ fn candidate(c: Candidates, i: u32) -> u32 {
     return i;
 }
 
-// Builds the tile's list in workgroup memory (positions in `visible`, in its order) from
-// the candidates and the axis-aligned box of the tile's pixel positions (`p`, valid when
-// `has_point`): on a plane seen at an angle this box is a thin slab, far tighter than the
-// tile's frustum slice between its nearest and farthest depth.
-// Returns the list length, or TILE_LIST_CAPACITY + 1 when it overflowed.
-fn build_tile_list(lid: u32, has_point: bool, p: vec3<f32>, cand: Candidates) -> u32 {
-    var lo = vec3<f32>(3.0e38);
-    var hi = vec3<f32>(-3.0e38);
-    if (has_point) {
-        lo = p;
-        hi = p;
+// Whether the block [lo, hi) overlaps the source box of the shape at position `k` of
+// `visible` (always, without SOURCE_BOXES).
+fn block_meets_source_box(k: u32, lo: vec2<u32>, hi: vec2<u32>) -> bool {
+    if (!SOURCE_BOXES) {
+        return true;
     }
-    let box = workgroup_box(lid, lo, hi);
-    let empty_tile = box.lo.x > box.hi.x;
-    var count = 0u;
-    for (var base = 0u; base < cand.count; base += TILE_GROUP_THREADS) {
-        let i = base + lid;
-        var k = 0u;
-        var passes = false;
-        if (!empty_tile && i < cand.count) {
-            k = candidate(cand, i);
-            passes = tile_may_reflect(shapes[visible[k]], box.lo, box.hi);
-        }
-        let r = chunk_rank(lid, passes);
-        if (passes && count + r.x < TILE_LIST_CAPACITY) {
-            tile_list[count + r.x] = k;
-        }
-        count += r.y;
-    }
-    workgroupBarrier();
-    return min(count, TILE_LIST_CAPACITY + 1u);
+    let b = source_boxes[k];
+    return all(b.xy < hi) && all(lo < b.zw);
 }
 
 @compute @workgroup_size(16, 16)
 fn main(
-    @builtin(global_invocation_id) gid: vec3<u32>,
-    @builtin(local_invocation_index) lid: u32,
+    @builtin(local_invocation_id) local: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
-    let position = tile_pixel_position(gid.xy);
-    let depth_ok = position.w > 0.0;
-    let p = position.xyz;
+    if (ABLATION == 1u) {
+        return;
+    }
+    let lo = wid.xy * BLOCK_SIZE;
+    let hi = lo + vec2<u32>(BLOCK_SIZE);
+    let base = lo + local.xy;
+    let q = load_quad(base);
+    if (ABLATION == 2u) {
+        if (any(q.x == vec4<f32>(1234.5))) {
+            atomicStore(&intermediate[0], 0u);
+        }
+        return;
+    }
 
-    // In the tiled variant, the candidates are the tile's list (positions in `visible`);
+    // In the tiled variant, the candidates are the block's list (positions in `visible`);
     // otherwise, or when the list overflowed, every candidate (the super-tile's list or
     // every visible shape).
     var cand = Candidates(frame.visible_count, 0u, false);
     var count = frame.visible_count;
     var use_list = false;
+    var list_start = 0u;
     if (TILE_CULLING) {
-        cand = tile_candidates(wid);
-        count = cand.count;
-        let listed = build_tile_list(lid, depth_ok, p, cand);
-        if (listed <= TILE_LIST_CAPACITY) {
+        let blocks = block_grid();
+        let b = wid.x + wid.y * blocks.x;
+        let listed = block_lists[b];
+        if (listed <= BLOCK_LIST_CAPACITY) {
             count = listed;
             use_list = true;
+            list_start = blocks.y + b * BLOCK_LIST_CAPACITY;
+        } else {
+            cand = block_candidates(wid);
+            count = cand.count;
         }
     }
-    if (DEBUG_TILE_LISTS && all(gid.xy < frame.size)) {
-        debug_writes[gid.x + gid.y * frame.size.x] = select(0xffffffffu, count, use_list);
-    }
-    if (!depth_ok || (count == 0u && !LAYERS)) {
-        return;
-    }
-    let min_dist = frame.plane_epsilon * length(p);
-    var written = 0u;
-    // Parallel rule: the best (smallest distance) shape of the current group so far.
-    var group = 0xffffffffu;
-    var best_k = 0xffffffffu;
-    var best_dist = 0.0;
-    for (var i = 0u; i < count; i++) {
-        var k = i;
-        if (use_list) {
-            k = tile_list[i];
-        } else if (cand.listed) {
-            k = super_lists[cand.start + i];
-        }
-        let s = shapes[visible[k]];
-        if (PARALLEL_RULE && s.parallel_group != group) {
-            if (best_k != 0xffffffffu && reflect_pixel(gid.xy, p, best_dist, shapes[visible[best_k]])) {
-                written |= 1u << (best_k & 31u);
+
+    // Writes wait one step in `pending` (candidate and distance per pixel), so that the
+    // write path has one call site: without the parallel rule a step's passes are written
+    // at the next step; with it, a group's best when the next group (or the end) comes.
+    var pending_k = vec4<u32>(NO_SHAPE);
+    var pending_d = vec4<f32>(0.0);
+    var best_k = vec4<u32>(NO_SHAPE);
+    var best_d = vec4<f32>(0.0);
+    var written = vec4<u32>(0u);
+    var tested = vec4<f32>(0.0);
+    var group = NO_SHAPE;
+    for (var i = 0u; i <= count; i++) {
+        var k = NO_SHAPE;
+        if (i < count) {
+            k = i;
+            if (use_list) {
+                k = block_lists[list_start + i];
+            } else if (cand.listed) {
+                k = super_lists[cand.start + i];
             }
-            group = s.parallel_group;
-            best_k = 0xffffffffu;
+            if (!use_list && !block_meets_source_box(k, lo, hi)) {
+                k = NO_SHAPE;
+            }
         }
-        let dist = reflecting_distance(p, min_dist, s);
-        if (dist < 0.0) {
+        var t: ShapeTest;
+        if (k != NO_SHAPE) {
+            t = tests[k];
+        }
+        if (PARALLEL_RULE && (i == count || (k != NO_SHAPE && t.group != group))) {
+            pending_k = best_k;
+            pending_d = best_d;
+            best_k = vec4<u32>(NO_SHAPE);
+            group = t.group;
+        }
+        for (var j = 0u; j < 4u; j++) {
+            if (pending_k[j] != NO_SHAPE) {
+                let s = shapes[tests[pending_k[j]].shape];
+                if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), pending_d[j], s)) {
+                    written[j] |= 1u << (pending_k[j] & 31u);
+                }
+            }
+        }
+        pending_k = vec4<u32>(NO_SHAPE);
+        if (k == NO_SHAPE) {
             continue;
         }
-        if (PARALLEL_RULE) {
-            if (best_k == 0xffffffffu || dist < best_dist) {
-                best_k = k;
-                best_dist = dist;
-            }
-        } else if (reflect_pixel(gid.xy, p, dist, s)) {
-            written |= 1u << (k & 31u);
+        let dist = quad_test(q, t);
+        let passes = dist >= vec4<f32>(0.0);
+        if (ABLATION == 3u) {
+            tested += dist;
+        } else if (PARALLEL_RULE) {
+            let better = passes & (best_k == vec4<u32>(NO_SHAPE) | dist < best_d);
+            best_k = select(best_k, vec4<u32>(k), better);
+            best_d = select(best_d, dist, better);
+        } else {
+            pending_k = select(vec4<u32>(NO_SHAPE), vec4<u32>(k), passes);
+            pending_d = dist;
         }
     }
-    if (PARALLEL_RULE && best_k != 0xffffffffu && reflect_pixel(gid.xy, p, best_dist, shapes[visible[best_k]])) {
-        written |= 1u << (best_k & 31u);
+    if (ABLATION == 3u && dot(tested, vec4<f32>(1.0)) == 1234.5) {
+        atomicStore(&intermediate[0], 0u);
     }
-    // Layer reflectors (few): each writes its own atlas region.
+    // Layer reflectors (few): their tests follow the visible shapes'.
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
-        let layer = layers[l];
-        let s = shapes[layer.shape];
-        let dist = reflecting_distance(p, min_dist, s);
-        if (dist < 0.0) {
+        let k = frame.visible_count + l;
+        if (!block_meets_source_box(k, lo, hi)) {
             continue;
         }
-        let mirrored = p - 2.0 * dist * s.normal;
-        if (OCCLUDER_TESTS) {
-            let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-            if (is_occluded(hit, s)) {
-                continue;
+        let dist = quad_test(q, tests[k]);
+        for (var j = 0u; j < 4u; j++) {
+            if (dist[j] >= 0.0) {
+                layer_pixel(quad_pixel(base, j), quad_position(q, j), dist[j], layers[l]);
             }
         }
-        write_layer(gid.xy, mirrored, layer);
     }
-    if (DEBUG_WRITES && !DEBUG_TILE_LISTS) {
-        debug_writes[gid.x + gid.y * frame.size.x] = written;
+    if (DEBUG_WRITES) {
+        let n = select(0xffffffffu, count, use_list);
+        for (var j = 0u; j < 4u; j++) {
+            let pixel = quad_pixel(base, j);
+            if (all(pixel < frame.size)) {
+                let index = pixel.x + pixel.y * frame.size.x;
+                if (DEBUG_TILE_LISTS) {
+                    debug_writes[index] = n;
+                } else if (q.tolerance[j] > 0.0) {
+                    debug_writes[index] = written[j];
+                }
+            }
+        }
     }
 }

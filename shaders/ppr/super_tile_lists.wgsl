@@ -1,8 +1,9 @@
-// Super-tile lists: for each 64x64-pixel super-tile (4x4 projection tiles), the visible
+// Super-tile lists: for each 64x64-pixel super-tile (2x2 projection blocks), the visible
 // shapes that may reflect some pixel of it, by the projection's conservative box test on
-// the box of all its pixels' positions. The projection pass's tiles then test only their
-// super-tile's list instead of every visible shape: with many reflectors the per-tile test
-// is O(tiles x shapes), and this pass does that work once per 16 tiles.
+// the box of all its pixels' positions (and, with SOURCE_BOXES, the shapes' screen source
+// boxes). The projection pass's blocks then test only their super-tile's list instead of
+// every visible shape: with many reflectors the per-block test is O(blocks x shapes), and
+// this pass does that work once per 4 blocks.
 //
 // Layout of `super_lists` (u32): one count per super-tile (SUPER_LIST_CAPACITY + 1 when
 // the list overflowed), then SUPER_LIST_CAPACITY entries per super-tile, in the order of
@@ -11,9 +12,11 @@
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
-@group(0) @binding(2) var<storage, read> shapes: array<Shape>;
-@group(0) @binding(3) var<storage, read> visible: array<u32>;
+@group(0) @binding(2) var<storage, read> tests: array<ShapeTest>;
+@group(0) @binding(3) var<storage, read> source_boxes: array<vec4<u32>>;
 @group(0) @binding(4) var<storage, read_write> super_lists: array<u32>;
+
+override SOURCE_BOXES: bool = false;
 
 @compute @workgroup_size(256)
 fn main(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: vec3<u32>) {
@@ -38,7 +41,12 @@ fn main(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: v
     var count = 0u;
     for (var base = 0u; base < frame.visible_count; base += TILE_GROUP_THREADS) {
         let k = base + lid;
-        let passes = !empty && k < frame.visible_count && tile_may_reflect(shapes[visible[k]], box.lo, box.hi);
+        var passes = false;
+        if (!empty && k < frame.visible_count) {
+            let b = source_boxes[min(k, frame.visible_count - 1u)];
+            let meets = !SOURCE_BOXES || (all(b.xy < origin + SUPER_TILE_SIZE) && all(origin < b.zw));
+            passes = meets && box_may_reflect(tests[k], box.lo, box.hi);
+        }
         let r = chunk_rank(lid, passes);
         if (passes && count + r.x < SUPER_LIST_CAPACITY) {
             super_lists[list_start + count + r.x] = k;

@@ -1,26 +1,76 @@
-// Tile culling shared by the projection pass (16x16 tiles) and the super-tile list pass
-// (64x64 super-tiles): the conservative test of a box of camera-relative positions
-// against a shape, the box built from the pixels' positions, and the ordered compaction
-// that turns per-thread pass flags into a list. Needs `frame`, `depth_tex` and the view
-// module; uses the workgroup arrays below.
+// Culling shared by the block-list pass and the projection (32x32-pixel blocks) and the
+// super-tile list pass (64x64 super-tiles): each visible shape's test as five planes (ShapeTest), the box of a
+// workgroup's pixel positions, the conservative test of a box against a shape, and the
+// ordered compaction that turns per-thread pass flags into a list. Needs `frame`,
+// `depth_tex` and the view module; uses the workgroup arrays below.
 
 const TILE_GROUP_THREADS: u32 = 256u;
-// Edge of a super-tile in pixels (4x4 projection tiles).
+// Edge of a block in pixels: a workgroup of the projection and of the block-list pass,
+// 16x16 threads with one pixel in each 16x16 quarter.
+const BLOCK_SIZE: u32 = 32u;
+const QUARTER: u32 = 16u;
+// Capacity of a block's list; a block with more candidates lists nothing and its pixels
+// test its super-tile's list or every visible shape.
+const BLOCK_LIST_CAPACITY: u32 = 256u;
+// Edge of a super-tile in pixels (2x2 projection blocks).
 const SUPER_TILE_SIZE: u32 = 64u;
 // Capacity of a super-tile's list; a super-tile with more candidates lists nothing and its
-// tiles test every visible shape.
+// blocks test every visible shape.
 const SUPER_LIST_CAPACITY: u32 = 1024u;
 
-// The box of a tile's pixel positions (ordered float bits per axis).
-var<workgroup> tile_box_min: array<atomic<u32>, 3>;
-var<workgroup> tile_box_max: array<atomic<u32>, 3>;
-// Per thread of a chunk: whether its shape passed; packed into words for the ranks.
+// A visible shape's reflection test, camera-relative, built on the CPU in f64
+// (crates/ppr-runtime/src/shape_tests.rs). A point p in front of the reflector's plane is
+// reflected into its rectangle exactly when it lies in the pyramid from the mirrored
+// camera through the rectangle: `dist = dot(p, plane.xyz) + plane.w > 0` (the distance
+// from the plane) and `dot(p, side_i.xyz) + side_i.w >= 0` for the pyramid's four sides.
+struct ShapeTest {
+    plane: vec4<f32>,
+    side0: vec4<f32>,
+    side1: vec4<f32>,
+    side2: vec4<f32>,
+    side3: vec4<f32>,
+    // Index of the shape in `shapes`, its parallel group.
+    shape: u32,
+    group: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+// The largest value of a plane over the box (centre c, half extents h), plus a margin for
+// the f32 rounding of per-pixel values against this one.
+fn ppr_box_plane_max(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
+    let a = abs(pl.xyz);
+    let reach = dot(abs(c) + h, a) + abs(pl.w);
+    return dot(c, pl.xyz) + dot(h, a) + pl.w + 1e-5 * reach;
+}
+
+// Conservative box test: may some point of the box [lo, hi] (a block's pixel positions)
+// be reflected by the shape into its rectangle? It may unless the whole box lies behind
+// the plane or outside one side of the pyramid. Monotone in the box: a box holding
+// another passes whenever the smaller one does.
+fn box_may_reflect(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
+    let c = 0.5 * (lo + hi);
+    let h = 0.5 * (hi - lo);
+    return ppr_box_plane_max(t.plane, c, h) > 0.0
+        && ppr_box_plane_max(t.side0, c, h) >= 0.0
+        && ppr_box_plane_max(t.side1, c, h) >= 0.0
+        && ppr_box_plane_max(t.side2, c, h) >= 0.0
+        && ppr_box_plane_max(t.side3, c, h) >= 0.0;
+}
+
+// The box reduction: BOX_SLOTS copies of each bound (ordered float bits), so that at most
+// TILE_GROUP_THREADS / BOX_SLOTS threads contend for one address; then per thread its
+// pass flag, packed into words for the ranks.
+const BOX_SLOTS: u32 = 8u;
+var<workgroup> box_min: array<array<atomic<u32>, 3>, BOX_SLOTS>;
+var<workgroup> box_max: array<array<atomic<u32>, 3>, BOX_SLOTS>;
 var<workgroup> pass_flags: array<u32, TILE_GROUP_THREADS>;
 var<workgroup> pass_words: array<u32, 8>;
 
 // The camera-relative position of a pixel, when its depth is a rendered surface and the
-// position is finite (w = 1), else w = 0. The one rule both culling levels and the
-// per-pixel projection use, so that a tile's box holds every position its pixels test.
+// position is finite, with its on-plane tolerance as w (> 0; ppr_on_plane_tolerance), else
+// w = 0. The one rule both culling levels and the per-pixel projection use, so that a
+// block's box holds every position its pixels test.
 fn tile_pixel_position(pixel: vec2<u32>) -> vec4<f32> {
     if (!all(pixel < frame.size)) {
         return vec4<f32>(0.0);
@@ -29,11 +79,12 @@ fn tile_pixel_position(pixel: vec2<u32>) -> vec4<f32> {
     if (!ppr_is_valid_depth(depth)) {
         return vec4<f32>(0.0);
     }
-    let p = ppr_unproject(vec2<f32>(pixel) + 0.5, depth);
+    let centre = vec2<f32>(pixel) + 0.5;
+    let p = ppr_unproject(centre, depth);
     if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30)))) {
         return vec4<f32>(0.0);
     }
-    return vec4<f32>(p, 1.0);
+    return vec4<f32>(p, ppr_on_plane_tolerance(centre, depth, p));
 }
 
 // Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).
@@ -47,127 +98,45 @@ fn from_ordered_bits(u: u32) -> f32 {
 }
 
 // The box of the positions the workgroup's threads hold (`lo` > `hi` on an axis for a
-// thread without any). Every thread gets the box; `lo.x > hi.x` when it is empty.
+// thread without any). Every thread gets the box; `lo.x > hi.x` when it is empty. Call
+// from uniform control flow.
 struct TileBox {
     lo: vec3<f32>,
     hi: vec3<f32>,
 }
 
 fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
-    if (lid < 3u) {
-        atomicStore(&tile_box_min[lid], 0xffffffffu);
-        atomicStore(&tile_box_max[lid], 0u);
+    if (lid < 3u * BOX_SLOTS) {
+        atomicStore(&box_min[lid / 3u][lid % 3u], 0xffffffffu);
+        atomicStore(&box_max[lid / 3u][lid % 3u], 0u);
     }
     workgroupBarrier();
+    let slot = lid % BOX_SLOTS;
     if (lo.x <= hi.x) {
         for (var c = 0u; c < 3u; c++) {
-            atomicMin(&tile_box_min[c], ordered_bits(lo[c]));
-            atomicMax(&tile_box_max[c], ordered_bits(hi[c]));
+            atomicMin(&box_min[slot][c], ordered_bits(lo[c]));
+            atomicMax(&box_max[slot][c], ordered_bits(hi[c]));
         }
     }
     workgroupBarrier();
-    var b = TileBox(vec3<f32>(0.0), vec3<f32>(0.0));
-    for (var c = 0u; c < 3u; c++) {
-        b.lo[c] = from_ordered_bits(atomicLoad(&tile_box_min[c]));
-        b.hi[c] = from_ordered_bits(atomicLoad(&tile_box_max[c]));
+    var mins = vec3<u32>(0xffffffffu);
+    var maxs = vec3<u32>(0u);
+    for (var i = 0u; i < BOX_SLOTS; i++) {
+        for (var c = 0u; c < 3u; c++) {
+            mins[c] = min(mins[c], atomicLoad(&box_min[i][c]));
+            maxs[c] = max(maxs[c], atomicLoad(&box_max[i][c]));
+        }
     }
-    if (atomicLoad(&tile_box_min[0]) > atomicLoad(&tile_box_max[0])) {
-        b.lo.x = 1.0;
-        b.hi.x = -1.0;
+    var b = TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
+    if (mins.x <= maxs.x) {
+        for (var c = 0u; c < 3u; c++) {
+            b.lo[c] = from_ordered_bits(mins[c]);
+            b.hi[c] = from_ordered_bits(maxs[c]);
+        }
     }
+    // Every thread has read the slots before anyone resets them.
+    workgroupBarrier();
     return b;
-}
-
-// Rectangle coordinates of where a front point `c` (plane distance `d` > 0) is reflected.
-fn reflected_uv(s: Shape, c: vec3<f32>, d: f32) -> vec2<f32> {
-    let m = c - 2.0 * d * s.normal;
-    let l = m * (s.plane_dist / dot(m, s.normal)) - s.center;
-    return vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-}
-
-// Bounds accumulated by the tile test: (lo.xy, hi.xy) in rectangle coordinates.
-struct UvBounds {
-    lo: vec2<f32>,
-    hi: vec2<f32>,
-}
-
-fn add_corner(b: UvBounds, s: Shape, c: vec3<f32>, d: f32) -> UvBounds {
-    if (!(d > 0.0)) {
-        return b;
-    }
-    let uv = reflected_uv(s, c, d);
-    return UvBounds(min(b.lo, uv), max(b.hi, uv));
-}
-
-// Where the edge a–b crosses the plane, if it does (a point on the plane is its own
-// reflection point).
-fn add_crossing(b: UvBounds, s: Shape, a: vec3<f32>, da: f32, c: vec3<f32>, dc: f32) -> UvBounds {
-    if ((da > 0.0) == (dc > 0.0)) {
-        return b;
-    }
-    let l = mix(a, c, da / (da - dc)) - s.center;
-    let uv = vec2<f32>(dot(l, s.axis_u), dot(l, s.axis_v));
-    return UvBounds(min(b.lo, uv), max(b.hi, uv));
-}
-
-// Conservative tile test: may any point of the box [lo, hi] (the tile's pixel positions)
-// be reflected by `s` into its rectangle? Only the part of the box in front of the plane
-// can be reflected; it is the convex hull of the front corners and of the points where
-// the box's edges cross the plane. Mirroring is affine and the central projection from
-// the camera onto the plane keeps convexity for points behind it, so the rectangle
-// spanned by the projections of those points bounds every pixel's reflection point.
-// Monotone in the box: a box holding another passes whenever the smaller one does (its
-// front part holds the smaller one's, and the margin only grows), so a super-tile's list
-// holds every shape the lists of its tiles would.
-// Written out corner by corner and edge by edge: no dynamically indexed arrays.
-fn tile_may_reflect(s: Shape, lo: vec3<f32>, hi: vec3<f32>) -> bool {
-    let c0 = vec3<f32>(lo.x, lo.y, lo.z);
-    let c1 = vec3<f32>(hi.x, lo.y, lo.z);
-    let c2 = vec3<f32>(lo.x, hi.y, lo.z);
-    let c3 = vec3<f32>(hi.x, hi.y, lo.z);
-    let c4 = vec3<f32>(lo.x, lo.y, hi.z);
-    let c5 = vec3<f32>(hi.x, lo.y, hi.z);
-    let c6 = vec3<f32>(lo.x, hi.y, hi.z);
-    let c7 = vec3<f32>(hi.x, hi.y, hi.z);
-    let n = s.normal;
-    let d0 = dot(c0, n) - s.plane_dist;
-    let d1 = dot(c1, n) - s.plane_dist;
-    let d2 = dot(c2, n) - s.plane_dist;
-    let d3 = dot(c3, n) - s.plane_dist;
-    let d4 = dot(c4, n) - s.plane_dist;
-    let d5 = dot(c5, n) - s.plane_dist;
-    let d6 = dot(c6, n) - s.plane_dist;
-    let d7 = dot(c7, n) - s.plane_dist;
-    if (!(max(max(max(d0, d1), max(d2, d3)), max(max(d4, d5), max(d6, d7))) > 0.0)) {
-        return false;
-    }
-    var b = UvBounds(vec2<f32>(3.0e38), vec2<f32>(-3.0e38));
-    b = add_corner(b, s, c0, d0);
-    b = add_corner(b, s, c1, d1);
-    b = add_corner(b, s, c2, d2);
-    b = add_corner(b, s, c3, d3);
-    b = add_corner(b, s, c4, d4);
-    b = add_corner(b, s, c5, d5);
-    b = add_corner(b, s, c6, d6);
-    b = add_corner(b, s, c7, d7);
-    b = add_crossing(b, s, c0, d0, c1, d1);
-    b = add_crossing(b, s, c2, d2, c3, d3);
-    b = add_crossing(b, s, c4, d4, c5, d5);
-    b = add_crossing(b, s, c6, d6, c7, d7);
-    b = add_crossing(b, s, c0, d0, c2, d2);
-    b = add_crossing(b, s, c1, d1, c3, d3);
-    b = add_crossing(b, s, c4, d4, c6, d6);
-    b = add_crossing(b, s, c5, d5, c7, d7);
-    b = add_crossing(b, s, c0, d0, c4, d4);
-    b = add_crossing(b, s, c1, d1, c5, d5);
-    b = add_crossing(b, s, c2, d2, c6, d6);
-    b = add_crossing(b, s, c3, d3, c7, d7);
-    // Margin for the f32 error of per-pixel positions against the box's; the reach is
-    // that of the box's farthest corner (monotone in the box).
-    let reach = length(max(abs(lo), abs(hi)));
-    let margin = 1e-4 * reach + 1e-6 * max(s.half_u, s.half_v);
-    let half = vec2<f32>(s.half_u, s.half_v) + margin;
-    return all(b.hi >= -half) && all(b.lo <= half);
 }
 
 // Ordered compaction of one chunk of TILE_GROUP_THREADS candidates: (rank, total), where
@@ -197,6 +166,18 @@ fn chunk_rank(lid: u32, passes: bool) -> vec2<u32> {
     }
     workgroupBarrier();
     return vec2<u32>(rank, total);
+}
+
+// Blocks of the viewport: (columns, count).
+fn block_grid() -> vec2<u32> {
+    let cols = (frame.size.x + BLOCK_SIZE - 1u) / BLOCK_SIZE;
+    let rows = (frame.size.y + BLOCK_SIZE - 1u) / BLOCK_SIZE;
+    return vec2<u32>(cols, cols * rows);
+}
+
+// Pixel `j` (0..3) of the thread at `base` (its pixel in the block's first quarter).
+fn quad_pixel(base: vec2<u32>, j: u32) -> vec2<u32> {
+    return base + vec2<u32>((j & 1u) * QUARTER, (j >> 1u) * QUARTER);
 }
 
 // Super-tiles of the viewport: (columns, count).

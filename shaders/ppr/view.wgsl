@@ -19,3 +19,20 @@ fn ppr_project(p: vec3<f32>) -> vec3<f32> {
 fn ppr_is_valid_depth(depth: f32) -> bool {
     return ppr_is_finite(depth) && depth >= 0.0 && depth <= 1.0 && depth != frame.far_depth;
 }
+
+// How far from a plane a reconstructed point may lie and still be on it: the larger of the
+// f32 error of the unprojection (frame.plane_epsilon times the distance) and the distance along the view ray
+// that four depth-buffer steps (ulps) at this depth cover, taken towards the near plane.
+// With standard Z the second dominates far from the camera (the depth buffer's
+// resolution falls with distance squared), so pixels of a reflector within depth error of
+// its own plane are never reflected by it (they would land on themselves).
+fn ppr_on_plane_tolerance(pixel_centre: vec2<f32>, depth: f32, p: vec3<f32>) -> f32 {
+    let ulps = 4.0 * 1.1920929e-7 * max(abs(depth), 1.0e-30);
+    let toward_near = select(ulps, -ulps, frame.far_depth > 0.5);
+    let q = ppr_unproject(pixel_centre, depth + toward_near);
+    var along = length(q - p);
+    if (!ppr_is_finite(along)) {
+        along = 0.0;
+    }
+    return max(frame.plane_epsilon * length(p), along) + 1.0e-30;
+}

@@ -12,6 +12,8 @@ use ppr_tests::harness::{GpuFrame, renderer, run};
 use ppr_tests::scene::{Albedo, AnalyticScene};
 
 const SIZE: [u32; 2] = [96, 64];
+/// The size of the list-length test.
+const LIST_SIZE: [u32; 2] = [192, 128];
 
 /// xorshift64*: deterministic test randomness.
 struct Rng(u64);
@@ -315,8 +317,9 @@ fn a_frame_without_visible_reflectors_dispatches_nothing() {
 
 #[test]
 fn tile_lists_stay_short_on_coplanar_puddles() {
-    // Culling must pay where many shapes share a plane: a floor tile lists only the
-    // puddles its pixels can reflect into, not all of them.
+    // Culling must pay where many shapes share a plane: a floor block lists only the
+    // puddles its pixels can reflect into, not all of them. Twice the other tests' size,
+    // so that a 32-pixel block covers as little of the view as 16-pixel tiles did.
     let mut rng = Rng(0x5eed_0005);
     let scene = puddle_floor(&mut rng);
     let camera = Camera::look_at(
@@ -325,7 +328,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
         Vec3::Y,
         Projection::default(),
     );
-    let frame = scene.render(&camera, SIZE);
+    let frame = scene.render(&camera, LIST_SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = configured(Culling::Tiles, Choice::On);
     r.debug_tile_lists = true;
@@ -352,7 +355,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     let out = run(&mut s, &gpu, &camera);
     assert!(out.plan.super_tiles, "{}", out.plan);
     assert_eq!(debug_masks(&s), lengths, "tile lists differ when built from super-tile lists");
-    let counts = super_tile_counts(&s);
+    let counts = super_tile_counts(&s, LIST_SIZE);
     eprintln!("super-tile lists: {counts:?} of {} visible", out.plan.visible.len());
     assert!(counts.iter().all(|&n| n as usize <= out.plan.visible.len()), "{counts:?}");
     assert!(counts.iter().any(|&n| (n as usize) < out.plan.visible.len()), "{counts:?}");
@@ -395,8 +398,8 @@ fn dense_puddles_frame(n: usize) -> (Camera, GpuFrame, ppr_format::ReflectorSet)
 }
 
 /// The super-tile list lengths of the last frame (over capacity: overflowed).
-fn super_tile_counts(r: &ReflectionRenderer) -> Vec<u32> {
-    let (x, y) = super_tile_grid(SIZE);
+fn super_tile_counts(r: &ReflectionRenderer, size: [u32; 2]) -> Vec<u32> {
+    let (x, y) = super_tile_grid(size);
     let words: Vec<u32> =
         bytemuck::pod_collect_to_vec(&read_buffer(r.super_tile_lists_buffer().expect("buffers")));
     words[..(x * y) as usize].to_vec()
@@ -422,7 +425,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
         let b = run(&mut r, &gpu, &camera);
         let lengths = debug_masks(&r);
         let overflowed = lengths.iter().filter(|&&n| n == u32::MAX).count();
-        let counts = super_tile_counts(&r);
+        let counts = super_tile_counts(&r, SIZE);
         let super_overflowed = counts.iter().filter(|&&n| n > SUPER_LIST_CAPACITY).count();
         eprintln!(
             "{culling:?}: {} visible, {written} written, {overflowed} pixels in tiles whose list overflowed, \

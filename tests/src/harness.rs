@@ -381,25 +381,38 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
     let clip_from_rel = camera.clip_from_relative(w as f32 / h as f32).as_dmat4();
     let rel_from_clip = clip_from_rel.inverse();
     let mut buf = vec![ppr_runtime::CLEAR_VALUE; (w * h) as usize];
+    let far = f64::from(camera.projection.far_depth());
+    let unproject = |x: u32, y: u32, d: f64| {
+        let ndc = glam::DVec4::new(
+            (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
+            1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
+            d,
+            1.0,
+        );
+        let hp = rel_from_clip * ndc;
+        hp.truncate() / hp.w
+    };
+    // `ppr_on_plane_tolerance` of view.wgsl: the f32 unprojection error or four depth ulps
+    // along the view ray, whichever is larger.
+    let on_plane_tolerance = |x: u32, y: u32, d: f64, p: glam::DVec3| {
+        let ulps = 4.0 * f64::from(f32::EPSILON) * d.abs().max(1e-30);
+        let toward_near = if far > 0.5 { -ulps } else { ulps };
+        let along = (unproject(x, y, d + toward_near) - p).length();
+        (f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length()).max(if along.is_finite() { along } else { 0.0 })
+    };
     for y in 0..h {
         for x in 0..w {
             let d = f64::from(frame.depth[(y * w + x) as usize]);
-            if d == f64::from(camera.projection.far_depth()) {
+            if d == far {
                 continue;
             }
-            let ndc = glam::DVec4::new(
-                (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
-                1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
-                d,
-                1.0,
-            );
-            let hp = rel_from_clip * ndc;
-            let p = hp.truncate() / hp.w;
+            let p = unproject(x, y, d);
+            let tolerance = on_plane_tolerance(x, y, d, p);
             for r in &set.reflectors {
                 let c = r.center - camera.position;
                 let pd = c.dot(r.normal);
                 let dist = p.dot(r.normal) - pd;
-                if dist <= f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length() {
+                if dist <= tolerance {
                     continue;
                 }
                 let m = p - 2.0 * dist * r.normal;
@@ -422,6 +435,15 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
                 let fract = (t - px.as_dvec2() - 0.5).as_vec2();
                 let v = ppr_runtime::encoding::encode_parts(whole, fract, &layout);
                 let i = px.y * w + px.x;
+                // Depth occlusion: not where the surface seen at the target lies in front of
+                // the plane.
+                let td = f64::from(frame.depth[i as usize]);
+                if td != far {
+                    let q = unproject(px.x, px.y, td);
+                    if q.dot(r.normal) - pd > on_plane_tolerance(px.x, px.y, td, q) {
+                        continue;
+                    }
+                }
                 buf[i as usize] = buf[i as usize].min(v);
             }
         }

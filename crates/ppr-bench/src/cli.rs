@@ -91,6 +91,10 @@ pub struct RuntimeArgs {
     /// normal-map variant of the reflection pass costs.
     #[arg(long)]
     pub features_off: bool,
+    /// Also run every scene with each projection tuning and ablation (rows
+    /// `<scene> [<tuning>]`): where the projection pass's time goes, part by part.
+    #[arg(long)]
+    pub projection_profile: bool,
 }
 
 /// Options of `scaling`.
@@ -299,6 +303,7 @@ where
                 max_cameras: if cfg.quick { 1 } else { a.max_cameras },
                 copy_bytes: if cfg.quick { 1 << 20 } else { a.copy_mib << 20 },
                 features_off: a.features_off,
+                projection_profile: a.projection_profile,
             };
             let outcome = run_runtime(&gpu, &cfg, &rc)?;
             write_runtime_report(&cfg.out_dir, &outcome, &command_line)

@@ -2,7 +2,8 @@
 
 use wgpu::util::DeviceExt;
 
-use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape};
+use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape, GpuShapeTest};
+use crate::passes::block_lists::block_lists_size;
 use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
 use crate::plan::FramePlan;
@@ -15,6 +16,10 @@ pub(crate) struct FrameBuffers {
     pub shapes: wgpu::Buffer,
     pub visible: wgpu::Buffer,
     pub screen_rects: wgpu::Buffer,
+    /// Per visible shape, the screen box of the pixels that may reflect into it.
+    pub source_rects: wgpu::Buffer,
+    /// Per visible shape, its test planes.
+    pub tests: wgpu::Buffer,
     pub occluders: wgpu::Buffer,
     pub intermediate: wgpu::Buffer,
     pub active_tiles: wgpu::Buffer,
@@ -26,6 +31,8 @@ pub(crate) struct FrameBuffers {
     pub atlas: wgpu::Buffer,
     /// Super-tile counts and lists (full size only once a plan uses super-tiles).
     pub super_lists: wgpu::Buffer,
+    /// Block counts and lists (full size only once a plan uses tile culling).
+    pub block_lists: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -57,6 +64,8 @@ impl FrameBuffers {
             shapes: buffer("ppr shapes", n * std::mem::size_of::<GpuShape>() as u64, storage),
             visible: buffer("ppr visible shapes", 4 * n, storage),
             screen_rects: buffer("ppr screen rects", 16 * n, storage),
+            source_rects: buffer("ppr source rects", 16 * n, storage),
+            tests: buffer("ppr shape tests", n * std::mem::size_of::<GpuShapeTest>() as u64, storage),
             occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ppr occluder lists"),
                 contents: bytemuck::cast_slice(&occluders),
@@ -86,6 +95,11 @@ impl FrameBuffers {
                 if plan.super_tiles { super_lists_size(plan.viewport) } else { 16 },
                 readable,
             ),
+            block_lists: buffer(
+                "ppr block lists",
+                if plan.tile_culling { block_lists_size(plan.viewport) } else { 16 },
+                readable,
+            ),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
@@ -99,5 +113,6 @@ impl FrameBuffers {
             && self.debug == debug
             && self.atlas.size() >= 4 * u64::from(plan.layer_pixels)
             && (!plan.super_tiles || self.super_lists.size() >= super_lists_size(plan.viewport))
+            && (!plan.tile_culling || self.block_lists.size() >= block_lists_size(plan.viewport))
     }
 }

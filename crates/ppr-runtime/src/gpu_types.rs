@@ -80,6 +80,26 @@ pub struct GpuShape {
     pub occluder_start: u32,
     pub occluder_count: u32,
     pub parallel_group: u32,
-    pub _pad: u32,
+    /// `dot(center, axis_u)` and `dot(center, axis_v)` (the division-free rectangle test).
+    pub center_u: f32,
+    pub center_v: f32,
+    pub _pad: [u32; 3],
 }
-const _: () = assert!(std::mem::size_of::<GpuShape>() == 80);
+const _: () = assert!(std::mem::size_of::<GpuShape>() == 96);
+
+/// `ShapeTest` of `tile_test.wgsl`: a visible shape's reflection test as five planes
+/// (`xyz · p + w`), camera-relative. A point is reflected into the rectangle when the
+/// first is positive (its distance from the reflector's plane) and the four others are not
+/// negative (the sides of the pyramid from the mirrored camera through the rectangle).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuShapeTest {
+    pub plane: [f32; 4],
+    pub sides: [[f32; 4]; 4],
+    /// Index of the shape in the shape table.
+    pub shape: u32,
+    /// Its parallel group.
+    pub group: u32,
+    pub _pad: [u32; 2],
+}
+const _: () = assert!(std::mem::size_of::<GpuShapeTest>() == 96);

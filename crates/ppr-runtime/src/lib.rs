@@ -17,7 +17,9 @@ pub mod plan;
 pub mod renderer;
 pub mod settings;
 pub mod shader;
+pub mod shape_tests;
 pub mod shapes;
+pub mod source_box;
 pub mod timestamps;
 
 pub use camera::{Camera, DepthMode, Projection};

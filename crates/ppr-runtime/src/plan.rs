@@ -8,6 +8,7 @@ use ppr_format::ReflectorKind;
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::shapes::ShapeTable;
+use crate::source_box::source_rect;
 
 /// A reflector's rectangle on screen, in pixels (inclusive min, exclusive max).
 #[repr(C)]
@@ -87,6 +88,17 @@ pub struct PlanParams {
     /// Perturb reflections by the frame's shading normals on reflectors with a normal map
     /// (when the frame provides normals).
     pub normal_maps: Choice,
+    /// Do not write a reflection where the surface the depth buffer shows at its target
+    /// lies in front of the reflector's plane (whatever stands in between). `Auto`: on.
+    pub depth_occlusion: Choice,
+    /// The seed's occluder test: the ray to each reflection point against the reflector's
+    /// list of occluding reflectors from the extractor. `Auto`: off (the depth test catches
+    /// every occluder, listed or not, at one read per write).
+    pub occluder_lists: Choice,
+    /// Give the projection pass, per visible shape, the screen box of the pixels that may
+    /// reflect into it ([`FramePlan::source_rects`]), so that tiles outside it skip the
+    /// shape.
+    pub source_boxes: Choice,
 }
 
 impl Default for PlanParams {
@@ -102,6 +114,9 @@ impl Default for PlanParams {
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
+            source_boxes: Choice::Off,
+            depth_occlusion: Choice::Auto,
+            occluder_lists: Choice::Auto,
         }
     }
 }
@@ -131,6 +146,10 @@ pub struct FramePlan {
     pub visible: Vec<u32>,
     /// Screen rectangle of each visible shape (same order as `visible`).
     pub screen_rects: Vec<ScreenRect>,
+    /// With source boxes: the screen box of the pixels that may reflect into each visible
+    /// shape (same order as `visible`), then into each layer (`crate::source_box`). Empty
+    /// without.
+    pub source_rects: Vec<ScreenRect>,
     /// Shapes disabled in the set.
     pub disabled: usize,
     /// Shapes whose reflecting side faces away from the camera (or the camera is on the plane).
@@ -140,8 +159,11 @@ pub struct FramePlan {
     /// Visible glass panels, which the main buffer does not render (they need the
     /// transparent atlas).
     pub transparent_skipped: usize,
-    /// Whether the projection pass tests occluders (some visible shape has one).
+    /// Whether the projection pass tests the occluder lists (asked for, and some visible
+    /// shape has one).
     pub occluder_tests: bool,
+    /// Whether the projection pass tests occlusion against the depth buffer.
+    pub depth_occlusion: bool,
     /// Whether the projection pass builds per-tile shape lists.
     pub tile_culling: bool,
     /// Whether the tile lists are built from per-super-tile lists (a pass before the
@@ -178,11 +200,13 @@ impl FramePlan {
             viewport,
             visible: Vec::new(),
             screen_rects: Vec::new(),
+            source_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
             culled_frustum: 0,
             transparent_skipped: 0,
             occluder_tests: false,
+            depth_occlusion: params.depth_occlusion.decide(true),
             tile_culling: false,
             super_tiles: false,
             parallel_rule: false,
@@ -230,6 +254,7 @@ impl FramePlan {
         }
         plan.allocate_layers(layer_candidates, params);
         plan.normal_maps &= params.normal_maps.decide(true);
+        plan.occluder_tests &= params.occluder_lists.decide(false);
         // Sorted by parallel group (then set order): the projection pass's parallel rule
         // walks each group as one run.
         let mut order: Vec<usize> = (0..plan.visible.len()).collect();
@@ -245,6 +270,16 @@ impl FramePlan {
             && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
         plan.parallel_rule = params.parallel_rule.decide(plan.tile_culling);
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
+        if params.source_boxes.decide(true) {
+            let layers = plan.layers.iter().map(|l| l.shape);
+            plan.source_rects = plan
+                .visible
+                .iter()
+                .copied()
+                .chain(layers)
+                .map(|i| source_rect(&table.shapes[i as usize], camera.position, &clip_from_rel, viewport))
+                .collect();
+        }
         plan
     }
 
@@ -401,9 +436,14 @@ impl fmt::Display for FramePlan {
         let l = &self.encoding;
         write!(
             f,
-            "passes: {}; occluder tests {}; parallel rule {}; screen coverage {:.0}%; encoding {}.{}/{}.{} bits (major/minor whole.fraction)",
+            "passes: {}; occlusion {}; parallel rule {}; screen coverage {:.0}%; encoding {}.{}/{}.{} bits (major/minor whole.fraction)",
             self.passes().join(" -> "),
-            if self.occluder_tests { "on" } else { "off" },
+            match (self.depth_occlusion, self.occluder_tests) {
+                (true, true) => "depth + lists",
+                (true, false) => "depth",
+                (false, true) => "lists",
+                (false, false) => "off",
+            },
             if self.parallel_rule { "on" } else { "off" },
             self.coverage * 100.0,
             l.major_int_bits,

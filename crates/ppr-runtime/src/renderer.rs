@@ -9,6 +9,7 @@ use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
+use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
@@ -16,11 +17,12 @@ use crate::passes::reflection::ReflectionBindings;
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::ClassifyBindings;
 use crate::passes::{
-    ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass, SuperTileListPass,
-    TileClassifyPass,
+    Ablation, BlockListPass, ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass,
+    SuperTileListPass, TileClassifyPass,
 };
 use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
+use crate::shape_tests::shape_tests;
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
 
@@ -116,9 +118,13 @@ pub struct ReflectionRenderer {
     /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
     /// fit the viewport ([`EncodingLayout::fits_viewport`]) or long offsets are dropped.
     pub encoding_override: Option<EncodingLayout>,
+    /// Leave parts of the projection pass out, to time the rest (bench only; the image
+    /// is wrong with anything but [`Ablation::None`]).
+    pub projection_ablation: Ablation,
     classify: TileClassifyPass,
     clear: ClearPass,
     super_tile_lists: SuperTileListPass,
+    block_lists: BlockListPass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
     layer_reflection: LayerReflectionPass,
@@ -143,9 +149,11 @@ impl ReflectionRenderer {
             debug_writes: false,
             encoding_override: None,
             debug_tile_lists: false,
+            projection_ablation: Ablation::None,
             classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
             super_tile_lists: SuperTileListPass::new(device),
+            block_lists: BlockListPass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
             layer_reflection: LayerReflectionPass::new(device),
@@ -195,9 +203,12 @@ impl ReflectionRenderer {
             super_tiles: plan.super_tiles,
             parallel_rule: plan.parallel_rule,
             occluder_tests: plan.occluder_tests,
+            depth_occlusion: plan.depth_occlusion,
             layers: !plan.layers.is_empty(),
             debug_writes: self.debug_writes,
             debug_tile_lists: self.debug_writes && self.debug_tile_lists,
+            source_boxes: !plan.source_rects.is_empty(),
+            ablation: self.projection_ablation,
         }
     }
 
@@ -243,6 +254,14 @@ impl ReflectionRenderer {
         if !plan.visible.is_empty() {
             queue.write_buffer(&b.visible, 0, bytemuck::cast_slice(&plan.visible));
             queue.write_buffer(&b.screen_rects, 0, bytemuck::cast_slice(&plan.screen_rects));
+        }
+        if !plan.is_empty() {
+            let tested: Vec<u32> = plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
+            let tests = shape_tests(&self.table, &tested, camera.position);
+            queue.write_buffer(&b.tests, 0, bytemuck::cast_slice(&tests));
+        }
+        if !plan.source_rects.is_empty() {
+            queue.write_buffer(&b.source_rects, 0, bytemuck::cast_slice(&plan.source_rects));
         }
         if plan.indirect {
             // The classify pass counts the active tiles from zero.
@@ -346,33 +365,51 @@ impl ReflectionRenderer {
                     uniforms: &b.uniforms,
                     depth: inputs.depth,
                     shapes: &b.shapes,
-                    visible: &b.visible,
+                    tests: &b.tests,
                     occluders: &b.occluders,
                     intermediate: &b.intermediate,
                     debug_writes: &b.debug_writes,
                     layers: &b.layers,
                     atlas: &b.atlas,
                     super_lists: &b.super_lists,
+                    source_boxes: &b.source_rects,
+                    block_lists: &b.block_lists,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr projection"),
                 timestamp_writes: timestamps(2),
             });
+            let source_boxes = !plan.source_rects.is_empty();
             if plan.super_tiles {
                 // In the projection's compute pass: its timestamps cover the lists too, and
-                // the projection's dispatch sees this one's writes.
+                // the next dispatches see this one's writes.
                 let lists = self.super_tile_lists.bind_group(
                     device,
                     &SuperTileBindings {
                         uniforms: &b.uniforms,
                         depth: inputs.depth,
-                        shapes: &b.shapes,
-                        visible: &b.visible,
+                        tests: &b.tests,
+                        source_boxes: &b.source_rects,
                         super_lists: &b.super_lists,
                     },
                 );
-                self.super_tile_lists.encode(&mut pass, &lists, plan.viewport);
+                self.super_tile_lists.encode(&mut pass, &lists, plan.viewport, source_boxes);
+                count(1);
+            }
+            if plan.tile_culling {
+                let lists = self.block_lists.bind_group(
+                    device,
+                    &BlockListBindings {
+                        uniforms: &b.uniforms,
+                        depth: inputs.depth,
+                        tests: &b.tests,
+                        source_boxes: &b.source_rects,
+                        super_lists: &b.super_lists,
+                        block_lists: &b.block_lists,
+                    },
+                );
+                self.block_lists.encode(&mut pass, &lists, plan.viewport, source_boxes, plan.super_tiles);
                 count(1);
             }
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));

@@ -61,6 +61,7 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("clear", source(clear::WGSL)),
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
         ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
+        ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
         ("projection", source_with(&[VIEW, TILE_TEST], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),

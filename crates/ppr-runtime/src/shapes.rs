@@ -93,8 +93,10 @@ impl ShapeTable {
         self.shapes
             .iter()
             .zip(&self.occluder_ranges)
-            .map(|(s, range)| GpuShape {
-                center: (s.center - eye).as_vec3().to_array(),
+            .map(|(s, range)| {
+                let rel = s.center - eye;
+                GpuShape {
+                center: rel.as_vec3().to_array(),
                 half_u: s.half_extents[0],
                 axis_u: s.axis_u.to_array(),
                 half_v: s.half_extents[1],
@@ -105,7 +107,10 @@ impl ShapeTable {
                 occluder_start: range.start,
                 occluder_count: range.end - range.start,
                 parallel_group: s.parallel_group,
-                _pad: 0,
+                center_u: rel.dot(s.axis_u.as_dvec3()) as f32,
+                center_v: rel.dot(s.axis_v.as_dvec3()) as f32,
+                _pad: [0; 3],
+            }
             })
             .collect()
     }

@@ -1,6 +1,7 @@
 //! Runtime numbers (issue 4): each PPR pass timed on real scenes, against the bandwidth
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
+use ppr_runtime::passes::Ablation;
 use ppr_runtime::{CLEAR_VALUE, Choice, PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
@@ -26,6 +27,27 @@ pub struct RuntimeConfig {
     pub copy_bytes: u64,
     /// Also run every scene with glass/water layers and normal maps off.
     pub features_off: bool,
+    /// Also run every scene with each projection tuning and ablation.
+    pub projection_profile: bool,
+}
+
+/// The projection variants of `--projection-profile`: (name, source boxes, ablation).
+fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
+    vec![
+        ("empty", Choice::Off, Ablation::Empty),
+        ("position only", Choice::Off, Ablation::PositionOnly),
+        ("tests only", Choice::Off, Ablation::TestsOnly),
+        ("no encode", Choice::Off, Ablation::NoEncode),
+        ("no write", Choice::Off, Ablation::NoWrite),
+        ("source boxes", Choice::On, Ablation::None),
+        ("no source boxes", Choice::Off, Ablation::None),
+        ("culling on", Choice::Auto, Ablation::None),
+        ("culling on, tests only", Choice::Auto, Ablation::TestsOnly),
+        ("culling off", Choice::Auto, Ablation::None),
+        ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
+        ("occlusion off", Choice::Auto, Ablation::None),
+        ("occluder lists", Choice::Auto, Ablation::None),
+    ]
 }
 
 /// One scene, camera and size.
@@ -86,18 +108,36 @@ pub fn run_runtime(
         };
         notes.extend(scene.notes.iter().map(|n| format!("{}: {n}", scene.name)));
         let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
-        let mut variants = vec![(String::new(), PlanParams::default(), scene.reflectors.clone())];
+        let tuning = Ablation::None;
+        let mut variants = vec![(String::new(), PlanParams::default(), scene.reflectors.clone(), tuning)];
         if rc.features_off {
             let off = PlanParams { layers: Choice::Off, normal_maps: Choice::Off, ..PlanParams::default() };
-            variants.push((" (features off)".to_owned(), off, scene.reflectors.clone()));
+            variants.push((" (features off)".to_owned(), off, scene.reflectors.clone(), tuning));
             let mut normal_mapped = scene.reflectors.clone();
             for r in &mut normal_mapped.reflectors {
                 r.normal_map = true;
             }
-            variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped));
+            variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped, tuning));
         }
-        for (suffix, params, reflectors) in variants {
+        if rc.projection_profile {
+            for (name, source_boxes, ablation) in projection_profile() {
+                let mut params = PlanParams { source_boxes, ..PlanParams::default() };
+                if name.starts_with("culling on") {
+                    params.tile_culling = Choice::On;
+                } else if name.starts_with("culling off") {
+                    params.tile_culling = Choice::Off;
+                } else if name == "occlusion off" {
+                    params.depth_occlusion = Choice::Off;
+                } else if name == "occluder lists" {
+                    params.depth_occlusion = Choice::Off;
+                    params.occluder_lists = Choice::On;
+                }
+                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), ablation));
+            }
+        }
+        for (suffix, params, reflectors, tuning) in variants {
             let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params);
+            ppr.renderer().projection_ablation = tuning;
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
                     let size = res.size();

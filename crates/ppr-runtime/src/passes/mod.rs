@@ -1,5 +1,6 @@
 //! The GPU passes: one struct per pass, owning its pipelines and bind-group layout.
 
+pub mod block_lists;
 pub mod clear;
 pub mod layer_reflection;
 pub mod projection;
@@ -7,9 +8,10 @@ pub mod reflection;
 pub mod super_tile_lists;
 pub mod tile_classify;
 
+pub use block_lists::BlockListPass;
 pub use clear::ClearPass;
 pub use layer_reflection::LayerReflectionPass;
-pub use projection::{ProjectionPass, ProjectionVariant};
+pub use projection::{Ablation, ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
 pub use super_tile_lists::SuperTileListPass;
 pub use tile_classify::TileClassifyPass;
@@ -85,6 +87,11 @@ pub(crate) fn compute_pipeline(
 /// Workgroups to cover a `width × height` viewport with [`TILE`]² tiles.
 pub fn tile_groups([w, h]: [u32; 2]) -> (u32, u32) {
     (w.div_ceil(TILE), h.div_ceil(TILE))
+}
+
+/// A bind-group entry for a whole buffer.
+pub(crate) fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
+    wgpu::BindGroupEntry { binding, resource: buffer.as_entire_binding() }
 }
 
 /// 0.0 or 1.0, as override constants take booleans.

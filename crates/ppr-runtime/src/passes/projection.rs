@@ -4,28 +4,75 @@
 
 use std::collections::HashMap;
 
-use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
+
+/// Edge of the pixel block one workgroup projects (`BLOCK_SIZE` of `tile_test.wgsl`):
+/// 16 × 16 threads, four pixels each.
+pub const BLOCK: u32 = 32;
+
+/// Workgroups of the projection (and of the block-list pass) over a viewport.
+pub fn block_groups([w, h]: [u32; 2]) -> (u32, u32) {
+    (w.div_ceil(BLOCK), h.div_ceil(BLOCK))
+}
 
 /// Which projection shader runs (the WGSL's override constants).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct ProjectionVariant {
-    /// Per-tile shape lists in workgroup memory.
+    /// Per-block shape lists ([`super::BlockListPass`], dispatched first).
     pub tile_culling: bool,
-    /// With `tile_culling`: tiles take their candidates from their super-tile's list
-    /// ([`super::SuperTileListPass`], dispatched first).
+    /// With `tile_culling`: a block whose list overflowed takes its super-tile's list
+    /// ([`super::SuperTileListPass`]) instead of every visible shape.
     pub super_tiles: bool,
     /// Only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
-    /// Occluder tests.
+    /// The seed's occluder tests (lists of occluding reflectors).
     pub occluder_tests: bool,
+    /// Occlusion against the depth buffer at each write's target.
+    pub depth_occlusion: bool,
     /// Glass and water layers exist this frame.
     pub layers: bool,
     /// Record per source pixel which visible shapes it wrote for.
     pub debug_writes: bool,
-    /// Record per pixel its tile's candidate-list length instead (needs `debug_writes`).
+    /// Record per pixel its block's candidate-list length instead (needs `debug_writes`).
     pub debug_tile_lists: bool,
+    /// Blocks skip shapes whose source box ([`crate::FramePlan::source_rects`]) they miss.
+    pub source_boxes: bool,
+    /// Leave parts out to time the rest (bench only; never a correct image).
+    pub ablation: Ablation,
+}
+
+/// What an ablated projection leaves out (bench only: `ppr-bench runtime
+/// --projection-profile` times each to show where the pass's time goes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Ablation {
+    /// The real pass.
+    #[default]
+    None,
+    /// Returns at once: the launch.
+    Empty,
+    /// Reads depth and reconstructs positions only.
+    PositionOnly,
+    /// Also runs each shape's tests, but projects and writes nothing.
+    TestsOnly,
+    /// Projects and writes, with a value that needs no encoding.
+    NoEncode,
+    /// Projects and encodes, but does not write.
+    NoWrite,
+}
+
+impl Ablation {
+    fn code(self) -> f64 {
+        match self {
+            Self::None => 0.0,
+            Self::Empty => 1.0,
+            Self::PositionOnly => 2.0,
+            Self::TestsOnly => 3.0,
+            Self::NoEncode => 4.0,
+            Self::NoWrite => 5.0,
+        }
+    }
 }
 
 /// Buffers and views the projection pass reads and writes.
@@ -33,7 +80,9 @@ pub struct ProjectionBindings<'a> {
     pub uniforms: &'a wgpu::Buffer,
     pub depth: &'a wgpu::TextureView,
     pub shapes: &'a wgpu::Buffer,
-    pub visible: &'a wgpu::Buffer,
+    /// Per visible shape, then per layer: its test planes (`ShapeTest` of
+    /// `tile_test.wgsl`).
+    pub tests: &'a wgpu::Buffer,
     pub occluders: &'a wgpu::Buffer,
     pub intermediate: &'a wgpu::Buffer,
     pub debug_writes: &'a wgpu::Buffer,
@@ -41,6 +90,10 @@ pub struct ProjectionBindings<'a> {
     pub atlas: &'a wgpu::Buffer,
     /// Super-tile counts and lists (read with `super_tiles`; any buffer otherwise).
     pub super_lists: &'a wgpu::Buffer,
+    /// Per visible shape, then per layer, its source box (read with `source_boxes`).
+    pub source_boxes: &'a wgpu::Buffer,
+    /// Block counts and lists (read with `tile_culling`; any buffer otherwise).
+    pub block_lists: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
@@ -65,6 +118,8 @@ impl ProjectionPass {
                 storage_entry(7, true),
                 storage_entry(8, false),
                 storage_entry(9, true),
+                storage_entry(10, true),
+                storage_entry(11, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -88,9 +143,12 @@ impl ProjectionPass {
             ("SUPER_TILES", flag(v.tile_culling && v.super_tiles)),
             ("PARALLEL_RULE", flag(v.parallel_rule)),
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
+            ("DEPTH_OCCLUSION", flag(v.depth_occlusion)),
             ("LAYERS", flag(v.layers)),
             ("DEBUG_WRITES", flag(v.debug_writes)),
             ("DEBUG_TILE_LISTS", flag(v.debug_tile_lists)),
+            ("SOURCE_BOXES", flag(v.source_boxes)),
+            ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
         let pipeline = compute_pipeline(device, &label, &self.layout, &self.module, "main", &constants);
@@ -98,20 +156,23 @@ impl ProjectionPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ProjectionBindings<'_>) -> wgpu::BindGroup {
+        let entry = buffer_entry;
         device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("ppr projection"),
             layout: &self.layout,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                entry(0, b.uniforms),
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: b.occluders.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 5, resource: b.intermediate.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 6, resource: b.debug_writes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 7, resource: b.layers.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 8, resource: b.atlas.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 9, resource: b.super_lists.as_entire_binding() },
+                entry(2, b.shapes),
+                entry(3, b.tests),
+                entry(4, b.occluders),
+                entry(5, b.intermediate),
+                entry(6, b.debug_writes),
+                entry(7, b.layers),
+                entry(8, b.atlas),
+                entry(9, b.super_lists),
+                entry(10, b.source_boxes),
+                entry(11, b.block_lists),
             ],
         })
     }
@@ -127,7 +188,7 @@ impl ProjectionPass {
         viewport: [u32; 2],
         variant: ProjectionVariant,
     ) {
-        let (x, y) = tile_groups(viewport);
+        let (x, y) = block_groups(viewport);
         pass.set_pipeline(self.pipelines.get(&variant).expect("variant prepared in prepare()"));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);

@@ -1,7 +1,7 @@
 //! Super-tile list pass: per 64 × 64-pixel super-tile, the visible shapes that may reflect
 //! some pixel of it, so that the tiled projection's 16 × 16 tiles test only those.
 
-use super::{compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../../../shaders/ppr/super_tile_lists.wgsl");
 
@@ -28,14 +28,17 @@ pub fn super_lists_size(viewport: [u32; 2]) -> u64 {
 pub struct SuperTileBindings<'a> {
     pub uniforms: &'a wgpu::Buffer,
     pub depth: &'a wgpu::TextureView,
-    pub shapes: &'a wgpu::Buffer,
-    pub visible: &'a wgpu::Buffer,
+    /// Per visible shape, its test planes (`ShapeTest`).
+    pub tests: &'a wgpu::Buffer,
+    /// Per visible shape, its source box (read with source boxes).
+    pub source_boxes: &'a wgpu::Buffer,
     pub super_lists: &'a wgpu::Buffer,
 }
 
 /// The super-tile list pass.
 pub struct SuperTileListPass {
-    pipeline: wgpu::ComputePipeline,
+    /// Without and with source boxes.
+    pipelines: [wgpu::ComputePipeline; 2],
     layout: wgpu::BindGroupLayout,
 }
 
@@ -57,8 +60,11 @@ impl SuperTileListPass {
             &[crate::shader::VIEW, crate::shader::TILE_TEST],
             WGSL,
         );
-        let pipeline = compute_pipeline(device, "ppr super-tile lists", &layout, &module, "main", &[]);
-        Self { pipeline, layout }
+        let pipelines = [false, true].map(|boxes| {
+            let constants = [("SOURCE_BOXES", flag(boxes))];
+            compute_pipeline(device, "ppr super-tile lists", &layout, &module, "main", &constants)
+        });
+        Self { pipelines, layout }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &SuperTileBindings<'_>) -> wgpu::BindGroup {
@@ -68,17 +74,23 @@ impl SuperTileListPass {
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: b.tests.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: b.source_boxes.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 4, resource: b.super_lists.as_entire_binding() },
             ],
         })
     }
 
     /// Records the pass over the viewport's super-tiles.
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        viewport: [u32; 2],
+        source_boxes: bool,
+    ) {
         let (x, y) = super_tile_grid(viewport);
-        pass.set_pipeline(&self.pipeline);
+        pass.set_pipeline(&self.pipelines[usize::from(source_boxes)]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }

@@ -1,0 +1,99 @@
+//! Block-list pass: per 32 × 32-pixel block, the visible shapes that may reflect some pixel
+//! of it, so that the tiled projection's pixels test only those.
+
+use super::projection::block_groups;
+use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
+
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/block_lists.wgsl");
+
+/// Entries of one block's list (`BLOCK_LIST_CAPACITY` of `tile_test.wgsl`); a block with
+/// more candidates lists none and its pixels test its super-tile's list or every visible
+/// shape.
+pub const BLOCK_LIST_CAPACITY: u32 = 256;
+
+/// Bytes of the block-list buffer of a viewport: a count per block, then a list of
+/// [`BLOCK_LIST_CAPACITY`] entries per block.
+pub fn block_lists_size(viewport: [u32; 2]) -> u64 {
+    let (x, y) = block_groups(viewport);
+    4 * u64::from(x) * u64::from(y) * (1 + u64::from(BLOCK_LIST_CAPACITY))
+}
+
+/// Buffers and views the pass reads and writes.
+pub struct BlockListBindings<'a> {
+    pub uniforms: &'a wgpu::Buffer,
+    pub depth: &'a wgpu::TextureView,
+    /// Per visible shape, its test planes (`ShapeTest`).
+    pub tests: &'a wgpu::Buffer,
+    /// Per visible shape, its source box (read with source boxes).
+    pub source_boxes: &'a wgpu::Buffer,
+    /// Super-tile counts and lists (read with super-tiles).
+    pub super_lists: &'a wgpu::Buffer,
+    pub block_lists: &'a wgpu::Buffer,
+}
+
+/// The block-list pass.
+pub struct BlockListPass {
+    /// By (source boxes, super-tiles).
+    pipelines: [[wgpu::ComputePipeline; 2]; 2],
+    layout: wgpu::BindGroupLayout,
+}
+
+impl BlockListPass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ppr block lists"),
+            entries: &[
+                uniform_entry(0),
+                loaded_texture_entry(1),
+                storage_entry(2, true),
+                storage_entry(3, true),
+                storage_entry(4, true),
+                storage_entry(5, false),
+            ],
+        });
+        let module = crate::shader::module_with(
+            device,
+            "ppr block lists",
+            &[crate::shader::VIEW, crate::shader::TILE_TEST],
+            WGSL,
+        );
+        let pipelines = [false, true].map(|boxes| {
+            [false, true].map(|supers| {
+                let constants = [("SOURCE_BOXES", flag(boxes)), ("SUPER_TILES", flag(supers))];
+                compute_pipeline(device, "ppr block lists", &layout, &module, "main", &constants)
+            })
+        });
+        Self { pipelines, layout }
+    }
+
+    pub fn bind_group(&self, device: &wgpu::Device, b: &BlockListBindings<'_>) -> wgpu::BindGroup {
+        let entry = buffer_entry;
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ppr block lists"),
+            layout: &self.layout,
+            entries: &[
+                entry(0, b.uniforms),
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
+                entry(2, b.tests),
+                entry(3, b.source_boxes),
+                entry(4, b.super_lists),
+                entry(5, b.block_lists),
+            ],
+        })
+    }
+
+    /// Records the pass over the viewport's blocks.
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        viewport: [u32; 2],
+        source_boxes: bool,
+        super_tiles: bool,
+    ) {
+        let (x, y) = block_groups(viewport);
+        pass.set_pipeline(&self.pipelines[usize::from(source_boxes)][usize::from(super_tiles)]);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+}
