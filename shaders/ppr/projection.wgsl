@@ -226,8 +226,23 @@ struct Quad {
     tolerance: vec4<f32>,
 }
 
+// Lane `j` of a vector, by selects: no dynamic indexing, which would put the vector in
+// local memory on some GPUs.
+fn lane_f32(v: vec4<f32>, j: u32) -> f32 {
+    return select(select(v.x, v.y, j == 1u), select(v.z, v.w, j == 3u), j > 1u);
+}
+
+fn lane_u32(v: vec4<u32>, j: u32) -> u32 {
+    return select(select(v.x, v.y, j == 1u), select(v.z, v.w, j == 3u), j > 1u);
+}
+
+// The mask of lane `j`.
+fn lane_mask(j: u32) -> vec4<bool> {
+    return vec4<u32>(0u, 1u, 2u, 3u) == vec4<u32>(j);
+}
+
 fn quad_position(q: Quad, j: u32) -> vec3<f32> {
-    return vec3<f32>(q.x[j], q.y[j], q.z[j]);
+    return vec3<f32>(lane_f32(q.x, j), lane_f32(q.y, j), lane_f32(q.z, j));
 }
 
 // The four depth loads go out before any of them is used.
@@ -377,25 +392,27 @@ fn main(
                 k = NO_SHAPE;
             }
         }
-        var t: ShapeTest;
-        if (k != NO_SHAPE) {
-            t = tests[k];
-        }
+        // Loaded unconditionally (the sentinel step reads entry 0): a conditional load
+        // into a variable may cost a trip through local memory.
+        let t = tests[select(k, 0u, k == NO_SHAPE)];
         if (PARALLEL_RULE && (i == count || (k != NO_SHAPE && t.group != group))) {
             pending_k = best_k;
             pending_d = best_d;
             best_k = vec4<u32>(NO_SHAPE);
             group = t.group;
         }
-        for (var j = 0u; j < 4u; j++) {
-            if (pending_k[j] != NO_SHAPE) {
-                let s = shapes[tests[pending_k[j]].shape];
-                if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), pending_d[j], s)) {
-                    written[j] |= 1u << (pending_k[j] & 31u);
+        if (any(pending_k != vec4<u32>(NO_SHAPE))) {
+            for (var j = 0u; j < 4u; j++) {
+                let pk = lane_u32(pending_k, j);
+                if (pk != NO_SHAPE) {
+                    let s = shapes[tests[pk].shape];
+                    if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), lane_f32(pending_d, j), s)) {
+                        written = select(written, written | vec4<u32>(1u << (pk & 31u)), lane_mask(j));
+                    }
                 }
             }
+            pending_k = vec4<u32>(NO_SHAPE);
         }
-        pending_k = vec4<u32>(NO_SHAPE);
         if (k == NO_SHAPE) {
             continue;
         }
@@ -422,9 +439,10 @@ fn main(
             continue;
         }
         let dist = quad_test(q, tests[k]);
-        for (var j = 0u; j < 4u; j++) {
-            if (dist[j] >= 0.0) {
-                layer_pixel(quad_pixel(base, j), quad_position(q, j), dist[j], layers[l]);
+        for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
+            let d = lane_f32(dist, j);
+            if (d >= 0.0) {
+                layer_pixel(quad_pixel(base, j), quad_position(q, j), d, layers[l]);
             }
         }
     }
@@ -436,8 +454,8 @@ fn main(
                 let index = pixel.x + pixel.y * frame.size.x;
                 if (DEBUG_TILE_LISTS) {
                     debug_writes[index] = n;
-                } else if (q.tolerance[j] > 0.0) {
-                    debug_writes[index] = written[j];
+                } else if (lane_f32(q.tolerance, j) > 0.0) {
+                    debug_writes[index] = lane_u32(written, j);
                 }
             }
         }

@@ -105,34 +105,43 @@ struct TileBox {
     hi: vec3<f32>,
 }
 
+fn ordered3(v: vec3<f32>) -> vec3<u32> {
+    return vec3<u32>(ordered_bits(v.x), ordered_bits(v.y), ordered_bits(v.z));
+}
+
+fn from_ordered3(u: vec3<u32>) -> vec3<f32> {
+    return vec3<f32>(from_ordered_bits(u.x), from_ordered_bits(u.y), from_ordered_bits(u.z));
+}
+
 fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
-    if (lid < 3u * BOX_SLOTS) {
-        atomicStore(&box_min[lid / 3u][lid % 3u], 0xffffffffu);
-        atomicStore(&box_max[lid / 3u][lid % 3u], 0u);
+    if (lid < BOX_SLOTS) {
+        for (var c = 0u; c < 3u; c++) {
+            atomicStore(&box_min[lid][c], 0xffffffffu);
+            atomicStore(&box_max[lid][c], 0u);
+        }
     }
     workgroupBarrier();
     let slot = lid % BOX_SLOTS;
     if (lo.x <= hi.x) {
-        for (var c = 0u; c < 3u; c++) {
-            atomicMin(&box_min[slot][c], ordered_bits(lo[c]));
-            atomicMax(&box_max[slot][c], ordered_bits(hi[c]));
-        }
+        let l = ordered3(lo);
+        let h = ordered3(hi);
+        atomicMin(&box_min[slot][0], l.x);
+        atomicMin(&box_min[slot][1], l.y);
+        atomicMin(&box_min[slot][2], l.z);
+        atomicMax(&box_max[slot][0], h.x);
+        atomicMax(&box_max[slot][1], h.y);
+        atomicMax(&box_max[slot][2], h.z);
     }
     workgroupBarrier();
     var mins = vec3<u32>(0xffffffffu);
     var maxs = vec3<u32>(0u);
     for (var i = 0u; i < BOX_SLOTS; i++) {
-        for (var c = 0u; c < 3u; c++) {
-            mins[c] = min(mins[c], atomicLoad(&box_min[i][c]));
-            maxs[c] = max(maxs[c], atomicLoad(&box_max[i][c]));
-        }
+        mins = min(mins, vec3<u32>(atomicLoad(&box_min[i][0]), atomicLoad(&box_min[i][1]), atomicLoad(&box_min[i][2])));
+        maxs = max(maxs, vec3<u32>(atomicLoad(&box_max[i][0]), atomicLoad(&box_max[i][1]), atomicLoad(&box_max[i][2])));
     }
     var b = TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
     if (mins.x <= maxs.x) {
-        for (var c = 0u; c < 3u; c++) {
-            b.lo[c] = from_ordered_bits(mins[c]);
-            b.hi[c] = from_ordered_bits(maxs[c]);
-        }
+        b = TileBox(from_ordered3(mins), from_ordered3(maxs));
     }
     // Every thread has read the slots before anyone resets them.
     workgroupBarrier();

@@ -43,6 +43,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("no source boxes", Choice::Off, Ablation::None),
         ("culling on", Choice::Auto, Ablation::None),
         ("culling on, tests only", Choice::Auto, Ablation::TestsOnly),
+        ("culling on, empty", Choice::Auto, Ablation::Empty),
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
