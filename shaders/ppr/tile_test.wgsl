@@ -64,6 +64,7 @@ fn box_may_reflect(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
 const BOX_SLOTS: u32 = 8u;
 var<workgroup> box_min: array<array<atomic<u32>, 3>, BOX_SLOTS>;
 var<workgroup> box_max: array<array<atomic<u32>, 3>, BOX_SLOTS>;
+var<workgroup> box_result: TileBox;
 var<workgroup> pass_flags: array<u32, TILE_GROUP_THREADS>;
 var<workgroup> pass_words: array<u32, 8>;
 
@@ -133,17 +134,24 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
         atomicMax(&box_max[slot][2], h.z);
     }
     workgroupBarrier();
-    var mins = vec3<u32>(0xffffffffu);
-    var maxs = vec3<u32>(0u);
-    for (var i = 0u; i < BOX_SLOTS; i++) {
-        mins = min(mins, vec3<u32>(atomicLoad(&box_min[i][0]), atomicLoad(&box_min[i][1]), atomicLoad(&box_min[i][2])));
-        maxs = max(maxs, vec3<u32>(atomicLoad(&box_max[i][0]), atomicLoad(&box_max[i][1]), atomicLoad(&box_max[i][2])));
+    // One thread reads the slots (atomic loads of one address by a whole warp would be
+    // serialised) and publishes the box in plain workgroup memory.
+    if (lid == 0u) {
+        var mins = vec3<u32>(0xffffffffu);
+        var maxs = vec3<u32>(0u);
+        for (var i = 0u; i < BOX_SLOTS; i++) {
+            mins = min(mins, vec3<u32>(atomicLoad(&box_min[i][0]), atomicLoad(&box_min[i][1]), atomicLoad(&box_min[i][2])));
+            maxs = max(maxs, vec3<u32>(atomicLoad(&box_max[i][0]), atomicLoad(&box_max[i][1]), atomicLoad(&box_max[i][2])));
+        }
+        var b = TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
+        if (mins.x <= maxs.x) {
+            b = TileBox(from_ordered3(mins), from_ordered3(maxs));
+        }
+        box_result = b;
     }
-    var b = TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
-    if (mins.x <= maxs.x) {
-        b = TileBox(from_ordered3(mins), from_ordered3(maxs));
-    }
-    // Every thread has read the slots before anyone resets them.
+    workgroupBarrier();
+    let b = box_result;
+    // Every thread has read the box before anyone writes the slots again.
     workgroupBarrier();
     return b;
 }
