@@ -271,3 +271,51 @@ fn without_glass_water_or_normal_maps_nothing_extra_runs() {
     assert_eq!(r.last_dispatch_count(), 3);
     assert!(out.layer_pixels.iter().all(|p| p.w == 0.0), "no layer output written");
 }
+
+#[test]
+fn normal_maps_keep_the_flat_reflection_where_the_source_is_the_pixel_itself() {
+    // A textured sheet 1 cm above a normal-mapped mirror: its pixels reflect into
+    // themselves (whole offset 0, a sub-pixel fraction), so the normal-map path sees a
+    // reflected point in the pixel it shades (`q == p`): the direction `normalize(q - p)` is
+    // NaN. Its shading normal is the plane's, so the normal-mapped result must be the flat
+    // reflection, bit for bit.
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.bumpy_mirror(
+        "bumpy floor",
+        DVec3::new(0.0, 0.0, -4.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [3.5, 3.5],
+        (0.05, 0.6),
+    );
+    s.quad(DVec3::new(0.4, 0.01, -2.2), DVec3::X, DVec3::NEG_Z, [0.9, 0.7], Albedo::Waves(0.05));
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.plan_params.indirect = Choice::Off;
+    r.set_reflectors(&s.reflector_set());
+    let mapped = run(&mut r, &gpu, &cam);
+    assert!(mapped.plan.normal_maps, "{}", mapped.plan);
+    r.plan_params.normal_maps = Choice::Off;
+    let flat = run(&mut r, &gpu, &cam);
+    let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
+    let self_sourced: Vec<usize> = (0..frame.color.len())
+        .filter(|&i| {
+            ppr_runtime::encoding::decode(flat.intermediate[i], &layout)
+                .is_some_and(|d| d.whole_offset() == glam::Vec2::ZERO && flat.pixels[i].w > 0.0)
+        })
+        .collect();
+    let differing: Vec<usize> =
+        self_sourced.iter().copied().filter(|&i| mapped.pixels[i] != flat.pixels[i]).collect();
+    eprintln!(
+        "{} self-sourced pixels; {} differ with normal maps (first: {:?})",
+        self_sourced.len(),
+        differing.len(),
+        differing.first().map(|&i| (i, mapped.pixels[i], flat.pixels[i]))
+    );
+    assert!(self_sourced.len() >= 100, "the sheet reflects into itself: {}", self_sourced.len());
+    assert!(mapped.pixels.iter().all(|p| p.is_finite()));
+    assert!(differing.is_empty(), "{} of {} self-sourced pixels changed", differing.len(), self_sourced.len());
+}
