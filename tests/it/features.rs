@@ -317,5 +317,10 @@ fn normal_maps_keep_the_flat_reflection_where_the_source_is_the_pixel_itself() {
     );
     assert!(self_sourced.len() >= 100, "the sheet reflects into itself: {}", self_sourced.len());
     assert!(mapped.pixels.iter().all(|p| p.is_finite()));
-    assert!(differing.is_empty(), "{} of {} self-sourced pixels changed", differing.len(), self_sourced.len());
+    assert!(
+        differing.is_empty(),
+        "{} of {} self-sourced pixels changed",
+        differing.len(),
+        self_sourced.len()
+    );
 }

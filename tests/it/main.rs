@@ -1,6 +1,7 @@
 //! The runtime on the GPU (software adapter in CI) against CPU references and the exact
 //! reflection of analytic scenes.
 
+mod api;
 mod encoding_parity;
 mod features;
 mod reflection;

@@ -8,13 +8,14 @@ use ppr_format::ReflectorSet;
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
+use crate::frame_upload::{FrameUpload, UploadTarget};
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::clear::ClearBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
 use crate::passes::super_tile_lists::SuperTileBindings;
-use crate::passes::tile_classify::ClassifyBindings;
+use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::{
     ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass, SuperTileListPass,
     TileClassifyPass,
@@ -79,7 +80,8 @@ impl<'a> FrameInputs<'a> {
     }
 }
 
-/// Renders pixel-projected reflections for one view.
+/// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
+/// may share one renderer and one submit).
 ///
 /// ```no_run
 /// # fn frames(device: &wgpu::Device, queue: &wgpu::Queue, set: &ppr_format::ReflectorSet,
@@ -99,7 +101,6 @@ impl<'a> FrameInputs<'a> {
 /// ```
 pub struct ReflectionRenderer {
     device: wgpu::Device,
-    queue: wgpu::Queue,
     /// Steps of the reflection pass; change at any time.
     pub settings: ReflectionSettings,
     /// How the frame plan picks passes and variants.
@@ -126,6 +127,8 @@ pub struct ReflectionRenderer {
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
     plan: Option<FramePlan>,
+    /// What the last `prepare` uploads; `encode` copies it into `buffers`.
+    upload: Option<FrameUpload>,
     timer: Option<PassTimer>,
     dispatches: Cell<u32>,
     layer_output_given: Cell<bool>,
@@ -136,7 +139,6 @@ impl ReflectionRenderer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, desc: &RendererDesc) -> Self {
         Self {
             device: device.clone(),
-            queue: queue.clone(),
             settings: ReflectionSettings::default(),
             plan_params: PlanParams::default(),
             write_mode: WriteMode::default(),
@@ -153,6 +155,7 @@ impl ReflectionRenderer {
             table_dirty: true,
             buffers: None,
             plan: None,
+            upload: None,
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             layer_output_given: Cell::new(false),
@@ -170,8 +173,10 @@ impl ReflectionRenderer {
         &self.table
     }
 
-    /// Plans the frame and uploads what the GPU needs. Call once per frame before
-    /// [`Self::encode`].
+    /// Plans the frame and packs what the GPU needs into an upload of its own, which
+    /// [`Self::encode`] copies in where it records the passes. Call before [`Self::encode`]
+    /// once per view and frame; several views may be prepared and encoded (prepare, encode,
+    /// prepare, encode) before one submit, each with its own camera.
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
         let mut plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
         if let Some(layout) = self.encoding_override {
@@ -210,7 +215,11 @@ impl ReflectionRenderer {
             self.table_dirty = false;
         }
         let b = self.buffers.as_ref().expect("allocated above");
-        let queue = &self.queue;
+        if plan.is_empty() {
+            // Nothing is encoded.
+            self.upload = None;
+            return;
+        }
 
         let aspect = w as f32 / h.max(1) as f32;
         let clip_from_rel = camera.clip_from_relative(aspect);
@@ -236,36 +245,34 @@ impl ReflectionRenderer {
             ],
             encoding: plan.encoding.gpu_params(),
         };
-        queue.write_buffer(&b.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        if !shapes.is_empty() {
-            queue.write_buffer(&b.shapes, 0, bytemuck::cast_slice(&shapes));
-        }
-        if !plan.visible.is_empty() {
-            queue.write_buffer(&b.visible, 0, bytemuck::cast_slice(&plan.visible));
-            queue.write_buffer(&b.screen_rects, 0, bytemuck::cast_slice(&plan.screen_rects));
-        }
-        if plan.indirect {
-            // The classify pass counts the active tiles from zero.
-            queue.write_buffer(&b.active_tiles, 0, &[0; 4]);
-        }
-        if !plan.layers.is_empty() {
-            let layers: Vec<GpuLayer> = plan
-                .layers
-                .iter()
-                .map(|l| GpuLayer {
-                    rect_min: l.rect.min,
-                    rect_max: l.rect.max,
-                    offset: l.offset,
-                    shape: l.shape,
-                    kind: kind_code(l.kind),
-                    _pad: 0,
-                })
-                .collect();
-            queue.write_buffer(&b.layers, 0, bytemuck::cast_slice(&layers));
-        }
+        let layers: Vec<GpuLayer> = plan
+            .layers
+            .iter()
+            .map(|l| GpuLayer {
+                rect_min: l.rect.min,
+                rect_max: l.rect.max,
+                offset: l.offset,
+                shape: l.shape,
+                kind: kind_code(l.kind),
+                _pad: 0,
+            })
+            .collect();
+        debug_assert!(b.fits(&self.table, plan, self.debug_writes));
+        self.upload = Some(FrameUpload::new(
+            &self.device,
+            &[
+                (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
+                (UploadTarget::Shapes, bytemuck::cast_slice(&shapes)),
+                (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
+                (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
+                (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
+            ],
+        ));
     }
 
-    /// Records the frame's passes into `encoder` (nothing when the plan is empty).
+    /// Records the last prepared view's passes into `encoder` (nothing when the plan is
+    /// empty), starting with the copies of its upload. Calling it again for the same
+    /// `prepare` records the same frame again.
     ///
     /// # Panics
     /// If [`Self::prepare`] was not called first.
@@ -281,7 +288,14 @@ impl ReflectionRenderer {
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
 
+        // This prepared frame's uniforms, shapes and lists, copied in here (not at the
+        // submit), so that each encode runs with the camera it was prepared for.
+        self.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
         let has_main = !plan.visible.is_empty();
+        if plan.indirect && has_main {
+            // The classification counts the active tiles from zero, at every encode.
+            encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
+        }
         if plan.indirect && has_main {
             let bg = self.classify.bind_group(
                 device,
