@@ -92,12 +92,18 @@ fn ycocg_to_rgb(c: vec3<f32>) -> vec3<f32> {
 }
 
 // PPR_FixColorBleeding: keep the filtered colour perceptually close to the unfiltered one.
+// The seed's thresholds are absolute luma (for colour in [0, 1]); on linear HDR input they
+// saturate where the scene is bright (always unfiltered) and vanish where it is dark
+// (always filtered). Here luma is measured relative to the brighter of the two samples,
+// which is the seed's scale where that luma is 1, and the same decision at any exposure.
 fn fix_color_bleeding(filtered: vec3<f32>, unfiltered: vec3<f32>) -> vec3<f32> {
     let f = rgb_to_ycocg(filtered);
     let u = rgb_to_ycocg(unfiltered);
-    let f_chroma = f.yz / max(0.0001, f.x);
-    let u_chroma = u.yz / max(0.0001, u.x);
-    let luma_factor = saturate(3.0 * abs(f.x - u.x));
+    // 1e-10: far below the smallest f16 colour (6e-8), only keeps black from dividing by 0.
+    let scale = max(max(f.x, u.x), 1e-10);
+    let f_chroma = f.yz / max(0.0001 * scale, f.x);
+    let u_chroma = u.yz / max(0.0001 * scale, u.x);
+    let luma_factor = saturate(3.0 * abs(f.x - u.x) / scale);
     let chroma_factor = saturate(1.4 * length(f_chroma - u_chroma));
     let y = mix(f.x, u.x, luma_factor);
     let cocg = mix(f_chroma, u_chroma, chroma_factor);

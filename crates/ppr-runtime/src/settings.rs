@@ -9,6 +9,9 @@ pub struct ReflectionSettings {
     /// Sample the colour with the encoded sub-pixel fractions (bilinear).
     pub filtering: bool,
     /// Pull the filtered colour towards the unfiltered one in YCoCg (needs `filtering`).
+    /// The luma threshold is relative to the brighter sample (the seed's where that luma
+    /// is 1), so linear HDR input gets the same decisions at any exposure: no pre-exposure
+    /// is needed.
     pub anti_bleeding: bool,
     /// Water layers: fill reflections missing at the borders by stretching the nearest
     /// valid one along the plane's projected normal (the hash method's edge stretch,
