@@ -1,5 +1,5 @@
 //! How the runtime's API is used in a real frame loop: more than one `encode` per
-//! `prepare`, several views prepared before one submit.
+//! `prepare`, several views prepared before one submit, and sets that were never validated.
 
 use glam::{DVec3, Vec3, Vec4};
 use ppr_runtime::{Camera, Choice, FrameInputs, Projection, ReflectionRenderer};
@@ -66,7 +66,7 @@ fn a_second_encode_per_prepare_gives_the_same_output_as_the_first() {
     for indirect in [Choice::On, Choice::Off] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set());
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
         let plan = r.prepare(&cam, SIZE).clone();
         assert_eq!(plan.indirect, indirect == Choice::On, "{plan}");
         let mut outputs = Vec::new();
@@ -131,7 +131,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
             .map(|(c, f)| {
                 let mut r = renderer();
                 r.plan_params.indirect = indirect;
-                r.set_reflectors(&set);
+                r.set_reflectors(&set).expect("a valid set");
                 run(&mut r, f, c).pixels
             })
             .collect();
@@ -139,7 +139,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
         // One renderer for both views.
         let mut shared = renderer();
         shared.plan_params.indirect = indirect;
-        shared.set_reflectors(&set);
+        shared.set_reflectors(&set).expect("a valid set");
         let outs = [fresh_output(), fresh_output()];
         let mut encoder = g.device.create_command_encoder(&Default::default());
         for k in 0..2 {
@@ -152,7 +152,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
         let own_outs = [fresh_output(), fresh_output()];
         for (k, r) in own.iter_mut().enumerate() {
             r.plan_params.indirect = indirect;
-            r.set_reflectors(&set);
+            r.set_reflectors(&set).expect("a valid set");
             r.prepare(&cams[k], SIZE);
         }
         let mut encoder = g.device.create_command_encoder(&Default::default());
@@ -173,4 +173,22 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
             assert!(bits(&b) == bits(&alone[k]), "view {k} (own renderer, indirect {indirect:?})");
         }
     }
+}
+
+#[test]
+fn set_reflectors_refuses_a_set_that_breaks_an_invariant() {
+    let s = scene();
+    let mut bad = s.reflector_set();
+    bad.reflectors[0].occluders = vec![7];
+    let mut r = renderer();
+    let err = r.set_reflectors(&bad).expect_err("an occluder index out of range");
+    let field = err.field_path();
+    eprintln!("{err}");
+    assert_eq!(field.as_deref(), Some("reflectors[0].occluders[0]"), "{err}");
+    // The renderer keeps what it had (nothing) and still renders frames.
+    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    assert!(r.prepare(&cam, SIZE).is_empty());
+    // A valid set afterwards renders.
+    r.set_reflectors(&s.reflector_set()).expect("valid");
+    assert_eq!(r.prepare(&cam, SIZE).visible.len(), 1);
 }

@@ -73,7 +73,7 @@ fn a_glass_panel_over_a_floor_mirror_reflects_both() {
     for indirect in [Choice::Off, Choice::On] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set());
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
         let out = run(&mut r, &gpu, &cam);
         eprintln!("{}", out.plan);
         assert_eq!(out.plan.indirect, indirect == Choice::On);
@@ -133,7 +133,7 @@ fn indirect_dispatch_keeps_a_mirror_seen_through_glass_written_to_depth() {
     for indirect in [Choice::Off, Choice::On] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set());
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
         let out = run(&mut r, &gpu, &cam);
         assert_eq!(out.plan.indirect, indirect == Choice::On, "{}", out.plan);
         outputs.push(out.pixels);
@@ -174,7 +174,7 @@ fn water_planes_at_two_heights_get_a_layer_each() {
 
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&set);
+    r.set_reflectors(&set).expect("a valid set");
     let layered = run(&mut r, &gpu, &cam);
     assert_eq!(layered.plan.layers.len(), 2, "{}", layered.plan);
     assert!(layered.plan.visible.is_empty(), "both water planes are layers");
@@ -210,7 +210,7 @@ fn water_edge_stretch_fills_reflections_missing_at_the_border() {
     let count = |stretch: bool| {
         let mut r = renderer();
         r.settings = ReflectionSettings { water_edge_stretch: stretch, ..ReflectionSettings::ALL };
-        r.set_reflectors(&s.reflector_set());
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
         let out = run(&mut r, &gpu, &cam);
         assert!(out.layer_pixels.iter().all(|p| p.is_finite()));
         (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.5).count()
@@ -241,7 +241,7 @@ fn normal_maps_bring_the_reflection_closer_to_the_bumpy_reference() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.set_reflectors(&s.reflector_set());
+    r.set_reflectors(&s.reflector_set()).expect("a valid set");
     let mapped = run(&mut r, &gpu, &cam);
     assert!(mapped.plan.normal_maps && mapped.plan.passes().iter().any(|p| p.contains("normal maps")));
     r.plan_params.normal_maps = Choice::Off;
@@ -264,7 +264,7 @@ fn without_glass_water_or_normal_maps_nothing_extra_runs() {
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&s.reflector_set());
+    r.set_reflectors(&s.reflector_set()).expect("a valid set");
     let out = run(&mut r, &gpu, &cam);
     assert!(out.plan.layers.is_empty() && !out.plan.normal_maps, "{}", out.plan);
     assert_eq!(out.plan.passes(), vec!["clear", "projection", "reflection"]);
@@ -295,7 +295,7 @@ fn normal_maps_keep_the_flat_reflection_where_the_source_is_the_pixel_itself() {
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&s.reflector_set());
+    r.set_reflectors(&s.reflector_set()).expect("a valid set");
     let mapped = run(&mut r, &gpu, &cam);
     assert!(mapped.plan.normal_maps, "{}", mapped.plan);
     r.plan_params.normal_maps = Choice::Off;

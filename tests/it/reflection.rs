@@ -71,7 +71,7 @@ fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tes
     let mut r = renderer();
     // Full clears, so that the whole intermediate buffer can be compared.
     r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.set_reflectors(&case.set);
+    r.set_reflectors(&case.set).expect("a valid set");
     r.settings = settings;
     r.write_mode = mode;
     run(&mut r, &case.gpu, &case.camera)
@@ -269,7 +269,7 @@ fn anti_bleeding_decides_the_same_at_any_exposure() {
         }
         let mut r = renderer();
         r.plan_params.indirect = ppr_runtime::Choice::Off;
-        r.set_reflectors(&set);
+        r.set_reflectors(&set).expect("a valid set");
         r.settings = ReflectionSettings::ALL;
         run(&mut r, &GpuFrame::upload(&f), &camera).pixels
     };

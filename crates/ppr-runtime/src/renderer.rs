@@ -3,7 +3,7 @@
 use std::cell::Cell;
 
 use glam::DMat4;
-use ppr_format::ReflectorSet;
+use ppr_format::{FormatError, ReflectorSet};
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
@@ -90,7 +90,7 @@ impl<'a> FrameInputs<'a> {
 /// use ppr_runtime::{FrameInputs, ReflectionRenderer, RendererDesc};
 /// // once:
 /// let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-/// ppr.set_reflectors(set);
+/// ppr.set_reflectors(set).expect("a valid set"); // validated again: a bad set is an error
 /// // every frame, after the scene's colour and depth are recorded:
 /// let plan = ppr.prepare(camera, [width, height]);
 /// let mut encoder = device.create_command_encoder(&Default::default());
@@ -162,10 +162,19 @@ impl ReflectionRenderer {
         }
     }
 
-    /// Replaces the reflectors (a validated set; e.g. from [`ReflectorSet::load`]).
-    pub fn set_reflectors(&mut self, set: &ReflectorSet) {
+    /// Replaces the reflectors, after checking every invariant of the format
+    /// ([`ReflectorSet::validate`]: a set from [`ReflectorSet::load`] passes; one built or
+    /// edited in memory may not). Cheap: no pipeline is rebuilt.
+    ///
+    /// # Errors
+    /// The [`FormatError`] naming the first reflector and field that break an invariant
+    /// (an occluder index out of range, a parallel group mixing orientations, ...); the
+    /// renderer then keeps the reflectors it had.
+    pub fn set_reflectors(&mut self, set: &ReflectorSet) -> Result<(), FormatError> {
+        set.validate()?;
         self.table = ShapeTable::from_set(set);
         self.table_dirty = true;
+        Ok(())
     }
 
     /// The reflectors as the runtime holds them.

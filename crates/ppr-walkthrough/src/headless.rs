@@ -61,7 +61,7 @@ impl HeadlessSession {
     ) -> Result<Self> {
         let ctx = GpuContext::new(instance, None)?;
         let mut renderer =
-            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth);
+            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = args.settings();
         let screen = ScreenPasses::new(&ctx.device, &ctx.queue, OFFSCREEN_FORMAT);
         let target = OffscreenTarget::new(&ctx.device, args.size);
@@ -94,8 +94,10 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
     let mut frame = 0;
     while frame < frames || session.ctx.lost().is_some() {
         for event in watcher.poll() {
-            if let Some(set) = sets.apply(event) {
-                session.renderer.set_reflectors(set);
+            if let Some(set) = sets.apply(event)
+                && let Err(e) = session.renderer.set_reflectors(set)
+            {
+                eprintln!("ppr-walkthrough: the runtime refused {set_file}: {e}");
             }
         }
         if let Some(reason) = session.ctx.lost() {

@@ -97,7 +97,7 @@ pub fn run_runtime(
             variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped));
         }
         for (suffix, params, reflectors) in variants {
-            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params);
+            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params)?;
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
                     let size = res.size();

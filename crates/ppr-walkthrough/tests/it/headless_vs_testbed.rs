@@ -64,7 +64,7 @@ fn testbed_frame(set: &ReflectorSet) -> TestbedFrame {
         view_formats: &[],
     });
     let view = output.create_view(&Default::default());
-    let mut ppr = PprTechnique::new(device, queue, set, ReflectionSettings::ALL);
+    let mut ppr = PprTechnique::new(device, queue, set, ReflectionSettings::ALL).expect("a valid set");
     // As in the walkthrough: no glass or water layers, water in the main buffer.
     ppr.renderer().plan_params.layers = Choice::Off;
     ppr.prepare(device, queue, &camera, SIZE);
