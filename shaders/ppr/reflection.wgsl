@@ -1,7 +1,8 @@
 // Reflection pass: decode the intermediate buffer, fill holes from the neighbour with the
 // smallest offset, take filtered and unfiltered colour samples and reduce bleeding in
-// YCoCg (shading.wgsl). Output: reflected colour, alpha 1 where a reflection was found,
-// 0 elsewhere. Seed: PPR_ReflectionPass.
+// YCoCg (shading.wgsl). Output: reflected colour, alpha its confidence (shading.wgsl's
+// ppr_confidence: 1 inside the screen, fading towards the borders; 0 where no reflection
+// was found). Seed: PPR_ReflectionPass.
 //
 // Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
 // empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
@@ -95,7 +96,7 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
         let surface = ppr_unproject(floor(s.xy) + 0.5, d);
         if (length(c) <= length(surface) * 1.02) {
             let colour = textureSampleLevel(color_tex, linear_sampler, s.xy * frame.resolution.zw, 0.0).rgb;
-            return vec4<f32>(finite_colour(colour), 1.0);
+            return vec4<f32>(finite_colour(colour), ppr_confidence(s.xy));
         }
     }
     return flat;

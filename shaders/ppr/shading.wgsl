@@ -1,7 +1,8 @@
 // What the reflection passes share (prepended, after view.wgsl, to reflection.wgsl and
 // layer_reflection.wgsl, which declare `frame`, `color_tex` and `linear_sampler`): hole
-// filling, decoding into filtered and unfiltered samples, YCoCg anti-bleeding, and the
-// finite-colour guard. Seed: PPR_ReflectionPass and PPR_FixColorBleeding.
+// filling, decoding into filtered and unfiltered samples, YCoCg anti-bleeding, the
+// confidence (output alpha) and the finite-colour guard. Seed: PPR_ReflectionPass and
+// PPR_FixColorBleeding.
 
 // Neighbours read for hole filling, in the seed's order.
 const PPR_HOLE_OFFSETS = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(0, 1), vec2<i32>(1, 1), vec2<i32>(-1, 0));
@@ -44,7 +45,20 @@ fn ppr_choose_value(v: array<u32, 5>, holes: bool) -> PprChosen {
     return chosen;
 }
 
-// The reflected colour at `vpos` from a chosen value (alpha 0 when there is none).
+// Confidence of a reflection whose colour was sampled at `source` (pixels): 1 more than
+// frame.border_fade_px from every screen edge, falling linearly towards the edge. A sample
+// is never taken nearer than half a pixel from it, so found reflections keep alpha > 0.
+fn ppr_confidence(source: vec2<f32>) -> f32 {
+    let margin = frame.border_fade_px;
+    if (!(margin > 0.0)) {
+        return 1.0;
+    }
+    let to_edge = min(source, frame.resolution.xy - source);
+    return saturate(max(min(to_edge.x, to_edge.y), 0.5) / margin);
+}
+
+// The reflected colour at `vpos` from a chosen value, alpha its confidence (0 when there is
+// none).
 fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     if (chosen.value == PPR_CLEAR_VALUE) {
         return vec4<f32>(0.0);
@@ -68,15 +82,17 @@ fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     let unfiltered_px = clamp(vec2<i32>(floor(target_unfiltered)), vec2<i32>(0), vec2<i32>(frame.size) - 1);
     let unfiltered = textureLoad(color_tex, unfiltered_px, 0).rgb;
     var result = unfiltered;
+    var source = vec2<f32>(unfiltered_px) + 0.5;
     if ((frame.flags & PPR_FLAG_FILTERING) != 0u) {
         let filtered = textureSampleLevel(color_tex, linear_sampler, target_crd * frame.resolution.zw, 0.0).rgb;
+        source = target_crd;
         if ((frame.flags & PPR_FLAG_ANTI_BLEEDING) != 0u) {
             result = fix_color_bleeding(filtered, unfiltered);
         } else {
             result = filtered;
         }
     }
-    return vec4<f32>(finite_colour(result), 1.0);
+    return vec4<f32>(finite_colour(result), ppr_confidence(source));
 }
 
 fn rgb_to_ycocg(c: vec3<f32>) -> vec3<f32> {

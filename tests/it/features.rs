@@ -89,7 +89,7 @@ fn a_glass_panel_over_a_floor_mirror_reflects_both() {
             .layer_pixels
             .iter()
             .enumerate()
-            .filter(|(i, p)| frame.glass[*i].is_none() && p.w > 0.5)
+            .filter(|(i, p)| frame.glass[*i].is_none() && p.w > 0.0)
             .count();
         eprintln!(
             "indirect {indirect:?}, glass pixels {glass_px}: layer vs glass reference {glass:?}\n  mirror seen through the glass, main output {mirror_under_glass:?}\n  layer pixels outside the glass {layer_elsewhere}"
@@ -139,7 +139,7 @@ fn indirect_dispatch_keeps_a_mirror_seen_through_glass_written_to_depth() {
         outputs.push(out.pixels);
     }
     let through_glass = |i: usize| frame.glass[i].is_some() && frame.mirror[i].is_some();
-    let shown = (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i].w > 0.5).count();
+    let shown = (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i].w > 0.0).count();
     let differing =
         (0..frame.mirror.len()).filter(|&i| through_glass(i) && outputs[0][i] != outputs[1][i]).count();
     eprintln!("{shown} reflections under the glass; {differing} differ with indirect dispatch");
@@ -185,7 +185,7 @@ fn water_planes_at_two_heights_get_a_layer_each() {
     let one = run(&mut r, &gpu, &cam);
     assert_eq!((one.plan.layers.len(), one.plan.visible.len()), (1, 1), "{}", one.plan);
     let merged: Vec<Vec4> =
-        one.layer_pixels.iter().zip(&one.pixels).map(|(l, m)| if l.w > 0.5 { *l } else { *m }).collect();
+        one.layer_pixels.iter().zip(&one.pixels).map(|(l, m)| if l.w > 0.0 { *l } else { *m }).collect();
     let split = compare_layer(&frame, &merged, &frame.reference, on_screen_water);
     eprintln!("two water layers {lake_and_basin:?}\n  one layer + main buffer {split:?}");
     assert!(lake_and_basin.pixels > 1500 && lake_and_basin.psnr >= 30.0, "{lake_and_basin:?}");
@@ -213,7 +213,7 @@ fn water_edge_stretch_fills_reflections_missing_at_the_border() {
         r.set_reflectors(&s.reflector_set()).expect("a valid set");
         let out = run(&mut r, &gpu, &cam);
         assert!(out.layer_pixels.iter().all(|p| p.is_finite()));
-        (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.5).count()
+        (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.0).count()
     };
     let water_px = (0..frame.mirror.len()).filter(|&i| water(i)).count();
     let off_screen = (0..frame.mirror.len()).filter(|&i| water(i) && !frame.on_screen[i]).count();

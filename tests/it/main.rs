@@ -2,6 +2,7 @@
 //! reflection of analytic scenes.
 
 mod api;
+mod confidence;
 mod encoding_parity;
 mod features;
 mod reflection;

@@ -51,7 +51,7 @@ pub fn invariants(frame: &Frame, plan: &FramePlan, pixels: &[Vec4], intermediate
     let layout: EncodingLayout = plan.encoding;
     let mut inv = Invariants {
         non_finite: pixels.iter().filter(|p| !p.is_finite()).count(),
-        reflected: pixels.iter().filter(|p| p.w > 0.5).count(),
+        reflected: pixels.iter().filter(|p| p.w > 0.0).count(),
         ..Default::default()
     };
     if plan.is_empty() {

@@ -49,8 +49,10 @@ impl Default for RendererDesc {
 ///   `TEXTURE_BINDING`;
 /// - `depth`: the scene's depth, `Depth32Float`, `TEXTURE_BINDING`, a depth-only view,
 ///   written with the camera's [`crate::Projection`] (standard or reversed Z);
-/// - `output`: `Rgba16Float` with `STORAGE_BINDING`, same size: reflected colour, alpha 1
-///   where a reflection was found and 0 elsewhere. It is written only where the plan's
+/// - `output`: `Rgba16Float` with `STORAGE_BINDING`, same size: reflected colour, alpha a
+///   confidence in [0, 1] (0 where no reflection was found, else fading towards the screen
+///   borders over [`ReflectionSettings::border_fade`]; `alpha > 0` tells "found"). Blend it
+///   over the engine's own fallback: `mix(fallback, rgb, alpha)`. It is written only where the plan's
 ///   passes run: nowhere when [`FramePlan::is_empty`], and with indirect dispatch only in
 ///   tiles that show a visible reflector (every pixel on a visible reflector is covered).
 ///
@@ -253,6 +255,8 @@ impl ReflectionRenderer {
                 plan.layer_rect.max[1].saturating_sub(plan.layer_rect.min[1]),
             ],
             encoding: plan.encoding.gpu_params(),
+            border_fade_px: self.settings.border_fade_px(plan.viewport),
+            _pad1: [0; 3],
         };
         let layers: Vec<GpuLayer> = plan
             .layers
