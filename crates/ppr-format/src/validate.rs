@@ -51,8 +51,9 @@ impl ReflectorSet {
             check_reflector(r, self.reflectors.len(), index)
                 .map_err(|(field, reason)| fail(&field, reason))?;
             let first = *groups.entry(r.parallel_group).or_insert(index);
+            // Both normals are finite and unit (checked above), so the angle is finite.
             let angle = angle_deg(r.normal, self.reflectors[first].normal);
-            if !(angle <= PARALLEL_GROUP_MAX_ANGLE_DEG) {
+            if angle > PARALLEL_GROUP_MAX_ANGLE_DEG {
                 return Err(fail(
                     "parallel_group",
                     format!(
@@ -97,7 +98,7 @@ pub fn parallel_groups(normals: &[DVec3], cos_angle: f64) -> Vec<u32> {
         .collect()
 }
 
-/// Angle between two unit vectors, degrees (NaN for non-finite input).
+/// Angle between two unit vectors, degrees.
 fn angle_deg(a: DVec3, b: DVec3) -> f64 {
     // atan2 of the cross and dot products: accurate for small angles, unlike acos.
     a.cross(b).length().atan2(a.dot(b)).to_degrees()

@@ -67,8 +67,8 @@ impl ReflectionSettings {
 
     /// The border fade's width in pixels for a viewport (0 when off).
     pub fn border_fade_px(&self, [width, height]: [u32; 2]) -> f32 {
-        // `max` first: NaN becomes 0.
-        self.border_fade.max(0.0).min(0.5) * width.min(height) as f32
+        let fade = if self.border_fade.is_nan() { 0.0 } else { self.border_fade.clamp(0.0, 0.5) };
+        fade * width.min(height) as f32
     }
 }
 
