@@ -36,6 +36,12 @@ struct FrameUniforms {
     layer_origin: vec2<u32>,
     layer_extent: vec2<u32>,
     encoding: EncodingParams,
+    // Confidence fade at the screen borders, pixels (0: none): the output's alpha falls to
+    // 0 as the reflected point nears an edge of the viewport.
+    border_fade_px: f32,
+    _pad1: u32,
+    _pad2: u32,
+    _pad3: u32,
 }
 
 // A layer reflector's atlas region: its screen rectangle (exclusive max) and where its

@@ -37,6 +37,10 @@ fn ppr_is_finite2(v: vec2<f32>) -> bool {
     return ppr_is_finite(v.x) && ppr_is_finite(v.y);
 }
 
+fn ppr_is_finite3(v: vec3<f32>) -> bool {
+    return ppr_is_finite(v.x) && ppr_is_finite(v.y) && ppr_is_finite(v.z);
+}
+
 fn ppr_basis_index(o: vec2<i32>) -> u32 {
     if (abs(o.x) >= abs(o.y)) {
         return select(1u, 0u, o.x >= 0);

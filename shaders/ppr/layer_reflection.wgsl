@@ -5,7 +5,8 @@
 // pixel: the nearest layer reflector the view ray hits in front of the depth buffer, its
 // atlas value with hole filling, the same sampling as the main reflection, and for water
 // optionally the hash-style edge stretch (reuse the nearest valid reflection along the
-// plane's projected normal). Output: colour, alpha 1 where a layer reflection was found.
+// plane's projected normal). Output: colour, alpha the confidence (as the main reflection:
+// 0 where no layer reflection was found).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<storage, read> atlas: array<u32>;

@@ -1,7 +1,8 @@
 // Reflection pass: decode the intermediate buffer, fill holes from the neighbour with the
 // smallest offset, take filtered and unfiltered colour samples and reduce bleeding in
-// YCoCg (shading.wgsl). Output: reflected colour, alpha 1 where a reflection was found,
-// 0 elsewhere. Seed: PPR_ReflectionPass.
+// YCoCg (shading.wgsl). Output: reflected colour, alpha its confidence (shading.wgsl's
+// ppr_confidence: 1 inside the screen, fading towards the borders; 0 where no reflection
+// was found). Seed: PPR_ReflectionPass.
 //
 // Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
 // empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
@@ -51,8 +52,11 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
     let d_here = valid_depth_at(vpos);
     let decoded = ppr_decode(chosen.value, frame.encoding);
     let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
-    let d_src = valid_depth_at(vec2<i32>(floor(src)));
-    if (d_here < 0.0 || d_src < 0.0) {
+    let src_px = vec2<i32>(floor(src));
+    let d_src = valid_depth_at(src_px);
+    // The reflected point in the pixel itself (a surface just above the plane reflects into
+    // its own pixel): there is no direction `q - p` to perturb.
+    if (d_here < 0.0 || d_src < 0.0 || all(src_px == vpos)) {
         return flat;
     }
     let p = ppr_unproject(vec2<f32>(vpos) + 0.5, d_here);
@@ -61,6 +65,11 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
     let r = normalize(q - p);
     // The flat reflection's plane normal: r - v is parallel to it.
     let n_flat = normalize(r - v);
+    // Coincident points (equal depths through two pixels) or r == v still give NaN; a
+    // compiler may fold NaN comparisons, so test the bits.
+    if (!ppr_is_finite3(v) || !ppr_is_finite3(r) || !ppr_is_finite3(n_flat)) {
+        return flat;
+    }
     let n = textureLoad(normal_tex, vpos, 0).xyz;
     let len = length(n);
     if (!(len > 0.5)) {
@@ -87,7 +96,7 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
         let surface = ppr_unproject(floor(s.xy) + 0.5, d);
         if (length(c) <= length(surface) * 1.02) {
             let colour = textureSampleLevel(color_tex, linear_sampler, s.xy * frame.resolution.zw, 0.0).rgb;
-            return vec4<f32>(finite_colour(colour), 1.0);
+            return vec4<f32>(finite_colour(colour), ppr_confidence(s.xy));
         }
     }
     return flat;

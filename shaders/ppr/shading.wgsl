@@ -1,7 +1,8 @@
 // What the reflection passes share (prepended, after view.wgsl, to reflection.wgsl and
 // layer_reflection.wgsl, which declare `frame`, `color_tex` and `linear_sampler`): hole
-// filling, decoding into filtered and unfiltered samples, YCoCg anti-bleeding, and the
-// finite-colour guard. Seed: PPR_ReflectionPass and PPR_FixColorBleeding.
+// filling, decoding into filtered and unfiltered samples, YCoCg anti-bleeding, the
+// confidence (output alpha) and the finite-colour guard. Seed: PPR_ReflectionPass and
+// PPR_FixColorBleeding.
 
 // Neighbours read for hole filling, in the seed's order.
 const PPR_HOLE_OFFSETS = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(0, 1), vec2<i32>(1, 1), vec2<i32>(-1, 0));
@@ -44,7 +45,20 @@ fn ppr_choose_value(v: array<u32, 5>, holes: bool) -> PprChosen {
     return chosen;
 }
 
-// The reflected colour at `vpos` from a chosen value (alpha 0 when there is none).
+// Confidence of a reflection whose colour was sampled at `source` (pixels): 1 more than
+// frame.border_fade_px from every screen edge, falling linearly towards the edge. A sample
+// is never taken nearer than half a pixel from it, so found reflections keep alpha > 0.
+fn ppr_confidence(source: vec2<f32>) -> f32 {
+    let margin = frame.border_fade_px;
+    if (!(margin > 0.0)) {
+        return 1.0;
+    }
+    let to_edge = min(source, frame.resolution.xy - source);
+    return saturate(max(min(to_edge.x, to_edge.y), 0.5) / margin);
+}
+
+// The reflected colour at `vpos` from a chosen value, alpha its confidence (0 when there is
+// none).
 fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     if (chosen.value == PPR_CLEAR_VALUE) {
         return vec4<f32>(0.0);
@@ -68,15 +82,17 @@ fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     let unfiltered_px = clamp(vec2<i32>(floor(target_unfiltered)), vec2<i32>(0), vec2<i32>(frame.size) - 1);
     let unfiltered = textureLoad(color_tex, unfiltered_px, 0).rgb;
     var result = unfiltered;
+    var source = vec2<f32>(unfiltered_px) + 0.5;
     if ((frame.flags & PPR_FLAG_FILTERING) != 0u) {
         let filtered = textureSampleLevel(color_tex, linear_sampler, target_crd * frame.resolution.zw, 0.0).rgb;
+        source = target_crd;
         if ((frame.flags & PPR_FLAG_ANTI_BLEEDING) != 0u) {
             result = fix_color_bleeding(filtered, unfiltered);
         } else {
             result = filtered;
         }
     }
-    return vec4<f32>(finite_colour(result), 1.0);
+    return vec4<f32>(finite_colour(result), ppr_confidence(source));
 }
 
 fn rgb_to_ycocg(c: vec3<f32>) -> vec3<f32> {
@@ -92,12 +108,18 @@ fn ycocg_to_rgb(c: vec3<f32>) -> vec3<f32> {
 }
 
 // PPR_FixColorBleeding: keep the filtered colour perceptually close to the unfiltered one.
+// The seed's thresholds are absolute luma (for colour in [0, 1]); on linear HDR input they
+// saturate where the scene is bright (always unfiltered) and vanish where it is dark
+// (always filtered). Here luma is measured relative to the brighter of the two samples,
+// which is the seed's scale where that luma is 1, and the same decision at any exposure.
 fn fix_color_bleeding(filtered: vec3<f32>, unfiltered: vec3<f32>) -> vec3<f32> {
     let f = rgb_to_ycocg(filtered);
     let u = rgb_to_ycocg(unfiltered);
-    let f_chroma = f.yz / max(0.0001, f.x);
-    let u_chroma = u.yz / max(0.0001, u.x);
-    let luma_factor = saturate(3.0 * abs(f.x - u.x));
+    // 1e-10: far below the smallest f16 colour (6e-8), only keeps black from dividing by 0.
+    let scale = max(max(f.x, u.x), 1e-10);
+    let f_chroma = f.yz / max(0.0001 * scale, f.x);
+    let u_chroma = u.yz / max(0.0001 * scale, u.x);
+    let luma_factor = saturate(3.0 * abs(f.x - u.x) / scale);
     let chroma_factor = saturate(1.4 * length(f_chroma - u_chroma));
     let y = mix(f.x, u.x, luma_factor);
     let cocg = mix(f_chroma, u_chroma, chroma_factor);

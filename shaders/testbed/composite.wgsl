@@ -1,6 +1,7 @@
 // Composite (testbed): scene colour mixed with a reflection over reflector pixels.
 // out = mix(scene, reflection.rgb, reflectivity * saturate(reflection.a)) where the
-// reflector id is non-zero; the reflection's alpha says whether it is valid.
+// reflector id is non-zero; the reflection's alpha is how much to trust it (PPR: a
+// confidence in [0, 1]; the baselines: 0 or 1), the scene colour the fallback.
 
 struct Composite {
     params: vec4<f32>,  // x: reflectivity in [0, 1]

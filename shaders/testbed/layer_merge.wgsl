@@ -15,5 +15,6 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     }
     let p = vec2<i32>(gid.xy);
     let layer = textureLoad(layer_tex, p, 0);
-    textureStore(output, p, select(textureLoad(main_tex, p, 0), layer, layer.a > 0.5));
+    // A layer reflection (alpha: its confidence, > 0 wherever one was found) replaces the main one.
+    textureStore(output, p, select(textureLoad(main_tex, p, 0), layer, layer.a > 0.0));
 }

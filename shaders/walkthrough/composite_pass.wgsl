@@ -1,10 +1,13 @@
 // Composite of the walkthrough: the lit scene with PPR's reflection mixed in where the
 // surface is reflective, tone mapped, onto the swapchain (or the screenshot target).
 //
-// result = mix(scene, reflection.rgb, weight * reflection.a)
-//   weight: the forward pass's reflectivity × Fresnel (0 on surfaces that reflect nothing);
-//   reflection.a: 1 where PPR found a reflection, 0 where it did not (a hole, or off screen):
-//   there the surface keeps its own lit colour (a game would fall back to a probe).
+// reflected = mix(fallback, reflection.rgb, reflection.a)
+// result    = mix(scene, reflected, weight)
+//   reflection.a: PPR's confidence, 1 where it found a reflection well inside the screen,
+//   fading towards the screen borders, 0 where it found none (a hole, or off screen);
+//   fallback: what the engine has for reflections without PPR (a game samples its
+//   reflection probe or sky; here a constant sky colour);
+//   weight: the forward pass's reflectivity × Fresnel (0 on surfaces that reflect nothing).
 
 struct Composite {
     // 0: final image; 1: PPR's raw reflection buffer (holes dark purple); 2: the weight.
@@ -14,6 +17,8 @@ struct Composite {
     // 1 when the target is not an sRGB format: encode here.
     encode_srgb: u32,
     exposure: f32,
+    // The fallback reflection, linear RGB (w unused).
+    fallback: vec4<f32>,
 }
 
 @group(0) @binding(0) var<uniform> composite: Composite;
@@ -47,17 +52,19 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
     if (composite.reflections == 1u) {
         found = textureLoad(reflection, p, 0);
     }
+    let confidence = clamp(found.a, 0.0, 1.0);
     let weight = textureLoad(reflection_weight, p, 0).r;
     var rgb: vec3<f32>;
     switch composite.mode {
         case 1u: {
-            rgb = select(vec3<f32>(0.08, 0.0, 0.08), found.rgb, found.a > 0.5);
+            rgb = mix(vec3<f32>(0.08, 0.0, 0.08), found.rgb, confidence);
         }
         case 2u: {
             rgb = vec3<f32>(weight);
         }
         default: {
-            rgb = mix(scene, found.rgb, clamp(weight * found.a, 0.0, 1.0));
+            let reflected = mix(composite.fallback.rgb, found.rgb, confidence);
+            rgb = mix(scene, reflected, clamp(weight, 0.0, 1.0));
         }
     }
     if (composite.mode != 2u) {

@@ -1,6 +1,8 @@
 //! The runtime on the GPU (software adapter in CI) against CPU references and the exact
 //! reflection of analytic scenes.
 
+mod api;
+mod confidence;
 mod encoding_parity;
 mod features;
 mod reflection;

@@ -71,7 +71,7 @@ fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tes
     let mut r = renderer();
     // Full clears, so that the whole intermediate buffer can be compared.
     r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.set_reflectors(&case.set);
+    r.set_reflectors(&case.set).expect("a valid set");
     r.settings = settings;
     r.write_mode = mode;
     run(&mut r, &case.gpu, &case.camera)
@@ -250,4 +250,52 @@ fn decoded_fractions_point_closer_to_the_exact_source() {
         "mean distance to the exact source over {n} pixels: whole offset {whole:.3} px, with fractions {with_fract:.3} px"
     );
     assert!(n > 4000 && with_fract < 0.8 * whole, "{whole} -> {with_fract}");
+}
+
+#[test]
+fn anti_bleeding_decides_the_same_at_any_exposure() {
+    // HDR input: the same frame with its colour scaled by a large and a small factor must
+    // give the same reflection (divided by the factor) and the same validity. Absolute
+    // luma thresholds saturate on the bright frame (every pixel unfiltered) and do nothing
+    // on the dark one (every pixel filtered).
+    let scene = mirror_room(true);
+    let camera = room_camera();
+    let frame = scene.render(&camera, SIZE);
+    let set = scene.reflector_set();
+    let run_scaled = |k: f32| {
+        let mut f = frame.clone_images();
+        for c in &mut f.color {
+            *c *= k;
+        }
+        let mut r = renderer();
+        r.plan_params.indirect = ppr_runtime::Choice::Off;
+        r.set_reflectors(&set).expect("a valid set");
+        r.settings = ReflectionSettings::ALL;
+        run(&mut r, &GpuFrame::upload(&f), &camera).pixels
+    };
+    let base = run_scaled(1.0);
+    let reflected = base.iter().filter(|p| p.w > 0.0).count();
+    assert!(reflected > 4000, "{reflected}");
+    // Tolerance: the input is stored as f16 (relative rounding 2^-11 ≈ 5e-4, more for the
+    // darkest colours at 1/1000, which are f16 subnormals), and the anti-bleeding weights
+    // move with it; 1 % of the colour (plus 1e-3 absolute) bounds what rounding can do,
+    // while a changed decision at an edge of the stripes moves a colour by up to 0.9.
+    const RELATIVE: f32 = 0.01;
+    const ABSOLUTE: f32 = 1e-3;
+    for k in [1000.0f32, 0.001] {
+        let scaled = run_scaled(k);
+        let (mut off, mut validity, mut worst) = (0usize, 0usize, 0.0f32);
+        for (a, b) in scaled.iter().zip(&base) {
+            validity += usize::from(a.w != b.w);
+            let d = (a.truncate() / k - b.truncate()).abs().max_element();
+            let bound = RELATIVE * b.truncate().abs().max_element() + ABSOLUTE;
+            off += usize::from(d > bound);
+            worst = worst.max(d);
+        }
+        eprintln!(
+            "colour x{k}: {off} pixels off by more than 1% + 1e-3 (worst {worst}), {validity} with another validity"
+        );
+        assert_eq!(validity, 0, "x{k}");
+        assert_eq!(off, 0, "x{k}: worst difference {worst}");
+    }
 }

@@ -162,13 +162,13 @@ fn tile_culling_keeps_every_write_of_the_plain_loop_under_the_parallel_rule() {
         let set = grouped_set(&scene);
 
         let mut plain = configured(Culling::Plain, Choice::On);
-        plain.set_reflectors(&set);
+        plain.set_reflectors(&set).expect("a valid set");
         run(&mut plain, &gpu, &camera);
         let a = debug_masks(&plain);
         let writes: usize = a.iter().map(|m| m.count_ones() as usize).sum();
         for culling in CULLED {
             let mut tiled = configured(culling, Choice::On);
-            tiled.set_reflectors(&set);
+            tiled.set_reflectors(&set).expect("a valid set");
             let out = run(&mut tiled, &gpu, &camera);
             assert!(out.plan.tile_culling && out.plan.parallel_rule, "{}", out.plan);
             assert_eq!(out.plan.super_tiles, culling == Culling::SuperTiles, "{}", out.plan);
@@ -202,14 +202,14 @@ fn without_parallel_shapes_culling_changes_no_pixel() {
         assert_eq!(groups.len(), set.reflectors.len(), "no two mirrors parallel");
 
         let mut plain = configured(Culling::Plain, Choice::Auto);
-        plain.set_reflectors(&set);
+        plain.set_reflectors(&set).expect("a valid set");
         let a = run(&mut plain, &gpu, &camera);
         let bits = |o: &[Vec4]| o.iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
-        let written = a.pixels.iter().filter(|p| p.w > 0.5).count();
+        let written = a.pixels.iter().filter(|p| p.w > 0.0).count();
         eprintln!("case {case}: {} visible, {written} reflection pixels", a.plan.visible.len());
         for culling in CULLED {
             let mut tiled = configured(culling, Choice::Auto);
-            tiled.set_reflectors(&set);
+            tiled.set_reflectors(&set).expect("a valid set");
             let b = run(&mut tiled, &gpu, &camera);
             assert!(!a.plan.parallel_rule && b.plan.parallel_rule);
             assert_eq!(
@@ -231,7 +231,7 @@ fn active_tiles_cover_every_reflector_pixel() {
         let gpu = GpuFrame::upload(&frame);
         let mut r = renderer();
         r.plan_params.indirect = Choice::On;
-        r.set_reflectors(&grouped_set(&scene));
+        r.set_reflectors(&grouped_set(&scene)).expect("a valid set");
         let out = run(&mut r, &gpu, &camera);
         assert!(out.plan.indirect);
         let list: Vec<u32> =
@@ -268,11 +268,11 @@ fn indirect_dispatch_gives_the_same_reflection_on_reflector_pixels() {
     let set = grouped_set(&scene);
     let mut full = renderer();
     full.plan_params.indirect = Choice::Off;
-    full.set_reflectors(&set);
+    full.set_reflectors(&set).expect("a valid set");
     let a = run(&mut full, &gpu, &camera);
     let mut tiles = renderer();
     tiles.plan_params.indirect = Choice::On;
-    tiles.set_reflectors(&set);
+    tiles.set_reflectors(&set).expect("a valid set");
     let b = run(&mut tiles, &gpu, &camera);
     let mut compared = 0;
     for (i, m) in frame.mirror.iter().enumerate() {
@@ -300,7 +300,7 @@ fn a_frame_without_visible_reflectors_dispatches_nothing() {
     let frame = scene.render(&camera, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.set_reflectors(&scene.reflector_set());
+    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
     let out = run(&mut r, &gpu, &camera);
     eprintln!("{}", out.plan);
     assert!(out.plan.is_empty());
@@ -332,7 +332,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     let gpu = GpuFrame::upload(&frame);
     let mut r = configured(Culling::Tiles, Choice::On);
     r.debug_tile_lists = true;
-    r.set_reflectors(&grouped_set(&scene));
+    r.set_reflectors(&grouped_set(&scene)).expect("a valid set");
     let out = run(&mut r, &gpu, &camera);
     let lengths = debug_masks(&r);
     let listed: Vec<u32> = lengths.iter().copied().filter(|&n| n != u32::MAX).collect();
@@ -351,7 +351,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     // super-tile lists themselves are shorter than the visible list.
     let mut s = configured(Culling::SuperTiles, Choice::On);
     s.debug_tile_lists = true;
-    s.set_reflectors(&grouped_set(&scene));
+    s.set_reflectors(&grouped_set(&scene)).expect("a valid set");
     let out = run(&mut s, &gpu, &camera);
     assert!(out.plan.super_tiles, "{}", out.plan);
     assert_eq!(debug_masks(&s), lengths, "tile lists differ when built from super-tile lists");
@@ -413,7 +413,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     // is then exactly the plain loop's.
     let (camera, gpu, set) = dense_puddles_frame(1200);
     let mut plain = configured(Culling::Plain, Choice::On);
-    plain.set_reflectors(&set);
+    plain.set_reflectors(&set).expect("a valid set");
     let a = run(&mut plain, &gpu, &camera);
     let written = a.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
     assert!(a.plan.visible.len() > 1024, "{}", a.plan);
@@ -421,7 +421,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     for culling in CULLED {
         let mut r = configured(culling, Choice::On);
         r.debug_tile_lists = true;
-        r.set_reflectors(&set);
+        r.set_reflectors(&set).expect("a valid set");
         let b = run(&mut r, &gpu, &camera);
         let lengths = debug_masks(&r);
         let overflowed = lengths.iter().filter(|&&n| n == u32::MAX).count();
@@ -446,7 +446,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
 fn super_tiles_run_from_the_plan_threshold() {
     let (camera, gpu, set) = dense_puddles_frame(200);
     let mut r = renderer();
-    r.set_reflectors(&set);
+    r.set_reflectors(&set).expect("a valid set");
     let out = run(&mut r, &gpu, &camera);
     let n = out.plan.visible.len();
     assert!(n >= r.plan_params.tile_culling_min_shapes && n < 512, "{}", out.plan);

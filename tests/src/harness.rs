@@ -9,11 +9,11 @@ use crate::scene::Frame;
 /// What one run of the runtime produced.
 pub struct Output {
     pub plan: FramePlan,
-    /// Reflection colour + validity alpha per pixel.
+    /// Reflection colour + confidence alpha per pixel (0: no reflection found).
     pub pixels: Vec<Vec4>,
     /// The intermediate buffer after the projection pass.
     pub intermediate: Vec<u32>,
-    /// The layer output (glass and water reflections), colour + validity alpha.
+    /// The layer output (glass and water reflections), colour + confidence alpha.
     pub layer_pixels: Vec<Vec4>,
 }
 
@@ -318,7 +318,7 @@ pub fn compare(frame: &Frame, out: &[Vec4], mask: impl Fn(usize) -> bool) -> Com
             continue;
         }
         n += 1;
-        if o.w < 0.5 {
+        if o.w <= 0.0 {
             empty += 1;
         }
         let d: Vec3 =

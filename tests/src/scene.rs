@@ -206,9 +206,11 @@ impl AnalyticScene {
         self
     }
 
+    /// The scene's reflectors as a valid set (parallel groups by normal).
     pub fn reflector_set(&self) -> ReflectorSet {
         let mut set = ReflectorSet::new("analytic scene");
         set.reflectors = self.set.clone();
+        set.assign_parallel_groups();
         set.validate().expect("the test scene's reflectors are valid");
         set
     }

@@ -51,7 +51,7 @@ pub fn invariants(frame: &Frame, plan: &FramePlan, pixels: &[Vec4], intermediate
     let layout: EncodingLayout = plan.encoding;
     let mut inv = Invariants {
         non_finite: pixels.iter().filter(|p| !p.is_finite()).count(),
-        reflected: pixels.iter().filter(|p| p.w > 0.5).count(),
+        reflected: pixels.iter().filter(|p| p.w > 0.0).count(),
         ..Default::default()
     };
     if plan.is_empty() {
@@ -87,7 +87,7 @@ pub fn run_case(
     let gpu = ppr_tests::harness::GpuFrame::upload(&frame);
     let mut r = ppr_tests::harness::renderer();
     r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.set_reflectors(&scene.reflector_set());
+    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
     let out = ppr_tests::harness::run(&mut r, &gpu, camera);
     (frame, out)
 }

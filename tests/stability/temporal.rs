@@ -37,7 +37,7 @@ fn frame_to_frame(mirror_fractions: bool) -> (f32, f64, usize) {
             anti_bleeding: false,
             ..ReflectionSettings::ALL
         };
-        r.set_reflectors(&set);
+        r.set_reflectors(&set).expect("a valid set");
         let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
         r.encoding_override = Some(ppr_runtime::EncodingLayout { mirror_fractions, ..layout });
         let out = run(&mut r, &gpu, &camera);
@@ -46,7 +46,7 @@ fn frame_to_frame(mirror_fractions: bool) -> (f32, f64, usize) {
         let smooth = ppr_tests::masks::interior(&frame, 2, |i| frame.on_screen[i] && !edges[i]);
         if let Some(prev) = &previous {
             for (i, (a, b)) in prev.iter().zip(&out.pixels).enumerate() {
-                if a.w > 0.5 && b.w > 0.5 && smooth[i] {
+                if a.w > 0.0 && b.w > 0.0 && smooth[i] {
                     let d = (*a - *b).truncate().abs().max_element();
                     worst = worst.max(d);
                     visible += usize::from(d > 1.0 / 255.0);

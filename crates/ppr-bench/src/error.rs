@@ -8,6 +8,9 @@ pub enum BenchError {
     /// The testbed failed (adapter, level loading, readback, images).
     #[error(transparent)]
     Testbed(#[from] ppr_testbed::TestbedError),
+    /// A reflector set breaks an invariant of the format (names the reflector and field).
+    #[error(transparent)]
+    Format(#[from] ppr_format::FormatError),
     /// A level could not be read by the extractor.
     #[error("{}: {reason}", path.display())]
     Level { path: PathBuf, reason: String },

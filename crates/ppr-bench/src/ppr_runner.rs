@@ -4,6 +4,7 @@ use ppr_format::ReflectorSet;
 use ppr_runtime::{Camera, PlanParams, ReflectionRenderer, ReflectionSettings};
 use ppr_testbed::{PprTechnique, ReflectionTechnique};
 
+use crate::error::BenchError;
 use crate::technique::{BenchFrame, BenchTechnique, Family};
 use crate::timing::PassTime;
 
@@ -21,10 +22,10 @@ impl PprRunner {
         label: impl Into<String>,
         settings: ReflectionSettings,
         plan_params: PlanParams,
-    ) -> Self {
-        let mut technique = PprTechnique::new(device, queue, reflectors, settings);
+    ) -> Result<Self, BenchError> {
+        let mut technique = PprTechnique::new(device, queue, reflectors, settings)?;
         technique.renderer().plan_params = plan_params;
-        Self { label: label.into(), technique }
+        Ok(Self { label: label.into(), technique })
     }
 
     /// The runtime renderer (plan, intermediate buffer, active tiles).

@@ -43,7 +43,8 @@ pub struct Quality {
     pub flip_on: f64,
     /// Mean FLIP over off-screen reflector pixels.
     pub flip_off: f64,
-    /// Share of on-screen reflector pixels left without data (alpha < 0.5).
+    /// Share of on-screen reflector pixels left without data (alpha 0; PPR's alpha is a
+    /// confidence, > 0 wherever a reflection was found).
     pub holes_on: f64,
     /// Share of all measured reflector pixels left without data.
     pub holes_all: f64,
@@ -114,13 +115,13 @@ fn masked_mean(values: &[f32], mask: &PixelMask) -> f64 {
     if n == 0 { 0.0 } else { sum / n as f64 }
 }
 
-/// Share of the masked pixels whose alpha is below 0.5 (0 for an empty mask).
+/// Share of the masked pixels whose alpha is 0: no reflection (0 for an empty mask).
 pub fn hole_share(image: &Rgba32FImage, mask: &PixelMask) -> f64 {
     let total = mask.count();
     if total == 0 {
         return 0.0;
     }
-    let holes = image.enumerate_pixels().filter(|(x, y, p)| mask.get(*x, *y) && p.0[3] < 0.5).count();
+    let holes = image.enumerate_pixels().filter(|(x, y, p)| mask.get(*x, *y) && p.0[3] <= 0.0).count();
     holes as f64 / total as f64
 }
 

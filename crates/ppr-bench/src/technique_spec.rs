@@ -218,7 +218,7 @@ pub fn build_technique(
             spec.label(),
             settings,
             params,
-        )));
+        )?));
     }
     let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
     let num = |key: &str| spec.param(key).and_then(|v| v.parse::<f32>().ok());

@@ -10,7 +10,7 @@ use crate::cluster::{Connectivity, grow_regions};
 use crate::extraction::{Extraction, ExtractionStats, Stage, Warning};
 use crate::fit::{FitStats, FittedShape, fit_shapes, prepare_regions};
 use crate::occluders::occluder_lists;
-use crate::parallel::parallel_groups;
+use crate::parallel::extraction_groups;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
 use crate::{ExtractParams, Level, SceneScale};
@@ -169,7 +169,7 @@ fn build_set(
     });
     let ids = dedupe_ids(&drafts.iter().map(|d| d.2).collect::<Vec<_>>());
     let normals: Vec<glam::DVec3> = drafts.iter().map(|d| d.0.normal).collect();
-    let groups = parallel_groups(&normals, scale.cos_angle);
+    let groups = extraction_groups(&normals, scale.cos_angle);
     let mut set = ReflectorSet::new(level.path.clone());
     set.source = SourceInfo { path: level.path.clone(), hash: level.hash.clone() };
     set.extractor = ExtractorInfo {

@@ -36,7 +36,7 @@ mod validate;
 pub use error::{FormatError, InvalidField, ReflectorRef};
 pub use reflector::{Reflector, ReflectorKind, ReflectorSource};
 pub use set::{ExtractorInfo, FORMAT_NAME, FORMAT_VERSION, ReflectorSet, SourceInfo};
-pub use validate::{AXIS_TOLERANCE, MAX_COORDINATE};
+pub use validate::{AXIS_TOLERANCE, MAX_COORDINATE, PARALLEL_GROUP_MAX_ANGLE_DEG, parallel_groups};
 
 /// The JSON Schema of the format, as published beside it in `schema/`.
 pub const JSON_SCHEMA: &str = include_str!("../schema/ppr-reflector-set.schema.json");

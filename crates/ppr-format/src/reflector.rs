@@ -66,7 +66,9 @@ pub struct ReflectorSource {
 /// - `half_extents` are finite and strictly positive;
 /// - `center` is finite and within [`crate::MAX_COORDINATE`] of the origin;
 /// - `coverage` is in `[0, 1]`;
-/// - `occluders` are indices of other reflectors of the same set, without repeats.
+/// - `occluders` are indices of other reflectors of the same set, without repeats;
+/// - reflectors of one `parallel_group` face the same way: each normal is within
+///   [`crate::PARALLEL_GROUP_MAX_ANGLE_DEG`] of the group's first reflector's.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Reflector {
@@ -91,7 +93,10 @@ pub struct Reflector {
     pub normal: DVec3,
     /// Reflective area of the fitted region divided by the rectangle's area, in `[0, 1]`.
     pub coverage: f64,
-    /// Reflectors with the same group share one normal (within the extractor's tolerance).
+    /// Reflectors with the same group share one normal (within the extractor's tolerance,
+    /// and at most [`crate::PARALLEL_GROUP_MAX_ANGLE_DEG`] from the group's first normal);
+    /// reflectors facing other ways need groups of their own
+    /// ([`crate::ReflectorSet::assign_parallel_groups`]).
     pub parallel_group: u32,
     /// Indices (into the set's `reflectors`) of reflectors that may stand between a
     /// camera and this one.

@@ -13,6 +13,13 @@ pub const AXIS_TOLERANCE: f64 = 1e-6;
 /// Largest absolute coordinate or extent accepted, in metres (10 000 km).
 pub const MAX_COORDINATE: f64 = 1e7;
 
+/// Largest angle, in degrees, between the normal of a reflector and that of the first
+/// reflector of its parallel group. The runtime lets only the nearest reflector of a
+/// group reflect a pixel, which is right only for reflectors that face the same way; the
+/// extractor groups within half of this (its own angle tolerance, 1° by default, at most
+/// 2.5°), so that any two members are within it.
+pub const PARALLEL_GROUP_MAX_ANGLE_DEG: f64 = 5.0;
+
 impl ReflectorSet {
     /// Checks every invariant of the format.
     ///
@@ -27,10 +34,13 @@ impl ReflectorSet {
             return Err(FormatError::UnknownVersion { found: self.version.to_string() });
         }
         let mut ids: HashMap<u32, usize> = HashMap::with_capacity(self.reflectors.len());
+        // The first reflector of each parallel group.
+        let mut groups: HashMap<u32, usize> = HashMap::new();
+        let reference = |index: usize, r: &Reflector| ReflectorRef { index, id: r.id, name: r.name.clone() };
         for (index, r) in self.reflectors.iter().enumerate() {
             let fail = |field: &str, reason: String| {
                 FormatError::Invalid(InvalidField {
-                    reflector: Some(ReflectorRef { index, id: r.id, name: r.name.clone() }),
+                    reflector: Some(reference(index, r)),
                     field: field.to_owned(),
                     reason,
                 })
@@ -40,9 +50,58 @@ impl ReflectorSet {
             }
             check_reflector(r, self.reflectors.len(), index)
                 .map_err(|(field, reason)| fail(&field, reason))?;
+            let first = *groups.entry(r.parallel_group).or_insert(index);
+            // Both normals are finite and unit (checked above), so the angle is finite.
+            let angle = angle_deg(r.normal, self.reflectors[first].normal);
+            if angle > PARALLEL_GROUP_MAX_ANGLE_DEG {
+                return Err(fail(
+                    "parallel_group",
+                    format!(
+                        "group {} also holds {}, whose normal is {angle:.2}° from this one's \
+                         (at most {PARALLEL_GROUP_MAX_ANGLE_DEG}°): reflectors facing other ways \
+                         need groups of their own",
+                        r.parallel_group,
+                        reference(first, &self.reflectors[first]),
+                    ),
+                ));
+            }
         }
         Ok(())
     }
+
+    /// Gives every reflector a parallel group: reflectors whose normals are within half of
+    /// [`PARALLEL_GROUP_MAX_ANGLE_DEG`] of a group's first normal join it, in list order
+    /// (what the extractor does; for sets made by hand or by tools other than it).
+    pub fn assign_parallel_groups(&mut self) {
+        let normals: Vec<DVec3> = self.reflectors.iter().map(|r| r.normal).collect();
+        let cos = (0.5 * PARALLEL_GROUP_MAX_ANGLE_DEG).to_radians().cos();
+        for (r, g) in self.reflectors.iter_mut().zip(parallel_groups(&normals, cos)) {
+            r.parallel_group = g;
+        }
+    }
+}
+
+/// Group number of each normal, in order of first appearance: a normal joins the first
+/// group whose first normal it is within `cos_angle` of (oriented: a floor and a ceiling
+/// are in different groups).
+pub fn parallel_groups(normals: &[DVec3], cos_angle: f64) -> Vec<u32> {
+    let mut reps: Vec<DVec3> = Vec::new();
+    normals
+        .iter()
+        .map(|n| match reps.iter().position(|r| r.dot(*n) >= cos_angle) {
+            Some(g) => g as u32,
+            None => {
+                reps.push(*n);
+                (reps.len() - 1) as u32
+            }
+        })
+        .collect()
+}
+
+/// Angle between two unit vectors, degrees.
+fn angle_deg(a: DVec3, b: DVec3) -> f64 {
+    // atan2 of the cross and dot products: accurate for small angles, unlike acos.
+    a.cross(b).length().atan2(a.dot(b)).to_degrees()
 }
 
 fn check_reflector(r: &Reflector, count: usize, index: usize) -> Result<(), (String, String)> {

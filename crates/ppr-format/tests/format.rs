@@ -126,6 +126,12 @@ fn invalid_fields_are_named() {
         ),
         ("duplicate id", Box::new(|v| v["reflectors"][1]["id"] = serde_json::json!(0)), Some(1), "id"),
         (
+            "a wall in the floor's parallel group",
+            Box::new(|v| v["reflectors"][1]["parallel_group"] = serde_json::json!(0)),
+            Some(1),
+            "parallel_group",
+        ),
+        (
             "far away centre",
             Box::new(|v| v["reflectors"][0]["center"] = serde_json::json!([2e7, 0, 0])),
             Some(0),
@@ -136,6 +142,46 @@ fn invalid_fields_are_named() {
         let (got_index, got_field) = refused_field(&mutate(edit));
         assert_eq!((got_index, got_field.as_str()), (index, field), "{what}");
     }
+}
+
+#[test]
+fn a_parallel_group_holds_only_reflectors_facing_the_same_way() {
+    // The runtime's parallel rule lets only the nearest reflector of a group reflect a
+    // pixel: a group mixing orientations loses reflections, so it is refused on load.
+    let tilted = |deg: f64| {
+        let mut set = sample_set();
+        let mut step = set.reflectors[0].clone();
+        step.id = 9;
+        step.name = "step".into();
+        step.center.y = 0.5;
+        step.occluders.clear();
+        let (s, c) = deg.to_radians().sin_cos();
+        step.axis_u = DVec3::new(c, s, 0.0);
+        step.normal = step.axis_u.cross(step.axis_v);
+        set.reflectors.push(step);
+        set
+    };
+    // Within the extractor's tolerance (1 degree), and at the limit, the set is valid.
+    assert!(tilted(1.0).validate().is_ok());
+    assert!(tilted(ppr_format::PARALLEL_GROUP_MAX_ANGLE_DEG * 0.99).validate().is_ok());
+    for deg in [ppr_format::PARALLEL_GROUP_MAX_ANGLE_DEG * 1.01, 45.0, 90.0, 180.0] {
+        let err = tilted(deg).validate().expect_err("a tilted reflector in the floor's group");
+        assert_eq!(err.field_path().as_deref(), Some("reflectors[2].parallel_group"), "{deg}: {err}");
+        let msg = err.to_string();
+        assert!(msg.contains("\"step\"") && msg.contains("\"floor\""), "{msg}");
+    }
+    // A ceiling (the floor turned over) shares the floor's plane orientation but not its
+    // reflecting side: a group of its own.
+    let mut set = sample_set();
+    let mut ceiling = set.reflectors[0].clone();
+    ceiling.id = 9;
+    ceiling.occluders.clear();
+    ceiling.axis_v = DVec3::Z;
+    ceiling.normal = DVec3::NEG_Y;
+    set.reflectors.push(ceiling);
+    assert_eq!(set.validate().unwrap_err().field_path().as_deref(), Some("reflectors[2].parallel_group"));
+    set.reflectors[2].parallel_group = 2;
+    set.validate().expect("own group");
 }
 
 #[test]
@@ -252,6 +298,8 @@ prop_compose! {
         let n = reflectors.len() as u32;
         for (i, r) in reflectors.iter_mut().enumerate() {
             r.id = i as u32 * 3 + (seed % 3) as u32; // unique
+            // Random orientations: a group of their own each (shared groups are tested above).
+            r.parallel_group = r.parallel_group * 16 + i as u32;
             r.occluders = (0..n).filter(|&o| o != i as u32 && (seed >> (o % 64)) & 1 == 1).collect();
         }
         let mut set = ReflectorSet::new("level.glb");

@@ -83,7 +83,7 @@ impl ViewportRenderer {
                 device: device.clone(),
                 queue: queue.clone(),
                 level: LevelRenderer::new(device, queue, level, set),
-                ppr: PprTechnique::new(device, queue, set, ppr_runtime::ReflectionSettings::ALL),
+                ppr: PprTechnique::new(device, queue, set, ppr_runtime::ReflectionSettings::ALL)?,
                 composite: CompositePass::new(device),
                 targets: None,
             })
@@ -97,8 +97,9 @@ impl ViewportRenderer {
     pub fn set_reflectors(&mut self, set: &ReflectorSet) -> Result<(), InspectorError> {
         let device = self.device.clone();
         within_error_scope(&device, || {
+            // The runtime checks the set first: nothing changes if it refuses it.
+            self.ppr.renderer().set_reflectors(set)?;
             self.level.set_reflectors(&self.device, set);
-            self.ppr.renderer().set_reflectors(set);
             Ok(())
         })
     }

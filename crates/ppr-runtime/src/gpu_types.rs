@@ -40,8 +40,11 @@ pub struct FrameUniforms {
     pub layer_origin: [u32; 2],
     pub layer_extent: [u32; 2],
     pub encoding: EncodingParams,
+    /// Width of the confidence fade at the screen borders, pixels (0: no fade).
+    pub border_fade_px: f32,
+    pub _pad1: [u32; 3],
 }
-const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 224);
+const _: () = assert!(std::mem::size_of::<FrameUniforms>() == 240);
 
 /// `Layer` of `common.wgsl`: a glass or water reflector's atlas region.
 #[repr(C)]

@@ -11,6 +11,7 @@
 pub mod camera;
 pub mod encoding;
 mod frame_buffers;
+mod frame_upload;
 pub mod gpu_types;
 pub mod passes;
 pub mod plan;

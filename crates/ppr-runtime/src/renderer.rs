@@ -3,11 +3,12 @@
 use std::cell::Cell;
 
 use glam::DMat4;
-use ppr_format::ReflectorSet;
+use ppr_format::{FormatError, ReflectorSet};
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
+use crate::frame_upload::{FrameUpload, UploadTarget};
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
@@ -15,7 +16,7 @@ use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
 use crate::passes::super_tile_lists::SuperTileBindings;
-use crate::passes::tile_classify::ClassifyBindings;
+use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::{
     Ablation, BlockListPass, ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass,
     SuperTileListPass, TileClassifyPass,
@@ -50,8 +51,10 @@ impl Default for RendererDesc {
 ///   `TEXTURE_BINDING`;
 /// - `depth`: the scene's depth, `Depth32Float`, `TEXTURE_BINDING`, a depth-only view,
 ///   written with the camera's [`crate::Projection`] (standard or reversed Z);
-/// - `output`: `Rgba16Float` with `STORAGE_BINDING`, same size: reflected colour, alpha 1
-///   where a reflection was found and 0 elsewhere. It is written only where the plan's
+/// - `output`: `Rgba16Float` with `STORAGE_BINDING`, same size: reflected colour, alpha a
+///   confidence in [0, 1] (0 where no reflection was found, else fading towards the screen
+///   borders over [`ReflectionSettings::border_fade`]; `alpha > 0` tells "found"). Blend it
+///   over the engine's own fallback: `mix(fallback, rgb, alpha)`. It is written only where the plan's
 ///   passes run: nowhere when [`FramePlan::is_empty`], and with indirect dispatch only in
 ///   tiles that show a visible reflector (every pixel on a visible reflector is covered).
 ///
@@ -81,7 +84,8 @@ impl<'a> FrameInputs<'a> {
     }
 }
 
-/// Renders pixel-projected reflections for one view.
+/// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
+/// may share one renderer and one submit).
 ///
 /// ```no_run
 /// # fn frames(device: &wgpu::Device, queue: &wgpu::Queue, set: &ppr_format::ReflectorSet,
@@ -90,7 +94,7 @@ impl<'a> FrameInputs<'a> {
 /// use ppr_runtime::{FrameInputs, ReflectionRenderer, RendererDesc};
 /// // once:
 /// let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-/// ppr.set_reflectors(set);
+/// ppr.set_reflectors(set).expect("a valid set"); // validated again: a bad set is an error
 /// // every frame, after the scene's colour and depth are recorded:
 /// let plan = ppr.prepare(camera, [width, height]);
 /// let mut encoder = device.create_command_encoder(&Default::default());
@@ -101,7 +105,6 @@ impl<'a> FrameInputs<'a> {
 /// ```
 pub struct ReflectionRenderer {
     device: wgpu::Device,
-    queue: wgpu::Queue,
     /// Steps of the reflection pass; change at any time.
     pub settings: ReflectionSettings,
     /// How the frame plan picks passes and variants.
@@ -132,6 +135,8 @@ pub struct ReflectionRenderer {
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
     plan: Option<FramePlan>,
+    /// What the last `prepare` uploads; `encode` copies it into `buffers`.
+    upload: Option<FrameUpload>,
     timer: Option<PassTimer>,
     dispatches: Cell<u32>,
     layer_output_given: Cell<bool>,
@@ -142,7 +147,6 @@ impl ReflectionRenderer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, desc: &RendererDesc) -> Self {
         Self {
             device: device.clone(),
-            queue: queue.clone(),
             settings: ReflectionSettings::default(),
             plan_params: PlanParams::default(),
             write_mode: WriteMode::default(),
@@ -161,16 +165,26 @@ impl ReflectionRenderer {
             table_dirty: true,
             buffers: None,
             plan: None,
+            upload: None,
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             layer_output_given: Cell::new(false),
         }
     }
 
-    /// Replaces the reflectors (a validated set; e.g. from [`ReflectorSet::load`]).
-    pub fn set_reflectors(&mut self, set: &ReflectorSet) {
+    /// Replaces the reflectors, after checking every invariant of the format
+    /// ([`ReflectorSet::validate`]: a set from [`ReflectorSet::load`] passes; one built or
+    /// edited in memory may not). Cheap: no pipeline is rebuilt.
+    ///
+    /// # Errors
+    /// The [`FormatError`] naming the first reflector and field that break an invariant
+    /// (an occluder index out of range, a parallel group mixing orientations, ...); the
+    /// renderer then keeps the reflectors it had.
+    pub fn set_reflectors(&mut self, set: &ReflectorSet) -> Result<(), FormatError> {
+        set.validate()?;
         self.table = ShapeTable::from_set(set);
         self.table_dirty = true;
+        Ok(())
     }
 
     /// The reflectors as the runtime holds them.
@@ -178,8 +192,10 @@ impl ReflectionRenderer {
         &self.table
     }
 
-    /// Plans the frame and uploads what the GPU needs. Call once per frame before
-    /// [`Self::encode`].
+    /// Plans the frame and packs what the GPU needs into an upload of its own, which
+    /// [`Self::encode`] copies in where it records the passes. Call before [`Self::encode`]
+    /// once per view and frame; several views may be prepared and encoded (prepare, encode,
+    /// prepare, encode) before one submit, each with its own camera.
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
         let mut plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
         if let Some(layout) = self.encoding_override {
@@ -221,7 +237,11 @@ impl ReflectionRenderer {
             self.table_dirty = false;
         }
         let b = self.buffers.as_ref().expect("allocated above");
-        let queue = &self.queue;
+        if plan.is_empty() {
+            // Nothing is encoded.
+            self.upload = None;
+            return;
+        }
 
         let aspect = w as f32 / h.max(1) as f32;
         let clip_from_rel = camera.clip_from_relative(aspect);
@@ -246,45 +266,45 @@ impl ReflectionRenderer {
                 plan.layer_rect.max[1].saturating_sub(plan.layer_rect.min[1]),
             ],
             encoding: plan.encoding.gpu_params(),
+            border_fade_px: self.settings.border_fade_px(plan.viewport),
+            _pad1: [0; 3],
         };
-        queue.write_buffer(&b.uniforms, 0, bytemuck::bytes_of(&uniforms));
-        if !shapes.is_empty() {
-            queue.write_buffer(&b.shapes, 0, bytemuck::cast_slice(&shapes));
-        }
-        if !plan.visible.is_empty() {
-            queue.write_buffer(&b.visible, 0, bytemuck::cast_slice(&plan.visible));
-            queue.write_buffer(&b.screen_rects, 0, bytemuck::cast_slice(&plan.screen_rects));
-        }
-        if !plan.is_empty() {
+        let layers: Vec<GpuLayer> = plan
+            .layers
+            .iter()
+            .map(|l| GpuLayer {
+                rect_min: l.rect.min,
+                rect_max: l.rect.max,
+                offset: l.offset,
+                shape: l.shape,
+                kind: kind_code(l.kind),
+                _pad: 0,
+            })
+            .collect();
+        let tests = if plan.is_empty() {
+            Vec::new()
+        } else {
             let tested: Vec<u32> = plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
-            let tests = shape_tests(&self.table, &tested, camera.position);
-            queue.write_buffer(&b.tests, 0, bytemuck::cast_slice(&tests));
-        }
-        if !plan.source_rects.is_empty() {
-            queue.write_buffer(&b.source_rects, 0, bytemuck::cast_slice(&plan.source_rects));
-        }
-        if plan.indirect {
-            // The classify pass counts the active tiles from zero.
-            queue.write_buffer(&b.active_tiles, 0, &[0; 4]);
-        }
-        if !plan.layers.is_empty() {
-            let layers: Vec<GpuLayer> = plan
-                .layers
-                .iter()
-                .map(|l| GpuLayer {
-                    rect_min: l.rect.min,
-                    rect_max: l.rect.max,
-                    offset: l.offset,
-                    shape: l.shape,
-                    kind: kind_code(l.kind),
-                    _pad: 0,
-                })
-                .collect();
-            queue.write_buffer(&b.layers, 0, bytemuck::cast_slice(&layers));
-        }
+            shape_tests(&self.table, &tested, camera.position)
+        };
+        debug_assert!(b.fits(&self.table, plan, self.debug_writes));
+        self.upload = Some(FrameUpload::new(
+            &self.device,
+            &[
+                (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
+                (UploadTarget::Shapes, bytemuck::cast_slice(&shapes)),
+                (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
+                (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
+                (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
+                (UploadTarget::Tests, bytemuck::cast_slice(&tests)),
+                (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
+            ],
+        ));
     }
 
-    /// Records the frame's passes into `encoder` (nothing when the plan is empty).
+    /// Records the last prepared view's passes into `encoder` (nothing when the plan is
+    /// empty), starting with the copies of its upload. Calling it again for the same
+    /// `prepare` records the same frame again.
     ///
     /// # Panics
     /// If [`Self::prepare`] was not called first.
@@ -300,7 +320,14 @@ impl ReflectionRenderer {
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
 
+        // This prepared frame's uniforms, shapes and lists, copied in here (not at the
+        // submit), so that each encode runs with the camera it was prepared for.
+        self.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
         let has_main = !plan.visible.is_empty();
+        if plan.indirect && has_main {
+            // The classification counts the active tiles from zero, at every encode.
+            encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
+        }
         if plan.indirect && has_main {
             let bg = self.classify.bind_group(
                 device,

@@ -1,19 +1,35 @@
-//! What the user can switch per frame: the reflection pass's three steps.
+//! What the user can switch per frame: the reflection pass's steps and the confidence fade.
+
+/// Default [`ReflectionSettings::border_fade`]: a tenth of the viewport's shorter side.
+pub const DEFAULT_BORDER_FADE: f32 = 0.1;
 
 /// Steps of the reflection pass (seed: `enableHolesFilling`, `enableFiltering`,
-/// `enableFilterBleedingReduction`). All on by default.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// `enableFilterBleedingReduction`), and how the output's alpha (a confidence) fades. All on
+/// by default.
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReflectionSettings {
     /// Fill holes from the neighbour with the smallest offset (the 6-pixel rule).
     pub holes: bool,
     /// Sample the colour with the encoded sub-pixel fractions (bilinear).
     pub filtering: bool,
     /// Pull the filtered colour towards the unfiltered one in YCoCg (needs `filtering`).
+    /// The luma threshold is relative to the brighter sample (the seed's where that luma
+    /// is 1), so linear HDR input gets the same decisions at any exposure: no pre-exposure
+    /// is needed.
     pub anti_bleeding: bool,
     /// Water layers: fill reflections missing at the borders by stretching the nearest
     /// valid one along the plane's projected normal (the hash method's edge stretch,
     /// seed 002).
     pub water_edge_stretch: bool,
+    /// Width of the confidence fade at the screen borders, as a fraction of the viewport's
+    /// shorter side, in `[0, 0.5]` (values outside are clamped; NaN is 0). The output's
+    /// alpha is a confidence in `[0, 1]`: 0 where no reflection was found, else falling
+    /// linearly from 1 to 0 as the reflected point nears an edge of the screen over this
+    /// width (a reflected point about to leave the screen fades instead of popping), never
+    /// 0 where a reflection was found. 0 turns the fade off (alpha 1 wherever found, the
+    /// seed's output). PPR has no distance limit (every on-screen offset is encoded), so
+    /// nothing fades with distance.
+    pub border_fade: f32,
 }
 
 impl Default for ReflectionSettings {
@@ -23,12 +39,22 @@ impl Default for ReflectionSettings {
 }
 
 impl ReflectionSettings {
-    /// Every step on: the seed's final image.
-    pub const ALL: Self =
-        Self { holes: true, filtering: true, anti_bleeding: true, water_edge_stretch: true };
-    /// Every step off: raw decoded pixel data.
-    pub const RAW: Self =
-        Self { holes: false, filtering: false, anti_bleeding: false, water_edge_stretch: false };
+    /// Every step on: the seed's final image, with the default border fade.
+    pub const ALL: Self = Self {
+        holes: true,
+        filtering: true,
+        anti_bleeding: true,
+        water_edge_stretch: true,
+        border_fade: DEFAULT_BORDER_FADE,
+    };
+    /// Every step off: raw decoded pixel data (alpha 1 wherever found: no fade).
+    pub const RAW: Self = Self {
+        holes: false,
+        filtering: false,
+        anti_bleeding: false,
+        water_edge_stretch: false,
+        border_fade: 0.0,
+    };
 
     /// The settings as shader flags.
     pub fn flags(&self) -> u32 {
@@ -37,6 +63,12 @@ impl ReflectionSettings {
             | (if self.filtering { FLAG_FILTERING } else { 0 })
             | (if self.anti_bleeding { FLAG_ANTI_BLEEDING } else { 0 })
             | (if self.water_edge_stretch { FLAG_WATER_STRETCH } else { 0 })
+    }
+
+    /// The border fade's width in pixels for a viewport (0 when off).
+    pub fn border_fade_px(&self, [width, height]: [u32; 2]) -> f32 {
+        let fade = if self.border_fade.is_nan() { 0.0 } else { self.border_fade.clamp(0.0, 0.5) };
+        fade * width.min(height) as f32
     }
 }
 

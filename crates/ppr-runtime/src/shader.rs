@@ -84,4 +84,30 @@ mod tests {
             .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(&source)));
         }
     }
+
+    /// The WGSL structs the Rust side uploads have the sizes of their `#[repr(C)]` mirrors
+    /// (a field added on one side only would shift every field after it).
+    #[test]
+    fn shared_structs_match_their_rust_mirrors() {
+        use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape};
+        let source = super::source("");
+        let module =
+            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        let size = |name: &str| {
+            module
+                .types
+                .iter()
+                .find_map(|(_, t)| match &t.inner {
+                    naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
+                        Some(*span as usize)
+                    }
+                    _ => None,
+                })
+                .unwrap_or_else(|| panic!("no struct {name} in the shared WGSL"))
+        };
+        assert_eq!(size("FrameUniforms"), std::mem::size_of::<FrameUniforms>());
+        assert_eq!(size("Shape"), std::mem::size_of::<GpuShape>());
+        assert_eq!(size("Layer"), std::mem::size_of::<GpuLayer>());
+        assert_eq!(size("EncodingParams"), std::mem::size_of::<crate::encoding::EncodingParams>());
+    }
 }

@@ -125,9 +125,11 @@ mod tests {
         for y in 0..h {
             for x in 0..w {
                 let ndc = [(x as f32 + 0.5) / w as f32 * 2.0 - 1.0, 1.0 - (y as f32 + 0.5) / h as f32 * 2.0];
-                let hits = (1..200).any(|k| {
-                    let z = 1.0 - 1.0 / (1.0 + k as f32 * 0.05);
-                    let p = rel_from_clip.project_point3(Vec3::new(ndc[0], ndc[1], z));
+                let near = rel_from_clip.project_point3(Vec3::new(ndc[0], ndc[1], 0.0));
+                let far = rel_from_clip.project_point3(Vec3::new(ndc[0], ndc[1], 0.5));
+                let dir = (far - near).normalize();
+                let hits = (0..240).any(|k| {
+                    let p = near + dir * (0.05 * 1.04f32.powi(k));
                     let dist = p.dot(n) - d;
                     if dist <= 0.0 {
                         return false;

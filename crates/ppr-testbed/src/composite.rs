@@ -30,7 +30,7 @@ struct CompositeUniform {
 pub struct CompositeInputs<'a> {
     /// Linear scene colour (`Rgba16Float`).
     pub scene_color: &'a wgpu::TextureView,
-    /// Reflection colour with validity in alpha (`Rgba16Float`, e.g. the PPR output or the reference).
+    /// Reflection colour with its confidence in alpha (`Rgba16Float`, e.g. the PPR output or the reference).
     pub reflection: &'a wgpu::TextureView,
     /// Reflector id (`R32Uint`): only non-zero pixels get the reflection.
     pub reflector_id: &'a wgpu::TextureView,

@@ -102,7 +102,7 @@ fn main() -> anyhow::Result<()> {
         anti_bleeding: !args.no_anti_bleed,
         ..ReflectionSettings::ALL
     };
-    let mut ppr = PprTechnique::new(&gpu.device, &gpu.queue, &reflectors, settings);
+    let mut ppr = PprTechnique::new(&gpu.device, &gpu.queue, &reflectors, settings)?;
     let report =
         run(&job, &gpu, Some(&mut ppr)).with_context(|| format!("rendering {}", args.level.display()))?;
     println!("{report}");

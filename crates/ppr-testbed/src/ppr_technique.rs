@@ -1,6 +1,6 @@
 //! Pixel-projected reflections from `ppr-runtime` as a [`ReflectionTechnique`].
 
-use ppr_format::ReflectorSet;
+use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
 
 use crate::technique::{ReflectionInputs, ReflectionTechnique};
@@ -116,16 +116,19 @@ impl LayerMerge {
 impl PprTechnique {
     /// A renderer for `reflectors` with the given reflection-pass steps (timestamps on
     /// where the device has them).
+    ///
+    /// # Errors
+    /// The runtime refuses a set that breaks an invariant of the format.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         reflectors: &ReflectorSet,
         settings: ReflectionSettings,
-    ) -> Self {
+    ) -> Result<Self, FormatError> {
         let mut renderer = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-        renderer.set_reflectors(reflectors);
+        renderer.set_reflectors(reflectors)?;
         renderer.settings = settings;
-        Self { renderer, device: device.clone(), merge: LayerMerge::new(device), layer_targets: None }
+        Ok(Self { renderer, device: device.clone(), merge: LayerMerge::new(device), layer_targets: None })
     }
 
     /// The main and layer targets for a frame of `size`, (re)created when it changes.

@@ -99,7 +99,8 @@ pub struct RenderReport {
     pub on_screen: Option<ImageComparison>,
     /// Technique vs reference over the other reflector pixels (off screen, hidden, background).
     pub off_screen: Option<ImageComparison>,
-    /// Share of on-screen reflector pixels where the technique found no reflection (alpha < 0.5).
+    /// Share of on-screen reflector pixels where the technique found no reflection (alpha 0; PPR's alpha is a confidence, > 0
+    /// wherever one was found).
     pub on_screen_holes: Option<f64>,
     /// Reflector pixels, and those whose reflected point is on screen.
     pub reflector_pixels: (usize, usize),
@@ -261,12 +262,12 @@ pub fn run_level(
     Ok(report)
 }
 
-/// Share of the masked pixels whose reflection alpha is below 0.5 (0 for an empty mask).
+/// Share of the masked pixels whose reflection alpha is 0 (no reflection; 0 for an empty mask).
 pub fn hole_share(reflection: &Rgba32FImage, mask: &PixelMask) -> f64 {
     let total = mask.count();
     if total == 0 {
         return 0.0;
     }
-    let holes = reflection.enumerate_pixels().filter(|(x, y, p)| mask.get(*x, *y) && p.0[3] < 0.5).count();
+    let holes = reflection.enumerate_pixels().filter(|(x, y, p)| mask.get(*x, *y) && p.0[3] <= 0.0).count();
     holes as f64 / total as f64
 }

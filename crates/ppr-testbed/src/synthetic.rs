@@ -133,6 +133,8 @@ impl SyntheticScene {
                 DVec2::new(2.5, 1.25),
             ));
         }
+        // The wall pane faces another way than the floor: a parallel group of its own.
+        reflectors.assign_parallel_groups();
         Self { level, reflectors, camera }.translated(params.offset)
     }
 

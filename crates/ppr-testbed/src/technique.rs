@@ -5,7 +5,8 @@ use ppr_runtime::Camera;
 
 use crate::gbuffer_targets::GBuffer;
 
-/// Format of a technique's output: linear reflection colour, alpha 1 where one was found.
+/// Format of a technique's output: linear reflection colour, alpha > 0 where one was found
+/// (PPR: its confidence in [0, 1]; the baselines: 1).
 pub const REFLECTION_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// Textures a technique reads and writes in one frame (all the same size).

@@ -1,7 +1,9 @@
-//! The composite pass: scene colour and PPR's reflection mixed by the reflection weight,
-//! tone mapped, into the output (the swapchain image or the screenshot target). Also the
-//! debug views of the reflection buffer and the weight.
+//! The composite pass: PPR's reflection over the fallback reflection by its confidence,
+//! then over the scene colour by the reflection weight, tone mapped, into the output (the
+//! swapchain image or the screenshot target). Also the debug views of the reflection
+//! buffer and the weight.
 
+use crate::forward_pass::BACKGROUND;
 use crate::frame_targets::FrameTargets;
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
@@ -13,7 +15,7 @@ pub enum CompositeMode {
     /// The game's image: scene with reflections.
     #[default]
     Final,
-    /// PPR's raw output (reflected colour; holes dark purple).
+    /// PPR's raw output (reflected colour over dark purple by its confidence: holes purple).
     ReflectionBuffer,
     /// The per-pixel reflection weight of the forward pass.
     ReflectionWeight,
@@ -27,8 +29,13 @@ struct CompositeUniform {
     reflections: u32,
     encode_srgb: u32,
     exposure: f32,
+    fallback: [f32; 4],
 }
-const _: () = assert!(size_of::<CompositeUniform>() == 16);
+const _: () = assert!(size_of::<CompositeUniform>() == 32);
+
+/// The reflection where PPR has none, or fades out at the screen borders: a constant sky
+/// colour, the one the forward pass clears to (a game samples its reflection probe there).
+pub const FALLBACK_REFLECTION: [f32; 3] = [BACKGROUND.r as f32, BACKGROUND.g as f32, BACKGROUND.b as f32];
 
 /// The composite pass for one output format.
 pub struct CompositePass {
@@ -107,6 +114,7 @@ impl CompositePass {
             reflections: u32::from(reflections),
             encode_srgb: u32::from(self.encode_srgb),
             exposure: 1.0,
+            fallback: [FALLBACK_REFLECTION[0], FALLBACK_REFLECTION[1], FALLBACK_REFLECTION[2], 0.0],
         };
         self.queue.write_buffer(&self.uniform, 0, bytemuck::bytes_of(&uniform));
         let group = self.device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -58,7 +58,7 @@ pub struct FrameTargets {
     pub color: Target,
     pub reflection_weight: Target,
     pub depth: Target,
-    /// PPR's output: reflected colour, alpha 1 where a reflection was found.
+    /// PPR's output: reflected colour, alpha its confidence (0 where none was found).
     pub reflection: Target,
 }
 
@@ -81,7 +81,7 @@ impl FrameTargets {
                 "walkthrough reflection weight",
                 size,
                 WEIGHT_FORMAT,
-                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING,
+                U::RENDER_ATTACHMENT | U::TEXTURE_BINDING | U::COPY_SRC,
             ),
             depth: Target::new(
                 device,

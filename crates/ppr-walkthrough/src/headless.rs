@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use anyhow::{Context, Result};
-use image::{Rgba32FImage, RgbaImage};
+use image::{GrayImage, Rgba32FImage, RgbaImage};
 use ppr_runtime::{Camera, FramePlan, PassTimings};
 
 use crate::camera_spec::pick_camera;
@@ -18,7 +18,7 @@ use crate::offscreen_target::{OFFSCREEN_FORMAT, OffscreenTarget};
 use crate::overlay_text::{rasterise, scale_for_width};
 use crate::screen_passes::ScreenPasses;
 use crate::status_line::{StatusInputs, status_lines};
-use crate::texture_readback::read_rgba16f;
+use crate::texture_readback::{read_r8, read_rgba16f};
 use crate::walkthrough_renderer::WalkthroughRenderer;
 
 /// How long start-up waits for the watcher's first reading of the set.
@@ -30,9 +30,11 @@ pub struct HeadlessFrame {
     pub image: RgbaImage,
     /// The forward pass's linear colour (what PPR reflects), before compositing.
     pub scene_color: Rgba32FImage,
-    /// PPR's output: reflected colour, alpha 1 where a reflection was found. All zero when
-    /// the plan was empty.
+    /// PPR's output: reflected colour, alpha its confidence (0 where none was found). All
+    /// zero when the plan was empty.
     pub reflection: Rgba32FImage,
+    /// The forward pass's reflection weight (reflectivity × Fresnel), 0–255.
+    pub reflection_weight: GrayImage,
     pub plan: FramePlan,
     pub timings: Option<PassTimings>,
     pub camera: Camera,
@@ -61,7 +63,7 @@ impl HeadlessSession {
     ) -> Result<Self> {
         let ctx = GpuContext::new(instance, None)?;
         let mut renderer =
-            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth);
+            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = args.settings();
         let screen = ScreenPasses::new(&ctx.device, &ctx.queue, OFFSCREEN_FORMAT);
         let target = OffscreenTarget::new(&ctx.device, args.size);
@@ -94,8 +96,10 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
     let mut frame = 0;
     while frame < frames || session.ctx.lost().is_some() {
         for event in watcher.poll() {
-            if let Some(set) = sets.apply(event) {
-                session.renderer.set_reflectors(set);
+            if let Some(set) = sets.apply(event)
+                && let Err(e) = session.renderer.set_reflectors(set)
+            {
+                eprintln!("ppr-walkthrough: the runtime refused {set_file}: {e}");
             }
         }
         if let Some(reason) = session.ctx.lost() {
@@ -136,6 +140,7 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
     let image = session.target.read(device, queue)?;
     let targets = session.renderer.targets().context("no frame was rendered")?;
     let scene_color = read_rgba16f(device, queue, &targets.color.texture)?;
+    let reflection_weight = read_r8(device, queue, &targets.reflection_weight.texture)?;
     let plan = plan.context("no frame was rendered")?;
     let reflection = if plan.is_empty() {
         Rgba32FImage::new(targets.size[0], targets.size[1])
@@ -149,6 +154,7 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
         image,
         scene_color,
         reflection,
+        reflection_weight,
         plan,
         timings,
         camera,

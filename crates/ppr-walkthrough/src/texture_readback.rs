@@ -2,7 +2,7 @@
 //! scene colour and PPR's output (`Rgba16Float`).
 
 use anyhow::{Context, Result, anyhow, bail};
-use image::{Rgba32FImage, RgbaImage};
+use image::{GrayImage, Rgba32FImage, RgbaImage};
 
 /// The texture's bytes, rows without wgpu's 256-byte padding.
 ///
@@ -69,6 +69,18 @@ pub fn read_rgba8(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Te
     }
     let bytes = read_texture_bytes(device, queue, texture)?;
     RgbaImage::from_raw(texture.width(), texture.height(), bytes).context("readback size")
+}
+
+/// An `R8Unorm` texture as a grey image.
+///
+/// # Errors
+/// Another format, or the readback failed.
+pub fn read_r8(device: &wgpu::Device, queue: &wgpu::Queue, texture: &wgpu::Texture) -> Result<GrayImage> {
+    if texture.format() != wgpu::TextureFormat::R8Unorm {
+        bail!("read_r8: {:?} is not R8Unorm", texture.format());
+    }
+    let bytes = read_texture_bytes(device, queue, texture)?;
+    GrayImage::from_raw(texture.width(), texture.height(), bytes).context("readback size")
 }
 
 /// An `Rgba16Float` texture as a float image.

@@ -14,7 +14,7 @@
 //! PPR never sees the meshes, the materials or the swapchain: only colour, depth and its
 //! output texture.
 
-use ppr_format::ReflectorSet;
+use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, Choice, DepthMode, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc};
 
 use crate::forward_pass::{ForwardPass, SceneLight};
@@ -41,13 +41,16 @@ pub struct WalkthroughRenderer {
 impl WalkthroughRenderer {
     /// Uploads the level, builds the passes and hands PPR the reflectors (an empty set
     /// when there is none yet: PPR then plans empty frames and dispatches nothing).
+    ///
+    /// # Errors
+    /// The runtime refuses a set that breaks an invariant of the format.
     pub fn new(
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         level: &LevelData,
         reflectors: Option<&ReflectorSet>,
         depth: DepthMode,
-    ) -> Self {
+    ) -> Result<Self, FormatError> {
         let forward = ForwardPass::new(device, depth);
         let meshes = LevelMeshes::new(device, queue, &forward.layouts, level);
         let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc { timestamps: true });
@@ -55,8 +58,8 @@ impl WalkthroughRenderer {
         // and a composite that knows their surfaces; this walkthrough keeps to the main
         // buffer: water is reflected there and glass panels are skipped.
         ppr.plan_params.layers = Choice::Off;
-        ppr.set_reflectors(reflectors.unwrap_or(&ReflectorSet::new("")));
-        Self {
+        ppr.set_reflectors(reflectors.unwrap_or(&ReflectorSet::new("")))?;
+        Ok(Self {
             device: device.clone(),
             queue: queue.clone(),
             meshes,
@@ -64,12 +67,16 @@ impl WalkthroughRenderer {
             ppr,
             light: SceneLight::default(),
             targets: None,
-        }
+        })
     }
 
     /// Takes a new reflector set (hot reload): cheap, nothing is recompiled.
-    pub fn set_reflectors(&mut self, reflectors: &ReflectorSet) {
-        self.ppr.set_reflectors(reflectors);
+    ///
+    /// # Errors
+    /// The runtime refuses a set that breaks an invariant of the format (it keeps the
+    /// previous one); a set from `ReflectorSet::load` passes.
+    pub fn set_reflectors(&mut self, reflectors: &ReflectorSet) -> Result<(), FormatError> {
+        self.ppr.set_reflectors(reflectors)
     }
 
     /// The targets of the last frame (scene colour, weight, depth, PPR output).

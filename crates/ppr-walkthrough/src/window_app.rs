@@ -107,7 +107,7 @@ impl WindowSession {
         config.format = caps.formats.iter().copied().find(|f| f.is_srgb()).unwrap_or(config.format);
         config.present_mode = wgpu::PresentMode::AutoVsync;
         let mut renderer =
-            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth);
+            WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = settings;
         let screen = ScreenPasses::new(&ctx.device, &ctx.queue, config.format);
         Ok(Self { surface, config, ctx, renderer, screen })
@@ -155,8 +155,9 @@ impl WalkthroughApp {
         for event in self.watcher.poll() {
             if let Some(set) = self.sets.apply(event)
                 && let Some(session) = &mut self.session
+                && let Err(e) = session.renderer.set_reflectors(set)
             {
-                session.renderer.set_reflectors(set);
+                eprintln!("ppr-walkthrough: the runtime refused the reflector set: {e}");
             }
         }
     }

@@ -33,7 +33,8 @@ fn sspr_is_close_to_ppr_without_its_fixes() {
         let (sspr, _) = run_sspr(&scene, SsprSettings::seed());
         let g = gpu();
         let mut raw =
-            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::RAW);
+            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::RAW)
+                .expect("a valid set");
         let p = run(&scene, &scene.camera, SIZE, &mut raw);
         eprintln!("{}", p.summary());
         let (c, pc) = (sspr.on_screen(), p.on_screen());
@@ -205,7 +206,8 @@ fn sspr_hash_order_is_not_distance_on_a_vertical_plane() {
         let (sspr, technique) = run_sspr(&scene, SsprSettings::seed());
         assert_eq!(technique.layer_count(), 2, "floor and pane each get a layer");
         let mut raw =
-            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::RAW);
+            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::RAW)
+                .expect("a valid set");
         let ppr = run(&scene, &scene.camera, SIZE, &mut raw);
         let pane_on_screen = |r: &TechniqueRun| {
             let [w, h] = r.frame.size();

@@ -101,7 +101,7 @@ pub fn visualize_technique(
             return srgb8(r.color.get_pixel(x, y), tone_map, 0.3);
         }
         let p = image.get_pixel(x, y);
-        if p.0[3] < 0.5 { HOLE_COLOR } else { srgb8(p, tone_map, 1.0) }
+        if p.0[3] <= 0.0 { HOLE_COLOR } else { srgb8(p, tone_map, 1.0) }
     })
 }
 

@@ -115,7 +115,7 @@ pub fn run_extract_trade(
             let rect_area: f64 = set.reflectors.iter().map(|r| r.area()).sum();
             let reflective: f64 = set.reflectors.iter().map(|r| r.area() * r.coverage).sum();
             let mut ppr =
-                PprRunner::new(device, queue, &set, "ppr", ReflectionSettings::ALL, PlanParams::default());
+                PprRunner::new(device, queue, &set, "ppr", ReflectionSettings::ALL, PlanParams::default())?;
             let (mut proj, mut refl, mut total, mut visible) =
                 (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             for cam in &scene.cameras {

@@ -81,7 +81,11 @@ struct Measurer<'a> {
 }
 
 impl Measurer<'_> {
-    fn run(&self, g: &GeneratedLevel, variants: &[(&str, PlanParams)]) -> Vec<ScalingRow> {
+    fn run(
+        &self,
+        g: &GeneratedLevel,
+        variants: &[(&str, PlanParams)],
+    ) -> Result<Vec<ScalingRow>, BenchError> {
         let (device, queue) = (&self.gpu.device, &self.gpu.queue);
         // The G-buffer needs no reflector mask: PPR reads colour and depth only.
         let mut level = LevelRenderer::new(device, queue, &g.level, &ReflectorSet::new(""));
@@ -103,7 +107,7 @@ impl Measurer<'_> {
         let mut rows = Vec::new();
         for (variant, params) in variants {
             let mut ppr =
-                PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params);
+                PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params)?;
             let run = self.frames.run(device, queue, &mut ppr, &frame, &g.camera, self.size);
             let plan = ppr.renderer().plan().cloned();
             eprintln!(
@@ -123,7 +127,7 @@ impl Measurer<'_> {
                 source: run.source,
             });
         }
-        rows
+        Ok(rows)
     }
 }
 
@@ -156,7 +160,7 @@ pub fn run_scaling(
     let mut rows = Vec::new();
     for &family in &sc.families {
         for &n in &sc.counts {
-            rows.extend(m.run(&generate(family, n), &on_off));
+            rows.extend(m.run(&generate(family, n), &on_off)?);
         }
     }
     let mut threshold_rows = Vec::new();
@@ -166,7 +170,7 @@ pub fn run_scaling(
             let done: Vec<ScalingRow> =
                 rows.iter().filter(|r| r.family == family.as_str() && r.shapes == n).cloned().collect();
             if done.is_empty() {
-                threshold_rows.extend(m.run(&generate(family, n), &on_off));
+                threshold_rows.extend(m.run(&generate(family, n), &on_off)?);
             } else {
                 threshold_rows.extend(done);
             }
@@ -178,7 +182,7 @@ pub fn run_scaling(
         let mut r = m.run(
             &coverage_level(c),
             &[("indirect off", indirect(Choice::Off)), ("indirect on", indirect(Choice::On))],
-        );
+        )?;
         for row in &mut r {
             row.family = "coverage".into();
         }

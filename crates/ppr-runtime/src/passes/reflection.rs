@@ -4,7 +4,7 @@ use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_gr
 
 pub const WGSL: &str = include_str!("../../../../shaders/ppr/reflection.wgsl");
 
-/// Format of the reflection output (colour + validity alpha).
+/// Format of the reflection output (colour + confidence alpha).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// Buffers and views the reflection pass reads and writes.

@@ -79,7 +79,8 @@ impl TileClassifyPass {
     }
 
     /// Records the classification of every tile and the argument fix-up (two dispatches).
-    /// The active-tile count must be zero beforehand (the renderer writes it each frame).
+    /// The active-tile count must be zero beforehand: the renderer clears it in the encoder
+    /// before every classification (not once per `prepare`: a second encode would append).
     pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
         let (x, y) = tile_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);

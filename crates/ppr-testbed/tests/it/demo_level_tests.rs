@@ -39,6 +39,7 @@ pub fn demo_reflectors() -> ReflectorSet {
             set.reflectors.push(reflector);
         }
     }
+    set.assign_parallel_groups();
     set.validate().expect("demo set is valid");
     set
 }

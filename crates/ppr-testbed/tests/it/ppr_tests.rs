@@ -35,7 +35,8 @@ fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
         let g = gpu();
         let _guard = g.lock();
         let mut ppr =
-            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::ALL);
+            PprTechnique::new(&g.ctx.device, &g.ctx.queue, &scene.reflectors, ReflectionSettings::ALL)
+                .expect("a valid set");
         let report = run_level(&job, &scene.level, &scene.reflectors, &scene.camera, &g.ctx, Some(&mut ppr))
             .expect("render job");
         eprintln!("{report}");

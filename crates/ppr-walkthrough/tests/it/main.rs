@@ -6,6 +6,7 @@
 
 mod command_line;
 mod common;
+mod composite;
 mod device_loss;
 mod headless_vs_testbed;
 mod hot_reload;

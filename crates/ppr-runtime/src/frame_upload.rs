@@ -1,0 +1,76 @@
+//! What one `prepare` hands to the GPU, in a buffer of its own: the frame uniforms, the
+//! camera-relative shapes, the visible list, the screen rectangles, the layers, the shape
+//! tests and the source boxes.
+//! `encode` records copies from it into the frame buffers before its passes.
+//!
+//! Why not `queue.write_buffer` into the frame buffers: those writes all land at the next
+//! submit, before any command of it, so two views prepared and encoded before one submit
+//! would both run with the last view's camera. A copy recorded in the encoder lands
+//! where it is recorded.
+
+use wgpu::util::DeviceExt;
+
+use crate::frame_buffers::FrameBuffers;
+
+/// The frame buffer a part of the upload is copied into (at offset 0).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum UploadTarget {
+    Uniforms,
+    Shapes,
+    Visible,
+    ScreenRects,
+    Layers,
+    Tests,
+    SourceRects,
+}
+
+impl UploadTarget {
+    fn buffer(self, b: &FrameBuffers) -> &wgpu::Buffer {
+        match self {
+            Self::Uniforms => &b.uniforms,
+            Self::Shapes => &b.shapes,
+            Self::Visible => &b.visible,
+            Self::ScreenRects => &b.screen_rects,
+            Self::Layers => &b.layers,
+            Self::Tests => &b.tests,
+            Self::SourceRects => &b.source_rects,
+        }
+    }
+}
+
+/// One prepared frame's data, immutable once built.
+pub(crate) struct FrameUpload {
+    buffer: wgpu::Buffer,
+    /// (target, offset in `buffer`, bytes).
+    parts: Vec<(UploadTarget, u64, u64)>,
+}
+
+impl FrameUpload {
+    /// Packs the non-empty `parts` (each a whole number of 4-byte words, as every GPU
+    /// struct of the runtime is) into one source buffer.
+    pub fn new(device: &wgpu::Device, parts: &[(UploadTarget, &[u8])]) -> Self {
+        let mut bytes = Vec::with_capacity(parts.iter().map(|(_, p)| p.len()).sum());
+        let mut placed = Vec::with_capacity(parts.len());
+        for &(target, data) in parts.iter().filter(|(_, p)| !p.is_empty()) {
+            debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
+            placed.push((target, bytes.len() as u64, data.len() as u64));
+            bytes.extend_from_slice(data);
+        }
+        // A buffer cannot be empty: pad to one word.
+        bytes.resize(bytes.len().max(4), 0);
+        let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("ppr frame upload"),
+            contents: &bytes,
+            usage: wgpu::BufferUsages::COPY_SRC,
+        });
+        Self { buffer, parts: placed }
+    }
+
+    /// Records the copies into `buffers` (which must be the ones the frame was prepared
+    /// for: every part fits its target).
+    pub fn encode_copies(&self, encoder: &mut wgpu::CommandEncoder, buffers: &FrameBuffers) {
+        for &(target, offset, size) in &self.parts {
+            encoder.copy_buffer_to_buffer(&self.buffer, offset, target.buffer(buffers), 0, size);
+        }
+    }
+}

@@ -1,0 +1,194 @@
+//! How the runtime's API is used in a real frame loop: more than one `encode` per
+//! `prepare`, several views prepared before one submit, and sets that were never validated.
+
+use glam::{DVec3, Vec3, Vec4};
+use ppr_runtime::{Camera, Choice, FrameInputs, Projection, ReflectionRenderer};
+
+use ppr_tests::gpu::{gpu, read_buffer};
+use ppr_tests::harness::{GpuFrame, read_rgba16f, renderer, run};
+use ppr_tests::scene::{Albedo, AnalyticScene};
+
+const SIZE: [u32; 2] = [128, 96];
+
+/// A floor mirror in a small room (tiles active over the lower part of the screen only).
+fn scene() -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    s.quad(
+        DVec3::new(0.0, -0.001, -4.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [8.0, 8.0],
+        Albedo::Solid(Vec3::splat(0.25)),
+    );
+    s.quad(DVec3::new(0.0, 2.5, -8.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.25));
+    s.cuboid(DVec3::new(-1.2, 0.0, -4.6), DVec3::new(-0.2, 1.0, -3.8), Vec3::new(0.9, 0.15, 0.1));
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -3.0), DVec3::X, DVec3::NEG_Z, [1.5, 1.2]);
+    s
+}
+
+fn camera(eye: DVec3) -> Camera {
+    Camera::look_at(eye, DVec3::new(0.0, 0.5, -5.0), Vec3::Y, Projection::default())
+}
+
+/// Records `r`'s last prepared frame with `frame`'s colour and depth into `output`.
+fn encode_into(
+    r: &ReflectionRenderer,
+    encoder: &mut wgpu::CommandEncoder,
+    frame: &GpuFrame,
+    output: &wgpu::Texture,
+) {
+    let color = frame.color.create_view(&Default::default());
+    let depth = frame.depth.create_view(&wgpu::TextureViewDescriptor {
+        aspect: wgpu::TextureAspect::DepthOnly,
+        ..Default::default()
+    });
+    let output = output.create_view(&Default::default());
+    r.encode(encoder, &FrameInputs::new(&color, &depth, &output));
+}
+
+/// The active-tile count the classification left in the renderer's buffer.
+fn active_tile_count(r: &ReflectionRenderer) -> u32 {
+    let words: Vec<u32> =
+        bytemuck::pod_collect_to_vec(&read_buffer(r.active_tiles_buffer().expect("prepared")));
+    words[0]
+}
+
+fn bits(pixels: &[Vec4]) -> Vec<u32> {
+    pixels.iter().flat_map(|p| p.to_array().map(f32::to_bits)).collect()
+}
+
+#[test]
+fn a_second_encode_per_prepare_gives_the_same_output_as_the_first() {
+    let s = scene();
+    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let gpu_frame = GpuFrame::upload(&s.render(&cam, SIZE));
+    let g = gpu();
+    for indirect in [Choice::On, Choice::Off] {
+        let mut r = renderer();
+        r.plan_params.indirect = indirect;
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        let plan = r.prepare(&cam, SIZE).clone();
+        assert_eq!(plan.indirect, indirect == Choice::On, "{plan}");
+        let mut outputs = Vec::new();
+        let mut counts = Vec::new();
+        // Three encodes of one prepare: two in one encoder, then one in another submit.
+        let outs: Vec<wgpu::Texture> = (0..3).map(|_| fresh_output()).collect();
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        encode_into(&r, &mut encoder, &gpu_frame, &outs[0]);
+        g.queue.submit([encoder.finish()]);
+        counts.push(active_tile_count(&r));
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        encode_into(&r, &mut encoder, &gpu_frame, &outs[1]);
+        encode_into(&r, &mut encoder, &gpu_frame, &outs[2]);
+        g.queue.submit([encoder.finish()]);
+        counts.push(active_tile_count(&r));
+        for o in &outs {
+            outputs.push(read_rgba16f(o));
+        }
+        let found = outputs[0].iter().filter(|p| p.w > 0.0).count();
+        eprintln!(
+            "indirect {indirect:?}: {found} pixels with a reflection; active-tile counts {counts:?} of {} tiles",
+            plan.tile_count()
+        );
+        assert!(found > 500, "{found}");
+        if plan.indirect {
+            assert!(counts[0] > 0 && counts[0] < plan.tile_count(), "{counts:?}");
+            assert_eq!(counts[1], counts[0], "each encode counts the active tiles from zero");
+        }
+        assert!(bits(&outputs[1]) == bits(&outputs[0]), "the second encode changed the output");
+        assert!(bits(&outputs[2]) == bits(&outputs[0]), "the third encode changed the output");
+    }
+}
+
+/// An output texture for `SIZE`, zero-initialised.
+fn fresh_output() -> wgpu::Texture {
+    gpu().device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("test output"),
+        size: wgpu::Extent3d { width: SIZE[0], height: SIZE[1], depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: ppr_runtime::OUTPUT_FORMAT,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    })
+}
+
+#[test]
+fn views_prepared_before_one_submit_each_get_their_own_camera() {
+    // Split screen (or two probes) with one renderer, and with one renderer per view:
+    // prepare, encode, prepare, encode, then one submit.
+    let s = scene();
+    let set = s.reflector_set();
+    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
+    let frames: Vec<GpuFrame> = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    let g = gpu();
+    for indirect in [Choice::Off, Choice::On] {
+        // Each view alone.
+        let alone: Vec<Vec<Vec4>> = cams
+            .iter()
+            .zip(&frames)
+            .map(|(c, f)| {
+                let mut r = renderer();
+                r.plan_params.indirect = indirect;
+                r.set_reflectors(&set).expect("a valid set");
+                run(&mut r, f, c).pixels
+            })
+            .collect();
+        assert!(bits(&alone[0]) != bits(&alone[1]), "the two views must differ");
+        // One renderer for both views.
+        let mut shared = renderer();
+        shared.plan_params.indirect = indirect;
+        shared.set_reflectors(&set).expect("a valid set");
+        let outs = [fresh_output(), fresh_output()];
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        for k in 0..2 {
+            shared.prepare(&cams[k], SIZE);
+            encode_into(&shared, &mut encoder, &frames[k], &outs[k]);
+        }
+        g.queue.submit([encoder.finish()]);
+        // One renderer per view, both prepared before either is encoded.
+        let mut own = [renderer(), renderer()];
+        let own_outs = [fresh_output(), fresh_output()];
+        for (k, r) in own.iter_mut().enumerate() {
+            r.plan_params.indirect = indirect;
+            r.set_reflectors(&set).expect("a valid set");
+            r.prepare(&cams[k], SIZE);
+        }
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        for k in 0..2 {
+            encode_into(&own[k], &mut encoder, &frames[k], &own_outs[k]);
+        }
+        g.queue.submit([encoder.finish()]);
+        for k in 0..2 {
+            let (a, b) = (read_rgba16f(&outs[k]), read_rgba16f(&own_outs[k]));
+            let differing = (0..a.len()).filter(|&i| a[i] != alone[k][i]).count();
+            eprintln!(
+                "indirect {indirect:?}, view {k}: one renderer for both views: {differing} pixels differ from the view alone"
+            );
+            assert_eq!(
+                differing, 0,
+                "view {k} (one renderer, indirect {indirect:?}) got another camera's result"
+            );
+            assert!(bits(&b) == bits(&alone[k]), "view {k} (own renderer, indirect {indirect:?})");
+        }
+    }
+}
+
+#[test]
+fn set_reflectors_refuses_a_set_that_breaks_an_invariant() {
+    let s = scene();
+    let mut bad = s.reflector_set();
+    bad.reflectors[0].occluders = vec![7];
+    let mut r = renderer();
+    let err = r.set_reflectors(&bad).expect_err("an occluder index out of range");
+    let field = err.field_path();
+    eprintln!("{err}");
+    assert_eq!(field.as_deref(), Some("reflectors[0].occluders[0]"), "{err}");
+    // The renderer keeps what it had (nothing) and still renders frames.
+    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    assert!(r.prepare(&cam, SIZE).is_empty());
+    // A valid set afterwards renders.
+    r.set_reflectors(&s.reflector_set()).expect("valid");
+    assert_eq!(r.prepare(&cam, SIZE).visible.len(), 1);
+}
