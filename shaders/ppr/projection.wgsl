@@ -119,18 +119,8 @@ fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
 // A glass panel with a layer this frame does not count: games may write glass to depth,
 // and what lies behind it is still seen (and reflected) through it.
 fn occluded_at(t: vec2<u32>, n: vec3<f32>, d: f32) -> bool {
-    return occluded_by(t, textureLoad(depth_tex, vec2<i32>(t), 0).r, n, d);
-}
-
-// occluded_at with the depth at `t` already loaded.
-fn occluded_by(t: vec2<u32>, depth: f32, n: vec3<f32>, d: f32) -> bool {
-    if (!ppr_is_valid_depth(depth)) {
-        return false;
-    }
-    let centre = vec2<f32>(t) + 0.5;
-    let p = ppr_unproject(centre, depth);
-    let q = vec4<f32>(p, ppr_on_plane_tolerance(centre, depth, p));
-    if (!(dot(q.xyz, n) - d > q.w)) {
+    let q = tile_pixel_position(t);
+    if (!(q.w > 0.0 && dot(q.xyz, n) - d > q.w)) {
         return false;
     }
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
@@ -149,6 +139,56 @@ fn on_shape(q: vec4<f32>, s: Shape) -> bool {
         && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
 }
 
+// Writes the reflection of `pixel` into the main intermediate buffer (not where the plane
+// `n`, `d` is occluded at the target, with DEPTH_OCCLUSION).
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32) -> bool {
+    let tv = projection_target(pixel, mirrored);
+    let value = tv.z;
+    if (value == PPR_CLEAR_VALUE) {
+        return false;
+    }
+    let t = tv.xy;
+    let index = t.x + t.y * frame.size.x;
+    if (ABLATION == 5u) {
+        if (value == 0x12345u) {
+            atomicStore(&intermediate[index], value);
+        }
+        return true;
+    }
+    let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
+    // A plain load first: where a squeezed reflection maps many pixels onto one, most
+    // writes lose, and a load is cheaper than the occlusion test and the atomic. Not with
+    // DEBUG_WRITES: what a pixel is recorded as having written must not depend on the
+    // order of other writes (the buffer ends the same: an occluded write never lowers a
+    // value).
+    if (mode == 0u && !DEBUG_WRITES && atomicLoad(&intermediate[index]) <= value) {
+        return true;
+    }
+    if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
+        return false;
+    }
+    if (mode == 0u) {
+        atomicMin(&intermediate[index], value);
+    } else if ((mode & PPR_FLAG_WRITE_LAST) != 0u) {
+        atomicStore(&intermediate[index], value);
+    } else {
+        // The largest offset wins; the clear value counts as empty, so plain atomicMax
+        // would never write: a compare-exchange loop instead (debug path only).
+        var old = atomicLoad(&intermediate[index]);
+        loop {
+            if (old != PPR_CLEAR_VALUE && old >= value) {
+                break;
+            }
+            let r = atomicCompareExchangeWeak(&intermediate[index], old, value);
+            if (r.exchanged) {
+                break;
+            }
+            old = r.old_value;
+        }
+    }
+    return true;
+}
+
 // Writes the reflection of `pixel` into layer `l`'s atlas region (if it lands there and,
 // with DEPTH_OCCLUSION, the layer's plane `s` is not occluded there).
 fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
@@ -161,6 +201,18 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     }
     let local = tv.xy - l.rect_min;
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
+}
+
+// Occluder tests and the write, for a shape that passed its test.
+fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
+    let mirrored = p - 2.0 * dist * s.normal;
+    if (OCCLUDER_TESTS) {
+        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+        if (is_occluded(hit, s)) {
+            return false;
+        }
+    }
+    return write_projection(pixel, mirrored, s.normal, s.plane_dist);
 }
 
 // The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
@@ -235,118 +287,6 @@ fn layer_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, layer: Layer) {
         }
     }
     write_layer(pixel, mirrored, layer, s);
-}
-
-// The pending writes of a thread's four pixels (`pending_k`: candidate per pixel, or
-// NO_SHAPE; `pending_d`: its plane distance) into the main intermediate buffer, in three
-// steps so that the loads of all four are in flight together: project each pixel (and
-// run the seed's occluder tests), then load each target's depth and current value, then
-// decide (occlusion against the depth buffer, atomicMin). Returns the write bits
-// (DEBUG_WRITES).
-fn write_pending(base: vec2<u32>, q: Quad, pending_k: vec4<u32>, pending_d: vec4<f32>) -> vec4<u32> {
-    var tx = vec4<u32>(0u);
-    var ty = vec4<u32>(0u);
-    var value = vec4<u32>(PPR_CLEAR_VALUE);
-    var nx = vec4<f32>(0.0);
-    var ny = vec4<f32>(0.0);
-    var nz = vec4<f32>(0.0);
-    var pd = vec4<f32>(0.0);
-    for (var j = 0u; j < 4u; j++) {
-        let k = lane_u32(pending_k, j);
-        if (k == NO_SHAPE) {
-            continue;
-        }
-        let s = shapes[tests[k].shape];
-        let mirrored = quad_position(q, j) - 2.0 * lane_f32(pending_d, j) * s.normal;
-        if (OCCLUDER_TESTS) {
-            let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-            if (is_occluded(hit, s)) {
-                continue;
-            }
-        }
-        let tv = projection_target(quad_pixel(base, j), mirrored);
-        let m = lane_mask(j);
-        tx = select(tx, vec4<u32>(tv.x), m);
-        ty = select(ty, vec4<u32>(tv.y), m);
-        value = select(value, vec4<u32>(tv.z), m);
-        nx = select(nx, vec4<f32>(s.normal.x), m);
-        ny = select(ny, vec4<f32>(s.normal.y), m);
-        nz = select(nz, vec4<f32>(s.normal.z), m);
-        pd = select(pd, vec4<f32>(s.plane_dist), m);
-    }
-    let live = value != vec4<u32>(PPR_CLEAR_VALUE);
-    let index = tx + ty * frame.size.x;
-    // Independent loads, all in flight at once. A stale current value can only be larger
-    // than the real one (values only fall), which costs an atomic, never a write.
-    var current = vec4<u32>(PPR_CLEAR_VALUE);
-    var depth = vec4<f32>(0.0);
-    if (live.x) {
-        current.x = atomicLoad(&intermediate[index.x]);
-        depth.x = textureLoad(depth_tex, vec2<i32>(vec2<u32>(tx.x, ty.x)), 0).r;
-    }
-    if (live.y) {
-        current.y = atomicLoad(&intermediate[index.y]);
-        depth.y = textureLoad(depth_tex, vec2<i32>(vec2<u32>(tx.y, ty.y)), 0).r;
-    }
-    if (live.z) {
-        current.z = atomicLoad(&intermediate[index.z]);
-        depth.z = textureLoad(depth_tex, vec2<i32>(vec2<u32>(tx.z, ty.z)), 0).r;
-    }
-    if (live.w) {
-        current.w = atomicLoad(&intermediate[index.w]);
-        depth.w = textureLoad(depth_tex, vec2<i32>(vec2<u32>(tx.w, ty.w)), 0).r;
-    }
-    let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
-    var written = vec4<u32>(0u);
-    for (var j = 0u; any(live) && j < 4u; j++) {
-        let v = lane_u32(value, j);
-        if (v == PPR_CLEAR_VALUE) {
-            continue;
-        }
-        let bit = select(vec4<u32>(0u), vec4<u32>(1u << (lane_u32(pending_k, j) & 31u)), lane_mask(j));
-        let i = lane_u32(index, j);
-        if (ABLATION == 5u) {
-            if (v == 0x12345u) {
-                atomicStore(&intermediate[i], v);
-            }
-            written |= bit;
-            continue;
-        }
-        // Where a squeezed reflection maps many pixels onto one, most writes lose: skip
-        // those before the occlusion test and the atomic. Not with DEBUG_WRITES: what a
-        // pixel is recorded as having written must not depend on the order of other
-        // writes (the buffer ends the same: an occluded write never lowers a value).
-        if (mode == 0u && !DEBUG_WRITES && lane_u32(current, j) <= v) {
-            written |= bit;
-            continue;
-        }
-        let t = vec2<u32>(lane_u32(tx, j), lane_u32(ty, j));
-        let n = vec3<f32>(lane_f32(nx, j), lane_f32(ny, j), lane_f32(nz, j));
-        if (DEPTH_OCCLUSION && occluded_by(t, lane_f32(depth, j), n, lane_f32(pd, j))) {
-            continue;
-        }
-        if (mode == 0u) {
-            atomicMin(&intermediate[i], v);
-        } else if ((mode & PPR_FLAG_WRITE_LAST) != 0u) {
-            atomicStore(&intermediate[i], v);
-        } else {
-            // The largest offset wins; the clear value counts as empty, so plain atomicMax
-            // would never write: a compare-exchange loop instead (debug path only).
-            var old = atomicLoad(&intermediate[i]);
-            loop {
-                if (old != PPR_CLEAR_VALUE && old >= v) {
-                    break;
-                }
-                let r = atomicCompareExchangeWeak(&intermediate[i], old, v);
-                if (r.exchanged) {
-                    break;
-                }
-                old = r.old_value;
-            }
-        }
-        written |= bit;
-    }
-    return written;
 }
 
 // The shapes a block considers: `count` positions in `visible`, listed in `super_lists`
@@ -462,7 +402,15 @@ fn main(
             group = t.group;
         }
         if (any(pending_k != vec4<u32>(NO_SHAPE))) {
-            written |= write_pending(base, q, pending_k, pending_d);
+            for (var j = 0u; j < 4u; j++) {
+                let pk = lane_u32(pending_k, j);
+                if (pk != NO_SHAPE) {
+                    let s = shapes[tests[pk].shape];
+                    if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), lane_f32(pending_d, j), s)) {
+                        written = select(written, written | vec4<u32>(1u << (pk & 31u)), lane_mask(j));
+                    }
+                }
+            }
             pending_k = vec4<u32>(NO_SHAPE);
         }
         if (k == NO_SHAPE) {

@@ -53,11 +53,10 @@ impl Choice {
 pub struct PlanParams {
     /// Per-tile shape lists in the projection pass (seed's "multiple parallel shapes").
     pub tile_culling: Choice,
-    /// With `Auto`, tile culling runs from this many visible shapes on. Measured on an
-    /// H100 at 3840×2160 (docs/perf/scaling.md): building the tile lists costs a fixed
-    /// 0.13–0.21 ms there, repaid from 16 shapes on a window facade, 32 on puddles of one
-    /// floor and 64 on a stairway; at 32 the stairway loses 0.012 ms, the floor gains 0.13
-    /// and the facade 0.35.
+    /// With `Auto`, tile culling runs from this many visible shapes on. Measured on the
+    /// H200 at 3840×2160 (docs/perf/scaling.md): the block-list pass costs a fixed
+    /// 0.08–0.1 ms there, repaid from 8 shapes on a stairway and a floor of puddles and
+    /// from 16 on a window facade.
     pub tile_culling_min_shapes: usize,
     /// With tile culling, a first pass lists per 64 × 64-pixel super-tile the shapes that
     /// may reflect into it, and each 16 × 16 tile tests only its super-tile's list (the
@@ -106,7 +105,7 @@ impl Default for PlanParams {
     fn default() -> Self {
         Self {
             tile_culling: Choice::Auto,
-            tile_culling_min_shapes: 32,
+            tile_culling_min_shapes: 16,
             super_tiles: Choice::Auto,
             super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
