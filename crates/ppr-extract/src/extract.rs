@@ -9,8 +9,9 @@ use ppr_format::{ExtractorInfo, Reflector, ReflectorSet, ReflectorSource, Source
 use crate::cluster::{Connectivity, grow_regions};
 use crate::extraction::{Extraction, ExtractionStats, Stage, Warning};
 use crate::fit::{FitStats, FittedShape, fit_shapes, prepare_regions};
-use crate::occluders::occluder_lists;
+use crate::occluders::{OccluderRule, ranked_occluder_lists_threaded};
 use crate::parallel::parallel_groups;
+use crate::parallel_map::thread_count;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
 use crate::{ExtractParams, Level, SceneScale};
@@ -27,6 +28,7 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let mut timings = Vec::new();
     let mut clock = StageClock { timings: &mut timings, progress, started: Instant::now() };
     let scale = SceneScale::new(level, params);
+    let threads = thread_count(params.threads);
     let mut warnings: Vec<Warning> = level.notes.iter().cloned().map(Warning::Loader).collect();
 
     clock.start(Stage::Select);
@@ -52,14 +54,23 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     clock.finish(Stage::Regions);
 
     clock.start(Stage::Fit);
-    let shapes = fit_shapes(prepared, params, &scale, &mut fit_stats, &mut |f| progress(Stage::Fit, f));
+    let shapes =
+        fit_shapes(prepared, params, &scale, threads, &mut fit_stats, &mut |f| progress(Stage::Fit, f));
     clock.finish(Stage::Fit);
 
     clock.start(Stage::Occluders);
     let (mut set, regions) = build_set(level, params, &scale, shapes);
-    let lists = occluder_lists(&set.reflectors, scale.center, scale.distance_tolerance, scale.reach);
+    let rule = OccluderRule {
+        epsilon: scale.distance_tolerance,
+        reach: scale.reach,
+        max_per_list: params.max_occluders,
+    };
+    let lists = ranked_occluder_lists_threaded(&set.reflectors, scale.center, &rule, threads);
+    if lists.capped > 0 {
+        warnings.push(Warning::OccluderListsCapped { lists: lists.capped, cap: params.max_occluders });
+    }
     let mut occluder_pairs = 0;
-    for (r, list) in set.reflectors.iter_mut().zip(lists) {
+    for (r, list) in set.reflectors.iter_mut().zip(lists.lists) {
         occluder_pairs += list.len();
         r.occluders = list;
     }
@@ -139,7 +150,6 @@ fn build_set(
                 kind: s.kind,
                 normal,
                 center,
-                diagonal: scale.diagonal,
                 node: &s.primary.0,
                 material: &s.primary.1,
             });

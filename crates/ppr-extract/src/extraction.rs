@@ -75,6 +75,14 @@ pub enum Warning {
         /// ... and after.
         area_after: f64,
     },
+    /// Occluder lists that reached the cap: they keep the occluders that look largest from
+    /// their reflector.
+    OccluderListsCapped {
+        /// How many lists.
+        lists: usize,
+        /// The cap.
+        cap: usize,
+    },
     /// No triangle was a candidate (try `--all-planar`).
     NoCandidates,
     /// A note from the loader.
@@ -93,6 +101,10 @@ impl std::fmt::Display for Warning {
                 f,
                 "split {regions} non-convex regions into {extra_shapes} more rectangles: rectangle area {area_before:.3} → {area_after:.3} m² ({:.1}% less)",
                 100.0 * (1.0 - area_after / area_before.max(f64::MIN_POSITIVE))
+            ),
+            Warning::OccluderListsCapped { lists, cap } => write!(
+                f,
+                "occluder lists at the cap of {cap}: {lists} (they keep the occluders that look largest from their reflector)"
             ),
             Warning::NoCandidates => {
                 f.write_str("no candidate triangles (levels without meaningful materials need --all-planar)")

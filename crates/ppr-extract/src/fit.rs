@@ -8,6 +8,7 @@ use ppr_format::ReflectorKind;
 
 use crate::cluster::{Connectivity, GrownRegion};
 use crate::level::Level;
+use crate::parallel_map::map_ranges;
 use crate::plane::{Plane, PlaneAccumulator};
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
@@ -135,11 +136,24 @@ pub fn prepare_regions(
     out
 }
 
-/// Fits every prepared region with one or more rectangles; `progress(f)` gets the fraction done.
+/// One region's rectangle area before splitting and its pieces, or `None` when it has no
+/// vertex or less area than `min_area`.
+fn fit_region(region: &PreparedRegion, settings: &SplitSettings, min_area: f64) -> Option<(f64, Vec<Piece>)> {
+    let piece = Piece::new(region.polygons.clone())?;
+    if piece.area < min_area {
+        return None;
+    }
+    let before = piece.rect.area();
+    Some((before, split_region(piece, settings)))
+}
+
+/// Fits every prepared region with one or more rectangles on up to `threads` threads (the
+/// result does not depend on the count); `progress(f)` gets the fraction done.
 pub fn fit_shapes(
     regions: Vec<PreparedRegion>,
     params: &ExtractParams,
     scale: &SceneScale,
+    threads: usize,
     stats: &mut FitStats,
     progress: &mut dyn FnMut(f32),
 ) -> Vec<FittedShape> {
@@ -150,37 +164,45 @@ pub fn fit_shapes(
     };
     let total = regions.len();
     let mut shapes = Vec::new();
-    for (r, region) in regions.into_iter().enumerate() {
-        if r % 64 == 0 {
-            progress(r as f32 / total.max(1) as f32);
+    let batch = 256 * threads.max(1);
+    let mut regions = regions.into_iter();
+    let mut done = 0;
+    loop {
+        let chunk: Vec<PreparedRegion> = regions.by_ref().take(batch).collect();
+        if chunk.is_empty() {
+            break;
         }
-        let Some(piece) = Piece::new(region.polygons) else { continue };
-        if piece.area < scale.min_area {
-            stats.small_regions_dropped += 1;
-            continue;
-        }
-        stats.regions += 1;
-        let before = piece.rect.area();
-        let pieces = split_region(piece, &settings);
-        if pieces.len() > 1 {
-            stats.regions_split += 1;
-            stats.shapes_added_by_splits += pieces.len() - 1;
-            stats.split_area_before += before;
-            stats.split_area_after += pieces.iter().map(|p| p.rect.area()).sum::<f64>();
-        }
-        let count = pieces.len();
-        for (k, p) in pieces.into_iter().enumerate() {
-            shapes.push(FittedShape {
-                kind: region.kind,
-                plane: region.plane,
-                rect: p.rect,
-                area: p.area,
-                polygons: p.polygons,
-                nodes: region.nodes.clone(),
-                materials: region.materials.clone(),
-                primary: region.primary.clone(),
-                part: (k + 1, count),
-            });
+        progress(done as f32 / total.max(1) as f32);
+        done += chunk.len();
+        let fitted = map_ranges(chunk.len(), threads, |range| {
+            range.map(|r| fit_region(&chunk[r], &settings, scale.min_area)).collect()
+        });
+        for (region, outcome) in chunk.into_iter().zip(fitted) {
+            let Some((before, pieces)) = outcome else {
+                stats.small_regions_dropped += 1;
+                continue;
+            };
+            stats.regions += 1;
+            if pieces.len() > 1 {
+                stats.regions_split += 1;
+                stats.shapes_added_by_splits += pieces.len() - 1;
+                stats.split_area_before += before;
+                stats.split_area_after += pieces.iter().map(|p| p.rect.area()).sum::<f64>();
+            }
+            let count = pieces.len();
+            for (k, p) in pieces.into_iter().enumerate() {
+                shapes.push(FittedShape {
+                    kind: region.kind,
+                    plane: region.plane,
+                    rect: p.rect,
+                    area: p.area,
+                    polygons: p.polygons,
+                    nodes: region.nodes.clone(),
+                    materials: region.materials.clone(),
+                    primary: region.primary.clone(),
+                    part: (k + 1, count),
+                });
+            }
         }
     }
     progress(1.0);

@@ -13,9 +13,12 @@
 //!   each reflector's region vertices, warnings and stage timings. Candidate selection is
 //!   documented in [`select`]; splitting in [`split`]; the occluder rule in [`occluders`].
 //!
-//! Everything is relative to the level's size (tolerances are fractions of its
-//! bounding-box diagonal) and computed in `f64` around a local origin, so levels 100 km
-//! from the origin and levels a millimetre wide extract alike. Extraction is deterministic.
+//! Tolerances and sizes are physical (metres, square metres, degrees: glTF's units; see
+//! [`ExtractParams`]), never fractions of the level's size, so the same room gives the same
+//! rectangles alone or inside a large level. Geometry is computed in `f64` around a local
+//! origin, so levels 100 km from the origin extract like levels at it; levels modelled in
+//! other units convert the parameters ([`ExtractParams::in_level_units`]). Extraction is
+//! deterministic.
 //!
 //! ```
 //! use glam::DVec3;
@@ -35,17 +38,22 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod cluster;
+mod connectivity;
 mod extract;
 mod extraction;
 pub mod fit;
+pub mod generated_levels;
 pub mod hull;
 mod int_hash;
 mod level;
 mod load;
+mod occluder_geometry;
 pub mod occluders;
 pub mod parallel;
+mod parallel_map;
 mod params;
 pub mod plane;
+mod point_hierarchy;
 pub mod polygon;
 pub mod rect_fit;
 mod scale;

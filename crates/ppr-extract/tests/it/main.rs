@@ -4,6 +4,8 @@ mod checks;
 mod cli;
 mod demo_level;
 mod gltf_writer;
+mod level_size;
 mod loading;
+mod scaling;
 mod scenes;
 mod synthetic;
