@@ -83,6 +83,13 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
         warnings
             .push(Warning::SmallRegions { count: fit_stats.small_regions_dropped, min_area: scale.min_area });
     }
+    if fit_stats.budget.regions_dropped > 0 || fit_stats.budget.splits_refused > 0 {
+        warnings.push(Warning::Budget {
+            max_per_cube: params.max_shapes_per_cube,
+            cube_m: params.budget_cube_m,
+            report: fit_stats.budget,
+        });
+    }
     if fit_stats.regions_split > 0 {
         warnings.push(Warning::Splits {
             regions: fit_stats.regions_split,

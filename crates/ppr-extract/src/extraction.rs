@@ -75,6 +75,15 @@ pub enum Warning {
         /// ... and after.
         area_after: f64,
     },
+    /// What the density budget left out.
+    Budget {
+        /// The budget: rectangles per cube, and the cube's edge in metres.
+        max_per_cube: usize,
+        /// Cube edge, metres.
+        cube_m: f64,
+        /// What it did.
+        report: crate::budget::BudgetReport,
+    },
     /// Occluder lists that reached the cap: they keep the occluders that look largest from
     /// their reflector.
     OccluderListsCapped {
@@ -101,6 +110,15 @@ impl std::fmt::Display for Warning {
                 f,
                 "split {regions} non-convex regions into {extra_shapes} more rectangles: rectangle area {area_before:.3} → {area_after:.3} m² ({:.1}% less)",
                 100.0 * (1.0 - area_after / area_before.max(f64::MIN_POSITIVE))
+            ),
+            Warning::Budget { max_per_cube, cube_m, report } => write!(
+                f,
+                "density budget ({max_per_cube} rectangles per {cube_m} m cube, {} cubes full): dropped {} regions ({:.3} m² of reflective area, the least per shape), refused {} splits (they would have saved {:.3} m² of rectangle area)",
+                report.full_cells,
+                report.regions_dropped,
+                report.area_dropped,
+                report.splits_refused,
+                report.saving_refused
             ),
             Warning::OccluderListsCapped { lists, cap } => write!(
                 f,

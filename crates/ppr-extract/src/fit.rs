@@ -1,11 +1,13 @@
 //! Fitting each planar region with rectangles: the region's own plane (area-weighted fit,
 //! reflecting side by area-weighted majority), its triangles as polygons in that plane,
-//! the minimum-area rectangle, and the split of non-convex regions.
+//! the minimum-area rectangle, the split of non-convex regions, and the density budget
+//! that decides which regions and splits are kept ([`crate::budget`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use ppr_format::ReflectorKind;
 
+use crate::budget::{BudgetReport, BudgetRule, RegionOffer, apply_budget};
 use crate::cluster::{Connectivity, GrownRegion};
 use crate::level::Level;
 use crate::parallel_map::map_ranges;
@@ -13,7 +15,7 @@ use crate::plane::{Plane, PlaneAccumulator};
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
 use crate::select::Candidate;
-use crate::split::{Piece, SplitSettings, split_region};
+use crate::split::{Piece, SplitSettings, SplitStep, split_region_steps};
 use crate::{ExtractParams, SceneScale};
 
 /// One rectangle fitted to (part of) a region, in local coordinates.
@@ -56,6 +58,8 @@ pub struct FitStats {
     pub split_area_before: f64,
     /// ... and after, square metres.
     pub split_area_after: f64,
+    /// What the density budget left out.
+    pub budget: BudgetReport,
 }
 
 /// A region ready for fitting: its plane and its polygons (duplicates removed).
@@ -136,19 +140,34 @@ pub fn prepare_regions(
     out
 }
 
-/// One region's rectangle area before splitting and its pieces, or `None` when it has no
-/// vertex or less area than `min_area`.
-fn fit_region(region: &PreparedRegion, settings: &SplitSettings, min_area: f64) -> Option<(f64, Vec<Piece>)> {
-    let piece = Piece::new(region.polygons.clone())?;
-    if piece.area < min_area {
-        return None;
-    }
-    let before = piece.rect.area();
-    Some((before, split_region(piece, settings)))
+/// One region fitted with every split that pays.
+struct FittedRegion {
+    /// The region's single rectangle's area, m².
+    rect_area: f64,
+    /// World position of its centre.
+    center: glam::DVec3,
+    /// Reflective area, m².
+    area: f64,
+    pieces: Vec<Piece>,
+    steps: Vec<SplitStep>,
 }
 
-/// Fits every prepared region with one or more rectangles on up to `threads` threads (the
-/// result does not depend on the count); `progress(f)` gets the fraction done.
+/// The region with every split that pays, or `None` when it has no vertex or less area
+/// than `min_area`.
+fn fit_region(region: &PreparedRegion, settings: &SplitSettings, scale: &SceneScale) -> Option<FittedRegion> {
+    let piece = Piece::new(region.polygons.clone())?;
+    if piece.area < scale.min_area {
+        return None;
+    }
+    let (rect_area, area) = (piece.rect.area(), piece.area);
+    let center = scale.center + region.plane.lift(piece.rect.center);
+    let (pieces, steps) = split_region_steps(piece, settings, usize::MAX);
+    Some(FittedRegion { rect_area, center, area, pieces, steps })
+}
+
+/// Fits every prepared region with one or more rectangles under the density budget, on up
+/// to `threads` threads (the result does not depend on the count); `progress(f)` gets the
+/// fraction done.
 pub fn fit_shapes(
     regions: Vec<PreparedRegion>,
     params: &ExtractParams,
@@ -162,47 +181,78 @@ pub fn fit_shapes(
         max_pieces: params.max_shapes_per_region,
         grid_cells: params.split_grid_cells,
     };
-    let total = regions.len();
-    let mut shapes = Vec::new();
+    // Every region with every split that pays, in batches for progress.
     let batch = 256 * threads.max(1);
-    let mut regions = regions.into_iter();
-    let mut done = 0;
-    loop {
-        let chunk: Vec<PreparedRegion> = regions.by_ref().take(batch).collect();
-        if chunk.is_empty() {
-            break;
+    let mut fitted: Vec<Option<FittedRegion>> = Vec::with_capacity(regions.len());
+    for start in (0..regions.len()).step_by(batch) {
+        progress(0.9 * start as f32 / regions.len().max(1) as f32);
+        let end = (start + batch).min(regions.len());
+        fitted.extend(map_ranges(end - start, threads, |range| {
+            range.map(|r| fit_region(&regions[start + r], &settings, scale)).collect()
+        }));
+    }
+    // The budget, then the regions it cut short split again with the steps it kept.
+    let kept: Vec<usize> = (0..regions.len()).filter(|&r| fitted[r].is_some()).collect();
+    let offers: Vec<RegionOffer> = kept
+        .iter()
+        .filter_map(|&r| fitted[r].as_ref())
+        .map(|f| RegionOffer { center: f.center, area: f.area, steps: f.steps.clone() })
+        .collect();
+    let rule = BudgetRule { cell_m: params.budget_cube_m, max_per_cell: params.max_shapes_per_cube };
+    let (choices, report) = apply_budget(&offers, &rule);
+    stats.budget = report;
+    let replay: Vec<(usize, usize)> = kept
+        .iter()
+        .zip(&choices)
+        .filter(|(r, c)| c.keep && fitted[**r].as_ref().is_some_and(|f| c.steps < f.steps.len()))
+        .map(|(&r, c)| (r, c.steps))
+        .collect();
+    let replayed = map_ranges(replay.len(), threads, |range| {
+        range
+            .map(|k| {
+                let (r, steps) = replay[k];
+                let piece = Piece::new(regions[r].polygons.clone())
+                    .map(|p| split_region_steps(p, &settings, steps).0);
+                (r, piece.unwrap_or_default())
+            })
+            .collect()
+    });
+    for (r, pieces) in replayed {
+        if let Some(f) = fitted[r].as_mut() {
+            f.pieces = pieces;
         }
-        progress(done as f32 / total.max(1) as f32);
-        done += chunk.len();
-        let fitted = map_ranges(chunk.len(), threads, |range| {
-            range.map(|r| fit_region(&chunk[r], &settings, scale.min_area)).collect()
-        });
-        for (region, outcome) in chunk.into_iter().zip(fitted) {
-            let Some((before, pieces)) = outcome else {
-                stats.small_regions_dropped += 1;
-                continue;
-            };
-            stats.regions += 1;
-            if pieces.len() > 1 {
-                stats.regions_split += 1;
-                stats.shapes_added_by_splits += pieces.len() - 1;
-                stats.split_area_before += before;
-                stats.split_area_after += pieces.iter().map(|p| p.rect.area()).sum::<f64>();
-            }
-            let count = pieces.len();
-            for (k, p) in pieces.into_iter().enumerate() {
-                shapes.push(FittedShape {
-                    kind: region.kind,
-                    plane: region.plane,
-                    rect: p.rect,
-                    area: p.area,
-                    polygons: p.polygons,
-                    nodes: region.nodes.clone(),
-                    materials: region.materials.clone(),
-                    primary: region.primary.clone(),
-                    part: (k + 1, count),
-                });
-            }
+    }
+    let keep: std::collections::BTreeSet<usize> =
+        kept.iter().zip(&choices).filter(|(_, c)| c.keep).map(|(&r, _)| r).collect();
+    let mut shapes = Vec::new();
+    for (r, (region, outcome)) in regions.into_iter().zip(fitted).enumerate() {
+        let Some(f) = outcome else {
+            stats.small_regions_dropped += 1;
+            continue;
+        };
+        if !keep.contains(&r) {
+            continue;
+        }
+        stats.regions += 1;
+        if f.pieces.len() > 1 {
+            stats.regions_split += 1;
+            stats.shapes_added_by_splits += f.pieces.len() - 1;
+            stats.split_area_before += f.rect_area;
+            stats.split_area_after += f.pieces.iter().map(|p| p.rect.area()).sum::<f64>();
+        }
+        let count = f.pieces.len();
+        for (k, p) in f.pieces.into_iter().enumerate() {
+            shapes.push(FittedShape {
+                kind: region.kind,
+                plane: region.plane,
+                rect: p.rect,
+                area: p.area,
+                polygons: p.polygons,
+                nodes: region.nodes.clone(),
+                materials: region.materials.clone(),
+                primary: region.primary.clone(),
+                part: (k + 1, count),
+            });
         }
     }
     progress(1.0);

@@ -49,7 +49,9 @@ UNITS:
   same room gives the same rectangles alone or inside a large level. Defaults (measured
   on the shared scenes, docs/perf/extract.md): vertices within 5 mm of their plane (the
   reflection moves by at most 1 cm), gaps up to 5 mm bridged, regions under 0.01 m²
-  dropped, occluders looked for anywhere in front of a reflector, at most 64 per list.
+  dropped, occluders looked for anywhere in front of a reflector, at most 64 per list,
+  at most 128 rectangles in any 10 m cube (the density budget: what a view that sees a
+  few rooms can afford; see --max-per-cube).
 
 EXIT CODES:
   0  success (the set was written; it may be empty: see the notes)
@@ -102,6 +104,13 @@ struct Cli {
     /// Split a non-convex region when each extra rectangle saves this fraction of its area.
     #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().split_min_gain)]
     split_min_gain: f64,
+    /// Density budget: most rectangles in any cube of --budget-cube metres (regions and
+    /// splits are kept by the area they buy per rectangle; the summary says what was left).
+    #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_cube)]
+    max_per_cube: usize,
+    /// Edge of the density budget's cubes, metres (a grid aligned with the world origin).
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().budget_cube_m)]
+    budget_cube: f64,
     /// Most rectangles per region.
     #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_region)]
     max_shapes_per_region: usize,
@@ -151,6 +160,8 @@ fn params_from(cli: &Cli) -> Result<ExtractParams, String> {
         max_occluders: cli.max_occluders,
         split_min_gain: cli.split_min_gain,
         max_shapes_per_region: cli.max_shapes_per_region,
+        max_shapes_per_cube: cli.max_per_cube,
+        budget_cube_m: cli.budget_cube,
         ..ExtractParams::default()
     };
     params.validate()?;

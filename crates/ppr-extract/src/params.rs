@@ -64,6 +64,12 @@ pub struct ExtractParams {
     /// Most occluders listed per reflector: the ones that look largest from it (area over
     /// squared distance) are kept; the summary reports lists that were cut.
     pub max_occluders: usize,
+    /// Edge of the cubes the density budget counts rectangles in, metres (a world-aligned
+    /// grid; see [`crate::budget`]).
+    pub budget_cube_m: f64,
+    /// Most rectangles per cube: regions and splits are kept by what they buy per shape
+    /// (usable: 16..1024).
+    pub max_shapes_per_cube: usize,
     /// Worker threads (0: every core). The output does not depend on it; it is not recorded.
     pub threads: usize,
 }
@@ -77,6 +83,11 @@ pub const DEFAULT_GAP_TOLERANCE_M: f64 = 0.005;
 pub const DEFAULT_MIN_AREA_M2: f64 = 0.01;
 /// Default cap on one occluder list.
 pub const DEFAULT_MAX_OCCLUDERS: usize = 64;
+/// Default edge of the budget's cubes, metres (about a room).
+pub const DEFAULT_BUDGET_CUBE_M: f64 = 10.0;
+/// Default most rectangles per budget cube: a view that sees eight such cubes has at most
+/// 1024 shapes, about 1.1 ms at 4K on the H100 with tile culling (`docs/perf/scaling.md`).
+pub const DEFAULT_MAX_SHAPES_PER_CUBE: usize = 128;
 
 impl Default for ExtractParams {
     /// Material-driven selection with tolerances that suit hand-made levels.
@@ -101,6 +112,8 @@ impl Default for ExtractParams {
             split_grid_cells: 4096,
             reach_m: None,
             max_occluders: DEFAULT_MAX_OCCLUDERS,
+            budget_cube_m: DEFAULT_BUDGET_CUBE_M,
+            max_shapes_per_cube: DEFAULT_MAX_SHAPES_PER_CUBE,
             threads: 0,
         }
     }
@@ -110,6 +123,11 @@ impl ExtractParams {
     /// Every planar area is a candidate (levels with one material for everything).
     pub fn all_planar() -> Self {
         Self { candidates: CandidateRule::AllPlanar, ..Self::default() }
+    }
+
+    /// No density budget (every region and split that pays is kept).
+    pub fn unbudgeted(self) -> Self {
+        Self { max_shapes_per_cube: usize::MAX, ..self }
     }
 
     /// One rectangle per region: no splitting of non-convex regions.
@@ -131,6 +149,7 @@ impl ExtractParams {
         self.gap_tolerance_m *= k;
         self.min_area_m2 *= k * k;
         self.reach_m = self.reach_m.map(|r| r * k);
+        self.budget_cube_m *= k;
         self
     }
 
@@ -144,6 +163,7 @@ impl ExtractParams {
             ("distance_tolerance_m", self.distance_tolerance_m),
             ("gap_tolerance_m", self.gap_tolerance_m),
             ("reach_m", self.reach_m.unwrap_or(1.0)),
+            ("budget_cube_m", self.budget_cube_m),
         ];
         for (name, v) in positive {
             if !(v.is_finite() && v > 0.0) {
@@ -165,6 +185,9 @@ impl ExtractParams {
         }
         if self.max_shapes_per_region == 0 {
             return Err("max_shapes_per_region must be at least 1".into());
+        }
+        if self.max_shapes_per_cube == 0 {
+            return Err("max_shapes_per_cube must be at least 1".into());
         }
         if self.max_occluders == 0 {
             return Err("max_occluders must be at least 1".into());
@@ -200,6 +223,8 @@ impl ExtractParams {
         m.insert("split_grid_cells".into(), json!(self.split_grid_cells));
         m.insert("reach_m".into(), json!(self.reach_m));
         m.insert("max_occluders".into(), json!(self.max_occluders));
+        m.insert("budget_cube_m".into(), json!(self.budget_cube_m));
+        m.insert("max_shapes_per_cube".into(), json!(self.max_shapes_per_cube));
         m.insert("scene_diagonal_m".into(), json!(scale.diagonal));
         m
     }
@@ -234,6 +259,7 @@ impl ExtractParams {
             ("angle_tolerance_deg", &mut p.angle_tolerance_deg),
             ("small_triangle_factor", &mut p.small_triangle_factor),
             ("split_min_gain", &mut p.split_min_gain),
+            ("budget_cube_m", &mut p.budget_cube_m),
         ] {
             if let Some(v) = num(key) {
                 *field = v;
@@ -252,6 +278,7 @@ impl ExtractParams {
             ("max_shapes_per_region", &mut p.max_shapes_per_region),
             ("split_grid_cells", &mut p.split_grid_cells),
             ("max_occluders", &mut p.max_occluders),
+            ("max_shapes_per_cube", &mut p.max_shapes_per_cube),
         ] {
             if let Some(v) = count(key) {
                 *field = v;

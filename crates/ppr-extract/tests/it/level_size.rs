@@ -134,3 +134,35 @@ fn the_thread_count_does_not_change_the_bytes() {
     assert_eq!(bytes(2), one);
     assert_eq!(bytes(5), one);
 }
+
+#[test]
+fn the_density_budget_keeps_what_pays_per_cube_alike_in_every_copy() {
+    // A 4 × 4 m floor under 300 small tiles (0.12 × 0.12 m, 2 cm apart in height): more
+    // rectangles than a cube of 10 m affords.
+    let mut room = Vec::new();
+    quad(&mut room, DVec3::new(1.0, 0.0, 1.0), [DVec3::Z, DVec3::X], [4.0, 4.0], 1.0, &|_, _| true);
+    for k in 0..300 {
+        let p = DVec3::new(
+            1.0 + 0.2 * (k % 20) as f64,
+            0.5 + 0.02 * (k / 20) as f64,
+            1.0 + 0.2 * (k / 20) as f64,
+        );
+        quad(&mut room, p, [DVec3::Z, DVec3::X], [0.12, 0.12], 10.0, &|_, _| true);
+    }
+    let params = ExtractParams { max_shapes_per_cube: 100, ..ExtractParams::default() };
+    let alone = extract(&level_of("tiles", &room), &params, &|_, _| {});
+    assert_eq!(alone.set.reflectors.len(), 100);
+    assert!(alone.set.reflectors.iter().any(|r| r.area() > 15.0), "the floor buys the most and stays");
+    let note = alone.warnings.iter().map(ToString::to_string).find(|w| w.contains("density budget"));
+    assert!(note.as_ref().is_some_and(|n| n.contains("dropped 201 regions")), "{note:?}");
+    let unbudgeted = extract(&level_of("tiles", &room), &params.clone().unbudgeted(), &|_, _| {});
+    assert_eq!(unbudgeted.set.reflectors.len(), 301);
+    // Copies a whole cube apart (20 m) keep the same rectangles each.
+    let want = rectangles(&alone, |_| true, DVec3::ZERO);
+    let x = extract(&copies(&level_of("tiles", &room), 5, 20.0), &params, &|_, _| {});
+    for k in 0..5 {
+        let offset = DVec3::X * (20.0 * k as f64);
+        let got = rectangles(&x, |c| (c - offset).x.abs() < 10.0, offset);
+        assert_same(&got, &want, &format!("copy {k}"));
+    }
+}
