@@ -9,12 +9,16 @@ use ppr_format::{ExtractorInfo, Reflector, ReflectorSet, ReflectorSource, Source
 use crate::cluster::{Connectivity, grow_regions};
 use crate::extraction::{Extraction, ExtractionStats, Stage, Warning};
 use crate::fit::{FitStats, FittedShape, fit_shapes, prepare_regions};
+use crate::near_planar::{MergeReport, NearPlanarRule, merge_near_planar};
 use crate::occluders::{OccluderRule, ranked_occluder_lists_threaded};
 use crate::parallel::parallel_groups;
 use crate::parallel_map::thread_count;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
 use crate::{ExtractParams, Level, SceneScale};
+
+/// Near-planar merges listed one by one in the warnings (the rest are counted).
+const MERGES_LISTED: usize = 20;
 
 /// Extracts the reflector set of `level`. `progress(stage, fraction)` is called at the
 /// start (0) and end (1) of each stage and now and then in between.
@@ -45,7 +49,21 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let conn = Connectivity::build(&selection.candidates, &scale);
     clock.report(Stage::Cluster, 0.4);
     let grown =
-        grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.6 * f));
+        grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.5 * f));
+    let region_count = grown.len();
+    let rule = NearPlanarRule {
+        max_angle_deg: params.near_planar_angle_deg,
+        max_error_m: params.max_reflection_error_m,
+    };
+    let (grown, merges) = merge_near_planar(&selection.candidates, grown, &conn, &rule);
+    for (k, report) in merges.iter().enumerate() {
+        if k == MERGES_LISTED {
+            warnings.push(Warning::MoreNearPlanarMerges(merges.len() - MERGES_LISTED));
+            break;
+        }
+        let report = MergeReport { origin: report.origin + scale.center, ..report.clone() };
+        warnings.push(Warning::NearPlanarMerge { report });
+    }
     clock.finish(Stage::Cluster);
 
     clock.start(Stage::Regions);
@@ -101,7 +119,7 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let stats = ExtractionStats {
         triangles: level.triangles.len(),
         candidates: selection.candidates.len(),
-        regions: grown.len(),
+        regions: region_count,
         regions_kept: fit_stats.regions,
         parallel_groups: set.reflectors.iter().map(|r| r.parallel_group + 1).max().unwrap_or(0) as usize,
         occluder_pairs,

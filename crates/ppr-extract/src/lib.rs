@@ -48,6 +48,7 @@ pub mod hull;
 mod int_hash;
 mod level;
 mod load;
+pub mod near_planar;
 mod occluder_geometry;
 pub mod occluders;
 pub mod parallel;

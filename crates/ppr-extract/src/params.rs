@@ -64,6 +64,13 @@ pub struct ExtractParams {
     /// Most occluders listed per reflector: the ones that look largest from it (area over
     /// squared distance) are kept; the summary reports lists that were cut.
     pub max_occluders: usize,
+    /// Touching regions whose planes are less than this apart merge into one plane when
+    /// the reflection error stays under [`Self::max_reflection_error_m`], degrees (0: never;
+    /// see [`crate::near_planar`]).
+    pub near_planar_angle_deg: f64,
+    /// Largest reflection error a near-planar merge may cause, metres: how far the image of
+    /// a point 1 m in front of the surface moves (usable: 0.01..0.2).
+    pub max_reflection_error_m: f64,
     /// Edge of the cubes the density budget counts rectangles in, metres (a world-aligned
     /// grid; see [`crate::budget`]).
     pub budget_cube_m: f64,
@@ -112,6 +119,8 @@ impl Default for ExtractParams {
             split_grid_cells: 4096,
             reach_m: None,
             max_occluders: DEFAULT_MAX_OCCLUDERS,
+            near_planar_angle_deg: 2.0,
+            max_reflection_error_m: 0.08,
             budget_cube_m: DEFAULT_BUDGET_CUBE_M,
             max_shapes_per_cube: DEFAULT_MAX_SHAPES_PER_CUBE,
             threads: 0,
@@ -150,6 +159,7 @@ impl ExtractParams {
         self.min_area_m2 *= k * k;
         self.reach_m = self.reach_m.map(|r| r * k);
         self.budget_cube_m *= k;
+        self.max_reflection_error_m *= k;
         self
     }
 
@@ -223,6 +233,8 @@ impl ExtractParams {
         m.insert("split_grid_cells".into(), json!(self.split_grid_cells));
         m.insert("reach_m".into(), json!(self.reach_m));
         m.insert("max_occluders".into(), json!(self.max_occluders));
+        m.insert("near_planar_angle_deg".into(), json!(self.near_planar_angle_deg));
+        m.insert("max_reflection_error_m".into(), json!(self.max_reflection_error_m));
         m.insert("budget_cube_m".into(), json!(self.budget_cube_m));
         m.insert("max_shapes_per_cube".into(), json!(self.max_shapes_per_cube));
         m.insert("scene_diagonal_m".into(), json!(scale.diagonal));
@@ -260,6 +272,8 @@ impl ExtractParams {
             ("small_triangle_factor", &mut p.small_triangle_factor),
             ("split_min_gain", &mut p.split_min_gain),
             ("budget_cube_m", &mut p.budget_cube_m),
+            ("near_planar_angle_deg", &mut p.near_planar_angle_deg),
+            ("max_reflection_error_m", &mut p.max_reflection_error_m),
         ] {
             if let Some(v) = num(key) {
                 *field = v;

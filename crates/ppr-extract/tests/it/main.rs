@@ -6,6 +6,7 @@ mod demo_level;
 mod gltf_writer;
 mod level_size;
 mod loading;
+mod near_planar;
 mod scaling;
 mod scenes;
 mod synthetic;
