@@ -1,7 +1,8 @@
 //! Extraction of generated levels of growing size: the same room alone, as copies, inside
 //! grids of rooms up to a million triangles, and the shared kitchen copied side by side.
-//! Prints, per level, triangles, rectangles, rectangles per room copy, and the time per
-//! stage (minimum of N runs).
+//! Prints, per level, triangles, rectangles, rectangles per room copy, the wall time per
+//! stage and the process's CPU time (minimum of N runs: on a shared machine the CPU time
+//! is the steadier figure).
 //!
 //! ```sh
 //! CARGO_TARGET_DIR=target cargo run --release -p ppr-extract --example extract_scaling -- 3
@@ -17,14 +18,28 @@ use ppr_extract::generated_levels::{RoomSpec, copies, level_of, room_grid, room_
 use ppr_extract::summary::rate;
 use ppr_extract::{ExtractParams, Extraction, Level, Stage, extract, load_level};
 
-/// Extracts `level` `runs` times; the last extraction and the minimum time per stage.
-fn measure(level: &Level, params: &ExtractParams, runs: usize) -> (Extraction, Vec<(Stage, Duration)>) {
+/// CPU time this process has used (user + system), seconds, from `/proc/self/stat`
+/// (Linux; 0 elsewhere). Clock ticks of 10 ms.
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit_once(')').map_or("", |(_, rest)| rest);
+    let fields: Vec<&str> = after.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i).and_then(|f| f.parse::<f64>().ok()).unwrap_or(0.0);
+    // Fields after the command: state is 0, utime 11, stime 12.
+    (ticks(11) + ticks(12)) / 100.0
+}
+
+/// Extracts `level` `runs` times; the last extraction, the minimum time per stage (the
+/// total under `Stage::Write`) and the minimum CPU time, seconds.
+fn measure(level: &Level, params: &ExtractParams, runs: usize) -> (Extraction, Vec<(Stage, Duration)>, f64) {
     let mut best: Vec<(Stage, Duration)> = Vec::new();
     let mut last = None;
+    let mut cpu = f64::INFINITY;
     for _ in 0..runs {
-        let t = Instant::now();
+        let (t, c) = (Instant::now(), cpu_seconds());
         let x = extract(level, params, &|_, _| {});
         let total = t.elapsed();
+        cpu = cpu.min(cpu_seconds() - c);
         for &(stage, d) in x.timings.iter().chain([(Stage::Write, total)].iter()) {
             match best.iter_mut().find(|(s, _)| *s == stage) {
                 Some((_, b)) => *b = (*b).min(d),
@@ -33,18 +48,18 @@ fn measure(level: &Level, params: &ExtractParams, runs: usize) -> (Extraction, V
         }
         last = Some(x);
     }
-    (last.expect("at least one run"), best)
+    (last.expect("at least one run"), best, cpu)
 }
 
 fn row(name: &str, level: &Level, params: &ExtractParams, runs: usize, copies: usize) {
     if std::env::args().nth(2).is_some_and(|only| !name.contains(&only)) {
         return;
     }
-    let (x, times) = measure(level, params, runs);
+    let (x, times, cpu) = measure(level, params, runs);
     let ms = |s: Stage| times.iter().find(|(t, _)| *t == s).map_or(0.0, |(_, d)| d.as_secs_f64() * 1e3);
     let total = times.iter().find(|(t, _)| *t == Stage::Write).map_or(Duration::ZERO, |(_, d)| *d);
     println!(
-        "| {name} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | **{:.1}** | {} |",
+        "| {name} | {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | **{:.1}** | {:.2} | {} |",
         level.triangles.len(),
         x.set.reflectors.len(),
         x.set.reflectors.len() as f64 / copies as f64,
@@ -60,6 +75,7 @@ fn row(name: &str, level: &Level, params: &ExtractParams, runs: usize, copies: u
             - ms(Stage::Fit)
             - ms(Stage::Occluders),
         total.as_secs_f64() * 1e3,
+        cpu,
         rate(level.triangles.len(), total),
     );
 }

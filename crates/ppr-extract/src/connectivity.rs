@@ -94,6 +94,14 @@ pub(crate) fn csr(n: usize, pairs: impl Iterator<Item = (u32, u32)> + Clone) -> 
 
 type Cell = (i64, i64, i64);
 
+/// Slots of the weld's cache of recent exact positions (a power of two).
+const RECENT_SLOTS: usize = 4096;
+
+fn recent_slot(bits: [u64; 3]) -> usize {
+    let h = (bits[0] ^ bits[1].rotate_left(21) ^ bits[2].rotate_left(42)).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+    (h >> 52) as usize & (RECENT_SLOTS - 1)
+}
+
 fn cell3(p: DVec3, cell: f64) -> Cell {
     (cell_of(p.x, cell), cell_of(p.y, cell), cell_of(p.z, cell))
 }
@@ -108,9 +116,18 @@ fn weld(candidates: &[Candidate], tol: f64) -> (Vec<[u32; 3]>, Vec<DVec3>) {
     let mut next: Vec<u32> = Vec::new();
     let mut points: Vec<DVec3> = Vec::new();
     let mut welded = Vec::with_capacity(candidates.len());
+    // Exact positions seen lately (meshes reuse a vertex within a few triangles): a hit
+    // gives the same weld point the grid would (ids only grow, so the earliest stays so).
+    let mut recent: Vec<([u64; 3], u32)> = vec![([u64::MAX; 3], NONE); RECENT_SLOTS];
     for c in candidates {
         let mut ids = [0u32; 3];
         for (k, &p) in c.positions.iter().enumerate() {
+            let bits = p.to_array().map(f64::to_bits);
+            let slot = recent_slot(bits);
+            if recent[slot].0 == bits {
+                ids[k] = recent[slot].1;
+                continue;
+            }
             let base = cell3(p, cell);
             let earliest_in = |c: Cell, found: u32| {
                 let mut found = found;
@@ -145,6 +162,7 @@ fn weld(candidates: &[Candidate], tol: f64) -> (Vec<[u32; 3]>, Vec<DVec3>) {
                 next.push(*slot);
                 *slot = found;
             }
+            recent[slot] = (bits, found);
             ids[k] = found;
         }
         welded.push(ids);

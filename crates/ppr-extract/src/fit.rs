@@ -10,7 +10,7 @@ use ppr_format::ReflectorKind;
 use crate::budget::{BudgetReport, BudgetRule, RegionOffer, apply_budget};
 use crate::cluster::{Connectivity, GrownRegion};
 use crate::level::Level;
-use crate::parallel_map::map_ranges;
+use crate::parallel_map::{map_ranges, map_slice_mut};
 use crate::plane::{Plane, PlaneAccumulator};
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
@@ -104,8 +104,8 @@ pub fn prepare_regions(
         let Some(plane) = acc.fit() else { continue };
         let mut seen: BTreeSet<[u32; 3]> = BTreeSet::new();
         let mut polygons = Vec::with_capacity(region.members.len());
-        let mut node_area: BTreeMap<&str, f64> = BTreeMap::new();
-        let mut material_area: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut source_area: BTreeMap<u32, f64> = BTreeMap::new();
+        let mut last_source = (u32::MAX, 0.0);
         for &m in &region.members {
             let c = &candidates[m as usize];
             let mut key = conn.welded[m as usize];
@@ -114,13 +114,29 @@ pub fn prepare_regions(
                 stats.duplicate_triangles += 1;
                 continue;
             }
-            let source = &level.sources[level.triangles[c.triangle as usize].source as usize];
-            *node_area.entry(&source.node).or_default() += c.area;
-            *material_area.entry(&level.materials[source.material as usize].name).or_default() += c.area;
+            // Runs of one source are summed before they reach the map.
+            let source = level.triangles[c.triangle as usize].source;
+            if source != last_source.0 {
+                if last_source.0 != u32::MAX {
+                    *source_area.entry(last_source.0).or_default() += last_source.1;
+                }
+                last_source = (source, 0.0);
+            }
+            last_source.1 += c.area;
             polygons.push(Polygon {
                 flat: c.positions.iter().map(|&p| plane.project(p)).collect(),
                 spatial: c.positions.to_vec(),
             });
+        }
+        if last_source.0 != u32::MAX {
+            *source_area.entry(last_source.0).or_default() += last_source.1;
+        }
+        let mut node_area: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut material_area: BTreeMap<&str, f64> = BTreeMap::new();
+        for (&source, &area) in &source_area {
+            let source = &level.sources[source as usize];
+            *node_area.entry(&source.node).or_default() += area;
+            *material_area.entry(&level.materials[source.material as usize].name).or_default() += area;
         }
         let heaviest = |m: &BTreeMap<&str, f64>| {
             m.iter()
@@ -153,15 +169,24 @@ struct FittedRegion {
 }
 
 /// The region with every split that pays, or `None` when it has no vertex or less area
-/// than `min_area`.
-fn fit_region(region: &PreparedRegion, settings: &SplitSettings, scale: &SceneScale) -> Option<FittedRegion> {
-    let piece = Piece::new(region.polygons.clone())?;
+/// than `min_area`. Takes the region's polygons, and gives them back when it was split
+/// (the budget may replay fewer splits from them).
+fn fit_region(
+    region: &mut PreparedRegion,
+    settings: &SplitSettings,
+    scale: &SceneScale,
+) -> Option<FittedRegion> {
+    let piece = Piece::new(std::mem::take(&mut region.polygons))?;
     if piece.area < scale.min_area {
         return None;
     }
     let (rect_area, area) = (piece.rect.area(), piece.area);
     let center = scale.center + region.plane.lift(piece.rect.center);
+    let originals = (piece.waste() >= settings.min_gain * rect_area).then(|| piece.polygons.clone());
     let (pieces, steps) = split_region_steps(piece, settings, usize::MAX);
+    if !steps.is_empty() {
+        region.polygons = originals.unwrap_or_default();
+    }
     Some(FittedRegion { rect_area, center, area, pieces, steps })
 }
 
@@ -183,13 +208,12 @@ pub fn fit_shapes(
     };
     // Every region with every split that pays, in batches for progress.
     let batch = 256 * threads.max(1);
+    let mut regions = regions;
     let mut fitted: Vec<Option<FittedRegion>> = Vec::with_capacity(regions.len());
-    for start in (0..regions.len()).step_by(batch) {
-        progress(0.9 * start as f32 / regions.len().max(1) as f32);
-        let end = (start + batch).min(regions.len());
-        fitted.extend(map_ranges(end - start, threads, |range| {
-            range.map(|r| fit_region(&regions[start + r], &settings, scale)).collect()
-        }));
+    let total = regions.len();
+    for (k, chunk) in regions.chunks_mut(batch).enumerate() {
+        progress(0.9 * (k * batch) as f32 / total.max(1) as f32);
+        fitted.extend(map_slice_mut(chunk, threads, |region| fit_region(region, &settings, scale)));
     }
     // The budget, then the regions it cut short split again with the steps it kept.
     let kept: Vec<usize> = (0..regions.len()).filter(|&r| fitted[r].is_some()).collect();

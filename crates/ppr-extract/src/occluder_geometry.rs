@@ -21,28 +21,42 @@ pub(crate) fn within_reach(a: &Reflector, b: &Reflector, d: f64, reach: f64) -> 
 /// The distance from `a`'s rectangle to the part of `b` strictly in front of `a`'s plane
 /// (signed distance > `epsilon`), or `None` when no part of `b` is in front.
 pub fn occlusion_distance(a: &Reflector, b: &Reflector, epsilon: f64) -> Option<f64> {
-    let corners = b.corners();
-    if corners.iter().all(|&p| a.signed_distance(p) <= epsilon) {
-        return None;
-    }
-    let front = clip_front(&corners, a, epsilon);
-    Some(polygon_distance(&front, b.normal, &a.corners(), a.normal))
+    occlusion_distance_of(a, &a.corners(), b, &b.corners(), epsilon)
 }
 
-/// The part of the convex polygon `poly` where `a.signed_distance >= epsilon`.
-fn clip_front(poly: &[DVec3], a: &Reflector, epsilon: f64) -> Vec<DVec3> {
-    let mut out = Vec::with_capacity(poly.len() + 1);
+/// [`occlusion_distance`] with both rectangles' corners given.
+pub(crate) fn occlusion_distance_of(
+    a: &Reflector,
+    a_corners: &[DVec3; 4],
+    b: &Reflector,
+    b_corners: &[DVec3; 4],
+    epsilon: f64,
+) -> Option<f64> {
+    if b_corners.iter().all(|&p| a.signed_distance(p) <= epsilon) {
+        return None;
+    }
+    let (front, n) = clip_front(b_corners, a, epsilon);
+    Some(polygon_distance(&front[..n], b.normal, a_corners, a.normal))
+}
+
+/// The part of the rectangle `poly` where `a.signed_distance >= epsilon`: up to eight
+/// vertices and their count (a quad clipped by a plane has at most five).
+fn clip_front(poly: &[DVec3; 4], a: &Reflector, epsilon: f64) -> ([DVec3; 8], usize) {
+    let mut out = [DVec3::ZERO; 8];
+    let mut n = 0;
     for i in 0..poly.len() {
         let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
         let (sp, sq) = (a.signed_distance(p) - epsilon, a.signed_distance(q) - epsilon);
         if sp >= 0.0 {
-            out.push(p);
+            out[n] = p;
+            n += 1;
         }
         if (sp >= 0.0) != (sq >= 0.0) {
-            out.push(p.lerp(q, sp / (sp - sq)));
+            out[n] = p.lerp(q, sp / (sp - sq));
+            n += 1;
         }
     }
-    out
+    (out, n)
 }
 
 /// Distance between two convex planar polygons (counter-clockwise about their normals)

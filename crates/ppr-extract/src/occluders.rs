@@ -47,8 +47,8 @@ use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
 use ppr_format::Reflector;
 
-use crate::occluder_geometry::within_reach;
 pub use crate::occluder_geometry::{may_occlude, occlusion_distance};
+use crate::occluder_geometry::{occlusion_distance_of, within_reach};
 use crate::parallel_map::map_ranges;
 
 /// What the occluder lists hold.
@@ -95,9 +95,10 @@ pub fn ranked_occluder_lists_threaded(
     let boxes: Vec<Aabb> = shapes.iter().map(|s| outward_aabb(&s.corners(), 0.0, origin)).collect();
     let bvh = build_bvh2(&boxes, obvhs::BvhBuildParams::fast_build(), &mut Duration::default());
     let areas: Vec<f64> = shapes.iter().map(Reflector::area).collect();
-    let corner_boxes: Vec<(DVec3, DVec3)> = shapes.iter().map(|s| corner_box(&s.corners(), origin)).collect();
+    let corners: Vec<[DVec3; 4]> = shapes.iter().map(Reflector::corners).collect();
+    let corner_boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| corner_box(c, origin)).collect();
     let node_area = largest_area_below(&bvh, &areas);
-    let extents = Extents { areas: &areas, boxes: &corner_boxes };
+    let extents = Extents { areas: &areas, boxes: &corner_boxes, corners: &corners };
     let lists = map_ranges(shapes.len(), threads, |range| {
         let mut search = Search::default();
         range.map(|a| search.run(a, &shapes[a], shapes, &extents, &bvh, &node_area, origin, rule)).collect()
@@ -111,6 +112,7 @@ pub fn ranked_occluder_lists_threaded(
 struct Extents<'a> {
     areas: &'a [f64],
     boxes: &'a [(DVec3, DVec3)],
+    corners: &'a [[DVec3; 4]],
 }
 
 /// The box of `corners`, relative to `origin`.
@@ -256,7 +258,15 @@ impl Search {
                 if full(&self.best) && self.best.peek().is_some_and(|w| r < w.0.rank) {
                     continue;
                 }
-                let Some(d) = occlusion_distance(shape, &shapes[b], rule.epsilon) else { continue };
+                let Some(d) = occlusion_distance_of(
+                    shape,
+                    &extents.corners[a],
+                    &shapes[b],
+                    &extents.corners[b],
+                    rule.epsilon,
+                ) else {
+                    continue;
+                };
                 if !within_reach(shape, &shapes[b], d, rule.reach) {
                     continue;
                 }

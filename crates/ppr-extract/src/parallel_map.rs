@@ -48,6 +48,27 @@ pub fn map_ranges<R: Send>(
     parts.into_iter().flat_map(|(_, v)| v).collect()
 }
 
+/// `f` over every item of `items` (mutably), on up to `threads` threads; the outputs in
+/// item order.
+pub fn map_slice_mut<T: Send, R: Send>(
+    items: &mut [T],
+    threads: usize,
+    f: impl Fn(&mut T) -> R + Sync,
+) -> Vec<R> {
+    let threads = threads.max(1).min(items.len().max(1));
+    if threads == 1 {
+        return items.iter_mut().map(f).collect();
+    }
+    let chunk = items.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let workers: Vec<_> = items
+            .chunks_mut(chunk)
+            .map(|part| scope.spawn(|| part.iter_mut().map(&f).collect::<Vec<R>>()))
+            .collect();
+        workers.into_iter().flat_map(|w| w.join().unwrap_or_else(|e| std::panic::resume_unwind(e))).collect()
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -59,5 +80,11 @@ mod tests {
             assert_eq!(map_ranges(1000, threads, |r| r.map(|i| i * i).collect()), one, "{threads} threads");
         }
         assert!(map_ranges(0, 4, |r| r.collect::<Vec<_>>()).is_empty());
+        let mut items: Vec<usize> = (0..1000).collect();
+        let squares = map_slice_mut(&mut items, 3, |i| {
+            *i += 1;
+            *i * *i
+        });
+        assert_eq!(squares, (1..=1000).map(|i| i * i).collect::<Vec<_>>());
     }
 }
