@@ -23,12 +23,14 @@ use crate::plane::{Plane, PlaneAccumulator};
 use crate::select::Candidate;
 
 /// A connected planar region: candidate indices, all of one kind.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct GrownRegion {
     /// The kind of every member.
     pub kind: ReflectorKind,
     /// Indices into the candidate list, in growth order (seed first).
     pub members: Vec<u32>,
+    /// The area-weighted moments of every member (the region's plane fit).
+    pub moments: PlaneAccumulator,
 }
 
 /// Grows connected planar regions over `conn`, largest seeds first.
@@ -109,7 +111,7 @@ pub fn grow_regions(
         if regions.len() % 256 == 0 {
             progress(done as f32 / n.max(1) as f32);
         }
-        regions.push(GrownRegion { kind: s.kind, members });
+        regions.push(GrownRegion { kind: s.kind, members, moments: acc });
     }
     regions
 }

@@ -11,7 +11,7 @@ use crate::budget::{BudgetReport, BudgetRule, RegionOffer, apply_budget};
 use crate::cluster::{Connectivity, GrownRegion};
 use crate::level::Level;
 use crate::parallel_map::{map_ranges, map_slice_mut};
-use crate::plane::{Plane, PlaneAccumulator};
+use crate::plane::Plane;
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
 use crate::select::Candidate;
@@ -96,12 +96,7 @@ pub fn prepare_regions(
             stats.small_regions_dropped += 1;
             continue;
         }
-        let first = candidates[region.members[0] as usize].positions[0];
-        let mut acc = PlaneAccumulator::new(first);
-        for &m in &region.members {
-            acc.add(candidates[m as usize].positions);
-        }
-        let Some(plane) = acc.fit() else { continue };
+        let Some(plane) = region.moments.fit() else { continue };
         let mut seen: BTreeSet<[u32; 3]> = BTreeSet::new();
         let mut polygons = Vec::with_capacity(region.members.len());
         let mut source_area: BTreeMap<u32, f64> = BTreeMap::new();

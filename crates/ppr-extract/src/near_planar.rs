@@ -101,18 +101,13 @@ pub fn merge_near_planar(
         return (regions, Vec::new());
     }
     let max_angle = rule.max_angle_deg.to_radians();
-    let mut groups: Vec<Option<Group>> = regions
-        .iter()
-        .map(|r| {
-            let mut acc = PlaneAccumulator::new(candidates[r.members[0] as usize].positions[0]);
-            for &m in &r.members {
-                acc.add(candidates[m as usize].positions);
-            }
-            let plane = acc.fit()?;
-            let corners = frame_box(&plane, r.members.iter().flat_map(|&m| candidates[m as usize].positions));
-            Some(Group { acc, plane, corners, angle: 0.0, offset: 0.0, regions: 1 })
-        })
-        .collect();
+    let planes: Vec<Option<Plane>> = regions.iter().map(|r| r.moments.fit()).collect();
+    // Groups are made for the regions of some candidate pair only (see below).
+    let mut groups: Vec<Option<Group>> = (0..regions.len()).map(|_| None).collect();
+    let group_of = |r: &GrownRegion, plane: Plane| {
+        let corners = frame_box(&plane, r.members.iter().flat_map(|&m| candidates[m as usize].positions));
+        Group { acc: r.moments.clone(), plane, corners, angle: 0.0, offset: 0.0, regions: 1 }
+    };
     // Touching pairs of the same kind with planes within the angle, smallest angle first.
     let mut region_of = vec![u32::MAX; candidates.len()];
     for (i, r) in regions.iter().enumerate() {
@@ -142,11 +137,20 @@ pub fn merge_near_planar(
         .into_iter()
         .filter(|&(a, b)| regions[a as usize].kind == regions[b as usize].kind)
         .filter_map(|(a, b)| {
-            let (ga, gb) = (groups[a as usize].as_ref()?, groups[b as usize].as_ref()?);
-            let angle = angle_between(ga.plane.normal, gb.plane.normal);
+            let (pa, pb) = (planes[a as usize].as_ref()?, planes[b as usize].as_ref()?);
+            let angle = angle_between(pa.normal, pb.normal);
             (angle <= max_angle).then_some((angle, a, b))
         })
         .collect();
+    for &(_, a, b) in &ranked {
+        for r in [a, b] {
+            if groups[r as usize].is_none()
+                && let Some(plane) = planes[r as usize]
+            {
+                groups[r as usize] = Some(group_of(&regions[r as usize], plane));
+            }
+        }
+    }
     ranked.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)).then(x.2.cmp(&y.2)));
     // Union-find over regions; a group lives at its smallest region.
     let mut parent: Vec<u32> = (0..regions.len() as u32).collect();
@@ -201,7 +205,8 @@ pub fn merge_near_planar(
         let r = roots[i] as usize;
         if slot[r] == u32::MAX {
             slot[r] = out.len() as u32;
-            out.push(GrownRegion { kind: region.kind, members: Vec::new() });
+            let moments = groups[r].as_ref().map_or_else(|| region.moments.clone(), |g| g.acc.clone());
+            out.push(GrownRegion { kind: region.kind, members: Vec::new(), moments });
             if let Some(g) = groups[r].as_ref().filter(|g| g.regions > 1) {
                 reports.push(MergeReport {
                     regions: g.regions,
