@@ -90,9 +90,9 @@ fn main() -> anyhow::Result<()> {
     );
     println!();
     println!(
-        "| level | triangles | rectangles | per copy | select | cluster | regions | fit | occluders | other | total | triangles/s |"
+        "| level | triangles | rectangles | per copy | select | cluster | regions | fit | occluders | other | total | CPU s | triangles/s |"
     );
-    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     let spec = RoomSpec { cells_per_m: 4.0, ..RoomSpec::default() };
     let room = room_triangles(&spec, glam::DVec3::ZERO);
     row("room", &level_of("room", &room), &params, runs, 1);

@@ -26,6 +26,7 @@ fn a_wall_kinked_by_one_degree_is_one_rectangle() {
         _ => None,
     });
     let merge = merge.expect("the merge is reported");
+    eprintln!("1° kink: {merge:?}");
     assert_eq!(merge.regions, 2);
     assert!(merge.angle_deg > 0.4 && merge.angle_deg < 0.6, "{merge:?}");
     assert!(merge.error_m > 0.0 && merge.error_m <= params.max_reflection_error_m, "{merge:?}");
