@@ -2,7 +2,8 @@
 //!
 //! Corner positions are welded within the gap tolerance (exporters duplicate vertices): a
 //! position joins the earliest weld point within the gap in its own cell of a grid of cells
-//! twice the gap wide, else the earliest in the neighbouring cells, else starts a new one. A weld point
+//! eight gaps wide, else the earliest in the neighbouring cells its gap ball reaches, else
+//! starts a new one. A weld point
 //! that lies within the gap of a triangle without being one of its corners (T-junctions,
 //! touching or overlapping coplanar pieces) is a *contact*: the triangle becomes one more
 //! user of that point. Two triangles are connected when they use a common weld point.
@@ -22,6 +23,10 @@ use crate::select::Candidate;
 
 /// End of a linked list in the flat arrays.
 const NONE: u32 = u32::MAX;
+
+/// Offset of the contact grid's cells, as a fraction of a cell (irrational-ish, so that round
+/// coordinates do not fall on cell sides).
+const CELL_SHIFT: f64 = 0.381_966;
 
 /// Triangles that span more grid cells than this query the point hierarchy.
 const MAX_CELLS_PER_QUERY: f64 = 64.0;
@@ -109,8 +114,9 @@ fn cell3(p: DVec3, cell: f64) -> Cell {
 /// Welds corner positions within `tol`: per-candidate welded ids and the weld points.
 /// A position joins the earliest weld point within `tol` (deterministic).
 fn weld(candidates: &[Candidate], tol: f64) -> (Vec<[u32; 3]>, Vec<DVec3>) {
-    // Cells of 2·tol: the ball of radius tol around a point lies in the 2×2×2 cells nearest it.
-    let cell = 2.0 * tol;
+    // Cells of 8·tol: the ball of radius tol around a point reaches a neighbouring cell only
+    // near a cell's side, so most new points look in one cell.
+    let cell = 8.0 * tol;
     let mut head: CellMap<u32> = CellMap::default();
     head.reserve(candidates.len());
     let mut next: Vec<u32> = Vec::new();
@@ -143,13 +149,13 @@ fn weld(candidates: &[Candidate], tol: f64) -> (Vec<[u32; 3]>, Vec<DVec3>) {
             // The point's own cell first (exact duplicates are there), then its neighbours.
             let mut found = earliest_in(base, NONE);
             if found == NONE {
-                let near =
-                    [p.x, p.y, p.z].map(|x| if (x / cell) - (x / cell).floor() < 0.5 { -1 } else { 1 });
-                for dx in [0, near[0]] {
-                    for dy in [0, near[1]] {
-                        for dz in [0, near[2]] {
-                            if (dx, dy, dz) != (0, 0, 0) {
-                                found = earliest_in((base.0 + dx, base.1 + dy, base.2 + dz), found);
+                // Only the cells the ball of radius tol reaches (most points: none).
+                let (lo, hi) = (cell3(p - DVec3::splat(tol), cell), cell3(p + DVec3::splat(tol), cell));
+                for x in lo.0..=hi.0 {
+                    for y in lo.1..=hi.1 {
+                        for z in lo.2..=hi.2 {
+                            if (x, y, z) != base {
+                                found = earliest_in((x, y, z), found);
                             }
                         }
                     }
@@ -181,11 +187,14 @@ fn contacts(candidates: &[Candidate], welded: &[[u32; 3]], points: &[DVec3], gap
     let mid = edges.len() / 2;
     let median = *edges.select_nth_unstable_by(mid, f64::total_cmp).1;
     let cell = median.max(4.0 * gap);
+    // Cell sides off round coordinates: a floor at y = 0 lies inside one layer of cells, not
+    // on the side between two (half the look-ups would find empty cells).
+    let shift = DVec3::splat(CELL_SHIFT * cell);
     let mut head: CellMap<u32> = CellMap::default();
     head.reserve(points.len());
     let mut next = vec![NONE; points.len()];
     for (i, p) in points.iter().enumerate() {
-        let slot = head.entry(cell3(*p, cell)).or_insert(NONE);
+        let slot = head.entry(cell3(*p + shift, cell)).or_insert(NONE);
         next[i] = *slot;
         *slot = i as u32;
     }
@@ -195,7 +204,7 @@ fn contacts(candidates: &[Candidate], welded: &[[u32; 3]], points: &[DVec3], gap
     for (t, c) in candidates.iter().enumerate() {
         let lo = c.positions[0].min(c.positions[1]).min(c.positions[2]) - DVec3::splat(gap);
         let hi = c.positions[0].max(c.positions[1]).max(c.positions[2]) + DVec3::splat(gap);
-        let (l, h) = (cell3(lo, cell), cell3(hi, cell));
+        let (l, h) = (cell3(lo + shift, cell), cell3(hi + shift, cell));
         let span = (h.0 - l.0 + 1) as f64 * (h.1 - l.1 + 1) as f64 * (h.2 - l.2 + 1) as f64;
         found.clear();
         if span <= MAX_CELLS_PER_QUERY {
