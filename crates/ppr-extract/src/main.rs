@@ -49,7 +49,8 @@ UNITS:
   same room gives the same rectangles alone or inside a large level. Defaults (measured
   on the shared scenes, docs/perf/extract.md): vertices within 5 mm of their plane (the
   reflection moves by at most 1 cm), gaps up to 5 mm bridged, regions under 0.01 m²
-  dropped, occluders looked for anywhere in front of a reflector, at most 64 per list,
+  dropped, touching regions within 2° merged when the reflection error at 1 m stays
+  under 8 cm, occluders looked for anywhere in front of a reflector, at most 64 per list,
   at most 128 rectangles in any 10 m cube (the density budget: what a view that sees a
   few rooms can afford; see --max-per-cube).
 
@@ -101,7 +102,16 @@ struct Cli {
     /// summary says how many lists were cut).
     #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_occluders)]
     max_occluders: usize,
-    /// Split a non-convex region when each extra rectangle saves this fraction of its area.
+    /// Touching regions whose planes are less than this apart merge into one plane when the
+    /// reflection error stays under --max-reflection-error, degrees (0: never).
+    #[arg(long, value_name = "DEG", default_value_t = ExtractParams::default().near_planar_angle_deg)]
+    near_planar_angle: f64,
+    /// Largest reflection error a near-planar merge may cause: how far the image of a point
+    /// 1 m in front of the surface moves, metres (each merge is reported with its error).
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().max_reflection_error_m)]
+    max_reflection_error: f64,
+    /// Split a non-convex region when each extra rectangle saves this fraction of the
+    /// region's rectangle.
     #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().split_min_gain)]
     split_min_gain: f64,
     /// Density budget: most rectangles in any cube of --budget-cube metres (regions and
@@ -161,6 +171,8 @@ fn params_from(cli: &Cli) -> Result<ExtractParams, String> {
         split_min_gain: cli.split_min_gain,
         max_shapes_per_region: cli.max_shapes_per_region,
         max_shapes_per_cube: cli.max_per_cube,
+        near_planar_angle_deg: cli.near_planar_angle,
+        max_reflection_error_m: cli.max_reflection_error,
         budget_cube_m: cli.budget_cube,
         ..ExtractParams::default()
     };
