@@ -194,27 +194,19 @@ impl OccupancyGrid {
         let mut grid = Self { rect, nu, nv, cell, occupied: vec![false; nu * nv] };
         // Conservative: a cell counts as touched when the polygon comes within `eps` of it.
         let eps = 1e-9 * (rect.half.x + rect.half.y);
+        let mut local: Vec<DVec2> = Vec::new();
         for poly in &p.polygons {
             // Local coordinates with the rectangle's corner at the origin.
-            let flat: Vec<DVec2> = poly.flat.iter().map(|&q| rect.local(q) + rect.half).collect();
-            let local = Polygon { flat, spatial: poly.spatial.clone() };
-            let (lo, hi) = local
-                .flat
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
+            local.clear();
+            local.extend(poly.flat.iter().map(|&q| rect.local(q) + rect.half));
+            let (lo, hi) =
+                local.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
             let j_lo = grid.row_of(lo - eps);
             let j_hi = grid.row_of(hi + eps);
             for j in j_lo..=j_hi {
                 let y0 = j as f64 * cell.y - eps;
                 let y1 = (j + 1) as f64 * cell.y + eps;
-                let Some(strip) = local.clip(DVec2::Y, y0, false).and_then(|q| q.clip(DVec2::Y, y1, true))
-                else {
-                    continue;
-                };
-                let (xl, xh) = strip
-                    .flat
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.x), h.max(q.x)));
+                let Some((xl, xh)) = strip_x_range(&local, y0, y1) else { continue };
                 for i in grid.col_of(xl - eps)..=grid.col_of(xh + eps) {
                     grid.occupied[j * nu + i] = true;
                 }
@@ -308,6 +300,29 @@ impl OccupancyGrid {
         }
         out
     }
+}
+
+/// The x-range of the convex polygon `flat` within the strip `y0 <= y <= y1` (its vertices
+/// there and its edges' crossings of the two lines), or `None` when it misses the strip.
+fn strip_x_range(flat: &[DVec2], y0: f64, y1: f64) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let n = flat.len();
+    for k in 0..n {
+        let (p, q) = (flat[k], flat[(k + 1) % n]);
+        if p.y >= y0 && p.y <= y1 {
+            lo = lo.min(p.x);
+            hi = hi.max(p.x);
+        }
+        for line in [y0, y1] {
+            let (sp, sq) = (p.y - line, q.y - line);
+            if (sp >= 0.0) != (sq >= 0.0) {
+                let x = p.lerp(q, sp / (sp - sq)).x;
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// Clips `poly` to `local(axis) <= limit` (`below`) or `>= limit` in `rect`'s centred frame.
