@@ -24,7 +24,11 @@ fn grid(origin: DVec3, u: DVec3, v: DVec3, [w, h]: [f64; 2], [n, m]: [usize; 2])
 }
 
 fn run(tris: &[[DVec3; 3]]) -> Extraction {
-    extract(&Level::from_triangles("stability", tris, glossy()), &ExtractParams::default(), &|_, _| {})
+    run_with(tris, &ExtractParams::default())
+}
+
+fn run_with(tris: &[[DVec3; 3]], params: &ExtractParams) -> Extraction {
+    extract(&Level::from_triangles("stability", tris, glossy()), params, &|_, _| {})
 }
 
 /// One rectangle of `w × h` (relative tolerance `tol`) with the given normal.
@@ -142,7 +146,8 @@ fn huge_tiny_and_far_away_levels() {
         let u = DVec3::new(0.6, 0.0, 0.8);
         let v = DVec3::Y;
         let tris = grid(origin, u, v, [5.0 * scale, 3.0 * scale], [6, 4]);
-        let x = run(&tris);
+        // Tolerances are metres: a wall modelled at another scale says its unit.
+        let x = run_with(&tris, &ExtractParams::default().in_level_units(1.0 / scale));
         let normal = u.cross(v).normalize();
         assert_one(&x, [5.0 * scale, 3.0 * scale], normal, 1e-9, what);
         let r = &x.set.reflectors[0];

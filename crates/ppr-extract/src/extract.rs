@@ -9,11 +9,16 @@ use ppr_format::{ExtractorInfo, Reflector, ReflectorSet, ReflectorSource, Source
 use crate::cluster::{Connectivity, grow_regions};
 use crate::extraction::{Extraction, ExtractionStats, Stage, Warning};
 use crate::fit::{FitStats, FittedShape, fit_shapes, prepare_regions};
-use crate::occluders::occluder_lists;
+use crate::near_planar::{MergeReport, NearPlanarRule, merge_near_planar};
+use crate::occluders::{OccluderRule, ranked_occluder_lists_threaded};
 use crate::parallel::extraction_groups;
+use crate::parallel_map::thread_count;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
 use crate::{ExtractParams, Level, SceneScale};
+
+/// Near-planar merges listed one by one in the warnings (the rest are counted).
+const MERGES_LISTED: usize = 20;
 
 /// Extracts the reflector set of `level`. `progress(stage, fraction)` is called at the
 /// start (0) and end (1) of each stage and now and then in between.
@@ -27,6 +32,7 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let mut timings = Vec::new();
     let mut clock = StageClock { timings: &mut timings, progress, started: Instant::now() };
     let scale = SceneScale::new(level, params);
+    let threads = thread_count(params.threads);
     let mut warnings: Vec<Warning> = level.notes.iter().cloned().map(Warning::Loader).collect();
 
     clock.start(Stage::Select);
@@ -43,7 +49,21 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let conn = Connectivity::build(&selection.candidates, &scale);
     clock.report(Stage::Cluster, 0.4);
     let grown =
-        grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.6 * f));
+        grow_regions(&selection.candidates, &conn, &scale, &mut |f| progress(Stage::Cluster, 0.4 + 0.5 * f));
+    let region_count = grown.len();
+    let rule = NearPlanarRule {
+        max_angle_deg: params.near_planar_angle_deg,
+        max_error_m: params.max_reflection_error_m,
+    };
+    let (grown, merges) = merge_near_planar(&selection.candidates, grown, &conn, &rule);
+    for (k, report) in merges.iter().enumerate() {
+        if k == MERGES_LISTED {
+            warnings.push(Warning::MoreNearPlanarMerges(merges.len() - MERGES_LISTED));
+            break;
+        }
+        let report = MergeReport { origin: report.origin + scale.center, ..report.clone() };
+        warnings.push(Warning::NearPlanarMerge { report });
+    }
     clock.finish(Stage::Cluster);
 
     clock.start(Stage::Regions);
@@ -52,14 +72,23 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     clock.finish(Stage::Regions);
 
     clock.start(Stage::Fit);
-    let shapes = fit_shapes(prepared, params, &scale, &mut fit_stats, &mut |f| progress(Stage::Fit, f));
+    let shapes =
+        fit_shapes(prepared, params, &scale, threads, &mut fit_stats, &mut |f| progress(Stage::Fit, f));
     clock.finish(Stage::Fit);
 
     clock.start(Stage::Occluders);
     let (mut set, regions) = build_set(level, params, &scale, shapes);
-    let lists = occluder_lists(&set.reflectors, scale.center, scale.distance_tolerance, scale.reach);
+    let rule = OccluderRule {
+        epsilon: scale.distance_tolerance,
+        reach: scale.reach,
+        max_per_list: params.max_occluders,
+    };
+    let lists = ranked_occluder_lists_threaded(&set.reflectors, scale.center, &rule, threads);
+    if lists.capped > 0 {
+        warnings.push(Warning::OccluderListsCapped { lists: lists.capped, cap: params.max_occluders });
+    }
     let mut occluder_pairs = 0;
-    for (r, list) in set.reflectors.iter_mut().zip(lists) {
+    for (r, list) in set.reflectors.iter_mut().zip(lists.lists) {
         occluder_pairs += list.len();
         r.occluders = list;
     }
@@ -72,6 +101,13 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
         warnings
             .push(Warning::SmallRegions { count: fit_stats.small_regions_dropped, min_area: scale.min_area });
     }
+    if fit_stats.budget.regions_dropped > 0 || fit_stats.budget.splits_refused > 0 {
+        warnings.push(Warning::Budget {
+            max_per_cube: params.max_shapes_per_cube,
+            cube_m: params.budget_cube_m,
+            report: fit_stats.budget,
+        });
+    }
     if fit_stats.regions_split > 0 {
         warnings.push(Warning::Splits {
             regions: fit_stats.regions_split,
@@ -83,7 +119,7 @@ pub fn extract(level: &Level, params: &ExtractParams, progress: &dyn Fn(Stage, f
     let stats = ExtractionStats {
         triangles: level.triangles.len(),
         candidates: selection.candidates.len(),
-        regions: grown.len(),
+        regions: region_count,
         regions_kept: fit_stats.regions,
         parallel_groups: set.reflectors.iter().map(|r| r.parallel_group + 1).max().unwrap_or(0) as usize,
         occluder_pairs,
@@ -139,7 +175,6 @@ fn build_set(
                 kind: s.kind,
                 normal,
                 center,
-                diagonal: scale.diagonal,
                 node: &s.primary.0,
                 material: &s.primary.1,
             });

@@ -75,6 +75,30 @@ pub enum Warning {
         /// ... and after.
         area_after: f64,
     },
+    /// Near-planar regions merged into one plane, with the reflection error it causes.
+    NearPlanarMerge {
+        /// The merge (its `origin` in world coordinates).
+        report: crate::near_planar::MergeReport,
+    },
+    /// More merges than are listed one by one.
+    MoreNearPlanarMerges(usize),
+    /// What the density budget left out.
+    Budget {
+        /// The budget: rectangles per cube, and the cube's edge in metres.
+        max_per_cube: usize,
+        /// Cube edge, metres.
+        cube_m: f64,
+        /// What it did.
+        report: crate::budget::BudgetReport,
+    },
+    /// Occluder lists that reached the cap: they keep the occluders that look largest from
+    /// their reflector.
+    OccluderListsCapped {
+        /// How many lists.
+        lists: usize,
+        /// The cap.
+        cap: usize,
+    },
     /// No triangle was a candidate (try `--all-planar`).
     NoCandidates,
     /// A note from the loader.
@@ -93,6 +117,31 @@ impl std::fmt::Display for Warning {
                 f,
                 "split {regions} non-convex regions into {extra_shapes} more rectangles: rectangle area {area_before:.3} → {area_after:.3} m² ({:.1}% less)",
                 100.0 * (1.0 - area_after / area_before.max(f64::MIN_POSITIVE))
+            ),
+            Warning::NearPlanarMerge { report: m } => write!(
+                f,
+                "near-planar: {} regions at ({:.2}, {:.2}, {:.2}) merged into one plane: planes ≤ {:.2}° off it, vertices ≤ {:.1} mm from it; reflection error ≤ {:.1} mm at 1 m",
+                m.regions,
+                m.origin.x,
+                m.origin.y,
+                m.origin.z,
+                m.angle_deg,
+                m.offset_m * 1e3,
+                m.error_m * 1e3
+            ),
+            Warning::MoreNearPlanarMerges(n) => write!(f, "near-planar: {n} more merges (not listed)"),
+            Warning::Budget { max_per_cube, cube_m, report } => write!(
+                f,
+                "density budget ({max_per_cube} rectangles per {cube_m} m cube, {} cubes full): dropped {} regions ({:.3} m² of reflective area, the least per shape), refused {} splits (they would have saved {:.3} m² of rectangle area)",
+                report.full_cells,
+                report.regions_dropped,
+                report.area_dropped,
+                report.splits_refused,
+                report.saving_refused
+            ),
+            Warning::OccluderListsCapped { lists, cap } => write!(
+                f,
+                "occluder lists at the cap of {cap}: {lists} (they keep the occluders that look largest from their reflector)"
             ),
             Warning::NoCandidates => {
                 f.write_str("no candidate triangles (levels without meaningful materials need --all-planar)")

@@ -1,18 +1,21 @@
 //! Fitting each planar region with rectangles: the region's own plane (area-weighted fit,
 //! reflecting side by area-weighted majority), its triangles as polygons in that plane,
-//! the minimum-area rectangle, and the split of non-convex regions.
+//! the minimum-area rectangle, the split of non-convex regions, and the density budget
+//! that decides which regions and splits are kept ([`crate::budget`]).
 
 use std::collections::{BTreeMap, BTreeSet};
 
 use ppr_format::ReflectorKind;
 
+use crate::budget::{BudgetReport, BudgetRule, RegionOffer, apply_budget};
 use crate::cluster::{Connectivity, GrownRegion};
 use crate::level::Level;
-use crate::plane::{Plane, PlaneAccumulator};
+use crate::parallel_map::{map_ranges, map_slice_mut};
+use crate::plane::Plane;
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
 use crate::select::Candidate;
-use crate::split::{Piece, SplitSettings, split_region};
+use crate::split::{Piece, SplitSettings, SplitStep, split_region_steps};
 use crate::{ExtractParams, SceneScale};
 
 /// One rectangle fitted to (part of) a region, in local coordinates.
@@ -55,6 +58,8 @@ pub struct FitStats {
     pub split_area_before: f64,
     /// ... and after, square metres.
     pub split_area_after: f64,
+    /// What the density budget left out.
+    pub budget: BudgetReport,
 }
 
 /// A region ready for fitting: its plane and its polygons (duplicates removed).
@@ -91,16 +96,11 @@ pub fn prepare_regions(
             stats.small_regions_dropped += 1;
             continue;
         }
-        let first = candidates[region.members[0] as usize].positions[0];
-        let mut acc = PlaneAccumulator::new(first);
-        for &m in &region.members {
-            acc.add(candidates[m as usize].positions);
-        }
-        let Some(plane) = acc.fit() else { continue };
+        let Some(plane) = region.moments.fit() else { continue };
         let mut seen: BTreeSet<[u32; 3]> = BTreeSet::new();
         let mut polygons = Vec::with_capacity(region.members.len());
-        let mut node_area: BTreeMap<&str, f64> = BTreeMap::new();
-        let mut material_area: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut source_area: BTreeMap<u32, f64> = BTreeMap::new();
+        let mut last_source = (u32::MAX, 0.0);
         for &m in &region.members {
             let c = &candidates[m as usize];
             let mut key = conn.welded[m as usize];
@@ -109,13 +109,29 @@ pub fn prepare_regions(
                 stats.duplicate_triangles += 1;
                 continue;
             }
-            let source = &level.sources[level.triangles[c.triangle as usize].source as usize];
-            *node_area.entry(&source.node).or_default() += c.area;
-            *material_area.entry(&level.materials[source.material as usize].name).or_default() += c.area;
+            // Runs of one source are summed before they reach the map.
+            let source = level.triangles[c.triangle as usize].source;
+            if source != last_source.0 {
+                if last_source.0 != u32::MAX {
+                    *source_area.entry(last_source.0).or_default() += last_source.1;
+                }
+                last_source = (source, 0.0);
+            }
+            last_source.1 += c.area;
             polygons.push(Polygon {
                 flat: c.positions.iter().map(|&p| plane.project(p)).collect(),
                 spatial: c.positions.to_vec(),
             });
+        }
+        if last_source.0 != u32::MAX {
+            *source_area.entry(last_source.0).or_default() += last_source.1;
+        }
+        let mut node_area: BTreeMap<&str, f64> = BTreeMap::new();
+        let mut material_area: BTreeMap<&str, f64> = BTreeMap::new();
+        for (&source, &area) in &source_area {
+            let source = &level.sources[source as usize];
+            *node_area.entry(&source.node).or_default() += area;
+            *material_area.entry(&level.materials[source.material as usize].name).or_default() += area;
         }
         let heaviest = |m: &BTreeMap<&str, f64>| {
             m.iter()
@@ -135,11 +151,48 @@ pub fn prepare_regions(
     out
 }
 
-/// Fits every prepared region with one or more rectangles; `progress(f)` gets the fraction done.
+/// One region fitted with every split that pays.
+struct FittedRegion {
+    /// The region's single rectangle's area, m².
+    rect_area: f64,
+    /// World position of its centre.
+    center: glam::DVec3,
+    /// Reflective area, m².
+    area: f64,
+    pieces: Vec<Piece>,
+    steps: Vec<SplitStep>,
+}
+
+/// The region with every split that pays, or `None` when it has no vertex or less area
+/// than `min_area`. Takes the region's polygons, and gives them back when it was split
+/// (the budget may replay fewer splits from them).
+fn fit_region(
+    region: &mut PreparedRegion,
+    settings: &SplitSettings,
+    scale: &SceneScale,
+) -> Option<FittedRegion> {
+    let piece = Piece::new(std::mem::take(&mut region.polygons))?;
+    if piece.area < scale.min_area {
+        return None;
+    }
+    let (rect_area, area) = (piece.rect.area(), piece.area);
+    let center = scale.center + region.plane.lift(piece.rect.center);
+    let originals = (piece.waste() >= settings.min_gain * rect_area).then(|| piece.polygons.clone());
+    let (pieces, steps) = split_region_steps(piece, settings, usize::MAX);
+    if !steps.is_empty() {
+        region.polygons = originals.unwrap_or_default();
+    }
+    Some(FittedRegion { rect_area, center, area, pieces, steps })
+}
+
+/// Fits every prepared region with one or more rectangles under the density budget, on up
+/// to `threads` threads (the result does not depend on the count); `progress(f)` gets the
+/// fraction done.
 pub fn fit_shapes(
     regions: Vec<PreparedRegion>,
     params: &ExtractParams,
     scale: &SceneScale,
+    threads: usize,
     stats: &mut FitStats,
     progress: &mut dyn FnMut(f32),
 ) -> Vec<FittedShape> {
@@ -148,28 +201,66 @@ pub fn fit_shapes(
         max_pieces: params.max_shapes_per_region,
         grid_cells: params.split_grid_cells,
     };
+    // Every region with every split that pays, in batches for progress.
+    let batch = 256 * threads.max(1);
+    let mut regions = regions;
+    let mut fitted: Vec<Option<FittedRegion>> = Vec::with_capacity(regions.len());
     let total = regions.len();
-    let mut shapes = Vec::new();
-    for (r, region) in regions.into_iter().enumerate() {
-        if r % 64 == 0 {
-            progress(r as f32 / total.max(1) as f32);
+    for (k, chunk) in regions.chunks_mut(batch).enumerate() {
+        progress(0.9 * (k * batch) as f32 / total.max(1) as f32);
+        fitted.extend(map_slice_mut(chunk, threads, |region| fit_region(region, &settings, scale)));
+    }
+    // The budget, then the regions it cut short split again with the steps it kept.
+    let kept: Vec<usize> = (0..regions.len()).filter(|&r| fitted[r].is_some()).collect();
+    let offers: Vec<RegionOffer> = kept
+        .iter()
+        .filter_map(|&r| fitted[r].as_ref())
+        .map(|f| RegionOffer { center: f.center, area: f.area, steps: f.steps.clone() })
+        .collect();
+    let rule = BudgetRule { cell_m: params.budget_cube_m, max_per_cell: params.max_shapes_per_cube };
+    let (choices, report) = apply_budget(&offers, &rule);
+    stats.budget = report;
+    let replay: Vec<(usize, usize)> = kept
+        .iter()
+        .zip(&choices)
+        .filter(|(r, c)| c.keep && fitted[**r].as_ref().is_some_and(|f| c.steps < f.steps.len()))
+        .map(|(&r, c)| (r, c.steps))
+        .collect();
+    let replayed = map_ranges(replay.len(), threads, |range| {
+        range
+            .map(|k| {
+                let (r, steps) = replay[k];
+                let piece = Piece::new(regions[r].polygons.clone())
+                    .map(|p| split_region_steps(p, &settings, steps).0);
+                (r, piece.unwrap_or_default())
+            })
+            .collect()
+    });
+    for (r, pieces) in replayed {
+        if let Some(f) = fitted[r].as_mut() {
+            f.pieces = pieces;
         }
-        let Some(piece) = Piece::new(region.polygons) else { continue };
-        if piece.area < scale.min_area {
+    }
+    let keep: std::collections::BTreeSet<usize> =
+        kept.iter().zip(&choices).filter(|(_, c)| c.keep).map(|(&r, _)| r).collect();
+    let mut shapes = Vec::new();
+    for (r, (region, outcome)) in regions.into_iter().zip(fitted).enumerate() {
+        let Some(f) = outcome else {
             stats.small_regions_dropped += 1;
+            continue;
+        };
+        if !keep.contains(&r) {
             continue;
         }
         stats.regions += 1;
-        let before = piece.rect.area();
-        let pieces = split_region(piece, &settings);
-        if pieces.len() > 1 {
+        if f.pieces.len() > 1 {
             stats.regions_split += 1;
-            stats.shapes_added_by_splits += pieces.len() - 1;
-            stats.split_area_before += before;
-            stats.split_area_after += pieces.iter().map(|p| p.rect.area()).sum::<f64>();
+            stats.shapes_added_by_splits += f.pieces.len() - 1;
+            stats.split_area_before += f.rect_area;
+            stats.split_area_after += f.pieces.iter().map(|p| p.rect.area()).sum::<f64>();
         }
-        let count = pieces.len();
-        for (k, p) in pieces.into_iter().enumerate() {
+        let count = f.pieces.len();
+        for (k, p) in f.pieces.into_iter().enumerate() {
             shapes.push(FittedShape {
                 kind: region.kind,
                 plane: region.plane,

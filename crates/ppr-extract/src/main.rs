@@ -22,8 +22,8 @@ const EXIT_OUTPUT: u8 = 3;
 /// Exit status: the extracted set failed validation (a bug).
 const EXIT_INTERNAL: u8 = 4;
 
-/// Levels with at least this many triangles get a progress bar (on a terminal).
-const PROGRESS_MIN_TRIANGLES: usize = 20_000;
+/// Extractions still running after this long show a progress bar (on a terminal).
+const PROGRESS_AFTER: Duration = Duration::from_secs(1);
 
 const AFTER_HELP: &str = "\
 CANDIDATES:
@@ -41,7 +41,18 @@ EXAMPLES:
   ppr-extract level.glb                      writes level.ppr.json beside it
   ppr-extract level.gltf -o out/level.ppr.json
   ppr-extract collision-world.glb --all-planar --min-area 0.5
-  ppr-extract level.glb --angle-tolerance 2 --distance-tolerance 1e-3 --reach 5
+  ppr-extract level.glb --angle-tolerance 2 --distance-tolerance 0.002 --reach 5
+  ppr-extract level_in_cm.glb --unit 0.01      tolerances stay in metres
+
+UNITS:
+  Lengths are metres and areas m² (glTF's unit), never fractions of the level's size: the
+  same room gives the same rectangles alone or inside a large level. Defaults (measured
+  on the shared scenes, docs/perf/extract.md): vertices within 5 mm of their plane (the
+  reflection moves by at most 1 cm), gaps up to 5 mm bridged, regions under 0.01 m²
+  dropped, touching regions within 2° merged when the reflection error at 1 m stays
+  under 8 cm, occluders looked for anywhere in front of a reflector, at most 64 per list,
+  at most 128 rectangles in any 10 m cube (the density budget: what a view that sees a
+  few rooms can afford; see --max-per-cube).
 
 EXIT CODES:
   0  success (the set was written; it may be empty: see the notes)
@@ -66,24 +77,50 @@ struct Cli {
     /// Every planar area is a candidate, whatever its material.
     #[arg(long)]
     all_planar: bool,
-    /// Smallest reflective area kept, m² [default: 1e-4 × level diagonal²].
-    #[arg(long, value_name = "M2")]
-    min_area: Option<f64>,
+    /// Size of one level unit in metres, for levels not modelled in metres (glTF's unit):
+    /// 0.01 for centimetres. Every length and area below is in metres and m² and is
+    /// converted.
+    #[arg(long, value_name = "METRES", default_value_t = 1.0)]
+    unit: f64,
+    /// Smallest reflective area kept, m² (a 10 × 10 cm tile by default).
+    #[arg(long, value_name = "M2", default_value_t = ExtractParams::default().min_area_m2)]
+    min_area: f64,
     /// Largest angle between a triangle and its plane, degrees.
     #[arg(long, value_name = "DEG", default_value_t = ExtractParams::default().angle_tolerance_deg)]
     angle_tolerance: f64,
-    /// Largest distance of a vertex from its plane, as a fraction of the level diagonal.
-    #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().distance_tolerance)]
+    /// Largest distance of a vertex from its plane, metres (the reflection moves by twice this).
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().distance_tolerance_m)]
     distance_tolerance: f64,
-    /// Gap bridged between triangles of one region, as a fraction of the level diagonal.
-    #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().gap_tolerance)]
+    /// Gap bridged between triangles of one region (T-junctions, loose welds), metres.
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().gap_tolerance_m)]
     gap_tolerance: f64,
-    /// How far in front of a reflector occluders are listed, metres [default: 0.25 × level diagonal].
+    /// How far in front of a reflector occluders are looked for, metres [default: anywhere
+    /// in front of it].
     #[arg(long, value_name = "METRES")]
     reach: Option<f64>,
-    /// Split a non-convex region when each extra rectangle saves this fraction of its area.
+    /// Most occluders listed per reflector (the largest as seen from it are kept; the
+    /// summary says how many lists were cut).
+    #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_occluders)]
+    max_occluders: usize,
+    /// Touching regions whose planes are less than this apart merge into one plane when the
+    /// reflection error stays under --max-reflection-error, degrees (0: never).
+    #[arg(long, value_name = "DEG", default_value_t = ExtractParams::default().near_planar_angle_deg)]
+    near_planar_angle: f64,
+    /// Largest reflection error a near-planar merge may cause: how far the image of a point
+    /// 1 m in front of the surface moves, metres (each merge is reported with its error).
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().max_reflection_error_m)]
+    max_reflection_error: f64,
+    /// Split a non-convex region when each extra rectangle saves this fraction of the
+    /// region's rectangle.
     #[arg(long, value_name = "FRACTION", default_value_t = ExtractParams::default().split_min_gain)]
     split_min_gain: f64,
+    /// Density budget: most rectangles in any cube of --budget-cube metres (regions and
+    /// splits are kept by the area they buy per rectangle; the summary says what was left).
+    #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_cube)]
+    max_per_cube: usize,
+    /// Edge of the density budget's cubes, metres (a grid aligned with the world origin).
+    #[arg(long, value_name = "METRES", default_value_t = ExtractParams::default().budget_cube_m)]
+    budget_cube: f64,
     /// Most rectangles per region.
     #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_region)]
     max_shapes_per_region: usize,
@@ -119,18 +156,28 @@ fn fail(code: u8) -> impl FnOnce(anyhow::Error) -> Failure {
     move |error| Failure { code, error }
 }
 
-fn params_from(cli: &Cli) -> ExtractParams {
-    ExtractParams {
+fn params_from(cli: &Cli) -> Result<ExtractParams, String> {
+    if !(cli.unit.is_finite() && cli.unit > 0.0) {
+        return Err(format!("unit must be finite and positive, not {}", cli.unit));
+    }
+    let params = ExtractParams {
         candidates: if cli.all_planar { CandidateRule::AllPlanar } else { CandidateRule::Materials },
         min_area_m2: cli.min_area,
         angle_tolerance_deg: cli.angle_tolerance,
-        distance_tolerance: cli.distance_tolerance,
-        gap_tolerance: cli.gap_tolerance,
+        distance_tolerance_m: cli.distance_tolerance,
+        gap_tolerance_m: cli.gap_tolerance,
         reach_m: cli.reach,
+        max_occluders: cli.max_occluders,
         split_min_gain: cli.split_min_gain,
         max_shapes_per_region: cli.max_shapes_per_region,
+        max_shapes_per_cube: cli.max_per_cube,
+        near_planar_angle_deg: cli.near_planar_angle,
+        max_reflection_error_m: cli.max_reflection_error,
+        budget_cube_m: cli.budget_cube,
         ..ExtractParams::default()
-    }
+    };
+    params.validate()?;
+    Ok(params.in_level_units(cli.unit))
 }
 
 /// `<stem>.ppr.json` beside the input.
@@ -140,16 +187,20 @@ fn default_output(input: &Path) -> PathBuf {
 }
 
 fn run(cli: &Cli) -> Result<(), Failure> {
-    let params = params_from(cli);
-    params.validate().map_err(|e| fail(EXIT_USAGE)(anyhow::anyhow!("bad parameter: {e}")))?;
+    let params = params_from(cli).map_err(|e| fail(EXIT_USAGE)(anyhow::anyhow!("bad parameter: {e}")))?;
     let output = cli.output.clone().unwrap_or_else(|| default_output(&cli.input));
 
     let started = Instant::now();
     let level = load_level(&cli.input).map_err(|e| fail(EXIT_INPUT)(e.into()))?;
     let load_time = started.elapsed();
 
-    let bar = progress_bar(cli.quiet || level.triangles.len() < PROGRESS_MIN_TRIANGLES);
+    let bar = ProgressBar::hidden();
+    let show_bar = !cli.quiet && std::io::stderr().is_terminal();
+    let extract_started = Instant::now();
     let extraction = extract(&level, &params, &|stage, f| {
+        if show_bar && bar.is_hidden() && extract_started.elapsed() >= PROGRESS_AFTER {
+            show_progress(&bar);
+        }
         bar.set_message(stage.name());
         bar.set_position((f.clamp(0.0, 1.0) * 100.0) as u64);
     });
@@ -176,13 +227,12 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     Ok(())
 }
 
-fn progress_bar(hidden: bool) -> ProgressBar {
-    if hidden || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let bar = ProgressBar::with_draw_target(Some(100), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos:>3}%") {
+/// Draws `bar` on stderr from now on.
+fn show_progress(bar: &ProgressBar) {
+    bar.set_length(100);
+    if let Ok(style) = ProgressStyle::with_template("{msg:>10} [{bar:40}] {pos:>3}% {elapsed}") {
         bar.set_style(style.progress_chars("=> "));
     }
-    bar
+    bar.set_draw_target(ProgressDrawTarget::stderr());
+    bar.enable_steady_tick(Duration::from_millis(200));
 }

@@ -6,64 +6,283 @@
 //! At run time a pixel of reflector A is tested with a ray from the camera (on A's
 //! reflecting side) to a point of A's rectangle; another reflector B occludes it when the
 //! ray meets B first. Every point of such a ray other than its end lies strictly on A's
-//! reflecting side, so only the part of B that is strictly in front of A's plane matters,
-//! and with reach `r` we only care about occlusion within distance `r` of A. Hence:
+//! reflecting side, so only the part of B that is strictly in front of A's plane matters.
+//! A camera far enough away can put any such B in front of any point of A, however far B
+//! is from A, so by default nothing is left out for being far:
 //!
 //! **B may occlude A iff some point of B is strictly in front of A's plane (signed
-//! distance > ε, the distance tolerance, so coplanar neighbours are not occluders) and
-//! within distance `r` of A's rectangle.**
+//! distance > ε, the distance tolerance, so coplanar neighbours are not occluders)** and,
+//! only when a reach `r` is asked for, within distance `r` of A's rectangle.
 //!
-//! The implementation decides exactly that set, and errs only towards listing more:
-//! 1. the BVH query (obvhs `Bvh2::aabb_traverse`) uses A's rectangle's bounding box grown
-//!    by `r` in every direction, which contains every point within `r` of the rectangle,
-//!    against B's bounding box; both boxes are rounded outwards when narrowed to `f32`, so
-//!    no candidate is lost to rounding;
-//! 2. B's rectangle is clipped to the closed half-space `signed distance ≥ ε` of A (that is
-//!    where the points strictly in front beyond ε lie; B is convex so clipping is exact),
-//!    and the clipped polygon's exact distance to A's rectangle (convex polygons that do
-//!    not intersect, since one lies strictly in front of the other's plane: the minimum of
-//!    vertex–polygon and edge–edge distances) is compared with `r` plus a relative slack
-//!    of 1e-9 for rounding.
+//! # The cap, and what it keeps
+//!
+//! The projection pass tests every listed occluder for every pixel a shape reflects, and in
+//! a large level each floor has thousands of shapes in front of it (every wall of every
+//! room), so lists are capped ([`OccluderRule::max_per_list`]). When more shapes qualify,
+//! the list keeps those that look largest from A: ranked by `area(B) / (d² + area(B))`,
+//! with `d` the exact distance from A's rectangle to the part of B in front of it (a
+//! solid-angle measure bounded by 1; ties by index). A small shape far away is what a cap
+//! drops first; a large wall far away outranks a small one. [`OccluderLists::capped`]
+//! counts the lists that reached the cap, and the summary reports it.
+//!
+//! # The search
+//!
+//! An obvhs BVH over the shapes' boxes (`f32`, rounded outwards relative to a local
+//! origin), each node knowing the largest area below it. Per shape A, a best-first search
+//! over nodes ordered by an upper bound of the rank (largest area below, over the
+//! box-to-box distance) skips nodes wholly behind A's plane or beyond the reach, and stops
+//! when no node can beat the worst of a full list. With no cap it visits every node in
+//! front: the exact set of the rule.
 //!
 //! A test compares this with a brute-force check over all pairs of random shape soups that
 //! samples points on B densely: every pair the sampling finds must be listed.
 
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
 use std::time::Duration;
 
 use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
 use ppr_format::Reflector;
 
-/// Occluder lists (indices into `shapes`, ascending) for every shape.
+pub use crate::occluder_geometry::{may_occlude, occlusion_distance};
+use crate::occluder_geometry::{occlusion_distance_of, within_reach};
+use crate::parallel_map::map_ranges;
+
+/// What the occluder lists hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OccluderRule {
+    /// Points within this distance of a reflector's plane are not in front of it, metres.
+    pub epsilon: f64,
+    /// How far from a reflector occluders are looked for, metres (infinite: anywhere).
+    pub reach: f64,
+    /// Most occluders per list (`usize::MAX`: no cap).
+    pub max_per_list: usize,
+}
+
+/// Occluder lists and what the cap did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct OccluderLists {
+    /// Per shape, the indices of its occluders, ascending.
+    pub lists: Vec<Vec<u32>>,
+    /// Lists that reached the cap (more shapes may qualify than they hold).
+    pub capped: usize,
+}
+
+/// Every occluder within `reach` of every shape, no cap (indices into `shapes`, ascending).
 /// `origin` is a point near the shapes (bounding boxes are stored in `f32` relative to it).
 pub fn occluder_lists(shapes: &[Reflector], origin: DVec3, epsilon: f64, reach: f64) -> Vec<Vec<u32>> {
+    ranked_occluder_lists(shapes, origin, &OccluderRule { epsilon, reach, max_per_list: usize::MAX }).lists
+}
+
+/// The occluder lists of `rule` (see the module docs), on one thread.
+pub fn ranked_occluder_lists(shapes: &[Reflector], origin: DVec3, rule: &OccluderRule) -> OccluderLists {
+    ranked_occluder_lists_threaded(shapes, origin, rule, 1)
+}
+
+/// [`ranked_occluder_lists`] on up to `threads` threads; the same lists for any count.
+pub fn ranked_occluder_lists_threaded(
+    shapes: &[Reflector],
+    origin: DVec3,
+    rule: &OccluderRule,
+    threads: usize,
+) -> OccluderLists {
     if shapes.is_empty() {
-        return Vec::new();
+        return OccluderLists::default();
     }
     let boxes: Vec<Aabb> = shapes.iter().map(|s| outward_aabb(&s.corners(), 0.0, origin)).collect();
     let bvh = build_bvh2(&boxes, obvhs::BvhBuildParams::fast_build(), &mut Duration::default());
-    shapes
-        .iter()
-        .enumerate()
-        .map(|(a, shape)| {
-            let query = outward_aabb(&shape.corners(), reach, origin);
-            let mut list = Vec::new();
-            bvh.aabb_traverse(query, |bvh, node_index| {
-                let node = &bvh.nodes[node_index as usize];
-                for k in node.first_index..node.first_index + node.prim_count {
-                    let b = bvh.primitive_indices[k as usize] as usize;
-                    if b != a && may_occlude(shape, &shapes[b], epsilon, reach) {
-                        list.push(b as u32);
+    let areas: Vec<f64> = shapes.iter().map(Reflector::area).collect();
+    let corners: Vec<[DVec3; 4]> = shapes.iter().map(Reflector::corners).collect();
+    let corner_boxes: Vec<(DVec3, DVec3)> = corners.iter().map(|c| corner_box(c, origin)).collect();
+    let node_area = largest_area_below(&bvh, &areas);
+    let extents = Extents { areas: &areas, boxes: &corner_boxes, corners: &corners };
+    let lists = map_ranges(shapes.len(), threads, |range| {
+        let mut search = Search::default();
+        range.map(|a| search.run(a, &shapes[a], shapes, &extents, &bvh, &node_area, origin, rule)).collect()
+    });
+    let capped = lists.iter().filter(|l| l.len() >= rule.max_per_list).count();
+    OccluderLists { lists, capped }
+}
+
+/// Per shape, its area and its box relative to the origin (`f64`).
+#[derive(Clone, Copy)]
+struct Extents<'a> {
+    areas: &'a [f64],
+    boxes: &'a [(DVec3, DVec3)],
+    corners: &'a [[DVec3; 4]],
+}
+
+/// The box of `corners`, relative to `origin`.
+fn corner_box(corners: &[DVec3], origin: DVec3) -> (DVec3, DVec3) {
+    let lo = corners.iter().fold(DVec3::splat(f64::INFINITY), |m, &p| m.min(p)) - origin;
+    let hi = corners.iter().fold(DVec3::splat(f64::NEG_INFINITY), |m, &p| m.max(p)) - origin;
+    (lo, hi)
+}
+
+/// Upper bound of the rank of anything in the box `[bmin, bmax]` with largest area `area`,
+/// for the shape with box `[lo, hi]` and plane `normal · x = offset`; `None` when nothing
+/// in the box is in front of the plane beyond `rule.epsilon` or within the reach.
+#[allow(clippy::too_many_arguments)]
+fn rank_bound(
+    (bmin, bmax): (DVec3, DVec3),
+    area: f64,
+    (lo, hi): (DVec3, DVec3),
+    normal: DVec3,
+    offset: f64,
+    rule: &OccluderRule,
+) -> Option<f64> {
+    // The box corner farthest along the normal.
+    let far = DVec3::select(normal.cmpge(DVec3::ZERO), bmax, bmin);
+    let rounding = 1e-12 * (far.length() + offset.abs());
+    if far.dot(normal) - offset <= rule.epsilon - rounding {
+        return None;
+    }
+    let gap = (bmin - hi).max(lo - bmax).max(DVec3::ZERO);
+    let d = gap.length() * (1.0 - 1e-9);
+    if d > rule.reach * (1.0 + 1e-9) {
+        return None;
+    }
+    Some(rank(area, d) * (1.0 + 1e-9))
+}
+
+/// Per BVH node, the largest shape area below it.
+fn largest_area_below(bvh: &Bvh2, areas: &[f64]) -> Vec<f64> {
+    let mut order = Vec::with_capacity(bvh.nodes.len());
+    let mut stack = vec![0u32];
+    while let Some(n) = stack.pop() {
+        order.push(n);
+        let node = &bvh.nodes[n as usize];
+        if node.prim_count == 0 {
+            stack.push(node.first_index);
+            stack.push(node.first_index + 1);
+        }
+    }
+    let mut below = vec![0.0f64; bvh.nodes.len()];
+    for &n in order.iter().rev() {
+        let node = &bvh.nodes[n as usize];
+        below[n as usize] = if node.prim_count == 0 {
+            below[node.first_index as usize].max(below[node.first_index as usize + 1])
+        } else {
+            (node.first_index..node.first_index + node.prim_count)
+                .map(|k| areas[bvh.primitive_indices[k as usize] as usize])
+                .fold(0.0, f64::max)
+        };
+    }
+    below
+}
+
+/// The rank of an occluder of area `area` at distance `d`: larger is kept first.
+fn rank(area: f64, d: f64) -> f64 {
+    let denom = d * d + area;
+    if denom > 0.0 { area / denom } else { 0.0 }
+}
+
+/// A candidate or a node, ordered by rank, then by lower index first.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Ranked {
+    rank: f64,
+    index: u32,
+}
+
+impl Eq for Ranked {}
+impl Ord for Ranked {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.rank.total_cmp(&other.rank).then(other.index.cmp(&self.index))
+    }
+}
+impl PartialOrd for Ranked {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+/// Reused buffers of the per-shape search.
+#[derive(Default)]
+struct Search {
+    nodes: BinaryHeap<Ranked>,
+    /// The best occluders so far, worst on top.
+    best: BinaryHeap<std::cmp::Reverse<Ranked>>,
+}
+
+impl Search {
+    #[allow(clippy::too_many_arguments)]
+    fn run(
+        &mut self,
+        a: usize,
+        shape: &Reflector,
+        shapes: &[Reflector],
+        extents: &Extents,
+        bvh: &Bvh2,
+        node_area: &[f64],
+        origin: DVec3,
+        rule: &OccluderRule,
+    ) -> Vec<u32> {
+        self.nodes.clear();
+        self.best.clear();
+        let own = extents.boxes[a];
+        let (normal, offset) = (shape.normal, shape.normal.dot(shape.center - origin));
+        let bound = |n: u32| -> Option<f64> {
+            let b = &bvh.nodes[n as usize].aabb;
+            rank_bound((b.min.as_dvec3(), b.max.as_dvec3()), node_area[n as usize], own, normal, offset, rule)
+        };
+        if let Some(r) = bound(0) {
+            self.nodes.push(Ranked { rank: r, index: 0 });
+        }
+        let full = |best: &BinaryHeap<std::cmp::Reverse<Ranked>>| best.len() >= rule.max_per_list;
+        while let Some(top) = self.nodes.pop() {
+            if full(&self.best) && self.best.peek().is_some_and(|w| top.rank < w.0.rank) {
+                break;
+            }
+            let node = &bvh.nodes[top.index as usize];
+            if node.prim_count == 0 {
+                for child in [node.first_index, node.first_index + 1] {
+                    if let Some(r) = bound(child) {
+                        self.nodes.push(Ranked { rank: r, index: child });
                     }
                 }
-                true
-            });
-            list.sort_unstable();
-            list.dedup();
-            list
-        })
-        .collect()
+                continue;
+            }
+            for k in node.first_index..node.first_index + node.prim_count {
+                let b = bvh.primitive_indices[k as usize] as usize;
+                if b == a {
+                    continue;
+                }
+                // Cheap rejections on B's own box before the exact distance.
+                let Some(r) = rank_bound(extents.boxes[b], extents.areas[b], own, normal, offset, rule)
+                else {
+                    continue;
+                };
+                if full(&self.best) && self.best.peek().is_some_and(|w| r < w.0.rank) {
+                    continue;
+                }
+                let Some(d) = occlusion_distance_of(
+                    shape,
+                    &extents.corners[a],
+                    &shapes[b],
+                    &extents.corners[b],
+                    rule.epsilon,
+                ) else {
+                    continue;
+                };
+                if !within_reach(shape, &shapes[b], d, rule.reach) {
+                    continue;
+                }
+                let candidate = Ranked { rank: rank(extents.areas[b], d), index: b as u32 };
+                if !full(&self.best) {
+                    self.best.push(std::cmp::Reverse(candidate));
+                } else if self.best.peek().is_some_and(|w| candidate > w.0) {
+                    self.best.pop();
+                    self.best.push(std::cmp::Reverse(candidate));
+                }
+            }
+        }
+        let mut list: Vec<u32> = self.best.drain().map(|r| r.0.index).collect();
+        list.sort_unstable();
+        list
+    }
 }
 
 /// The `f32` box around `points` grown by `grow`, relative to `origin`, rounded outwards.
@@ -80,111 +299,6 @@ fn outward_aabb(points: &[DVec3], grow: f64, origin: DVec3) -> Aabb {
         if f64::from(f) < x { f.next_up() } else { f }
     };
     Aabb::new(Vec3A::new(down(lo.x), down(lo.y), down(lo.z)), Vec3A::new(up(hi.x), up(hi.y), up(hi.z)))
-}
-
-/// The rule of the module docs for one ordered pair: may `b` occlude `a`?
-pub fn may_occlude(a: &Reflector, b: &Reflector, epsilon: f64, reach: f64) -> bool {
-    let corners = b.corners();
-    if corners.iter().all(|&p| a.signed_distance(p) <= epsilon) {
-        return false;
-    }
-    // Quick accept: a corner strictly in front and within reach is a witness by itself.
-    let within = |p: DVec3| {
-        let l = a.local(p);
-        let dx = (l.x.abs() - a.half_extents.x).max(0.0);
-        let dy = (l.y.abs() - a.half_extents.y).max(0.0);
-        dx * dx + dy * dy + l.z * l.z <= reach * reach
-    };
-    if corners.iter().any(|&p| a.signed_distance(p) > epsilon && within(p)) {
-        return true;
-    }
-    let front = clip_front(&corners, a, epsilon);
-    let rect = a.corners();
-    let slack =
-        1e-9 * (reach + a.half_extents.length() + b.half_extents.length() + (a.center - b.center).length());
-    polygon_distance(&front, b.normal, &rect, a.normal) <= reach + slack
-}
-
-/// The part of the convex polygon `poly` where `a.signed_distance >= epsilon`.
-fn clip_front(poly: &[DVec3], a: &Reflector, epsilon: f64) -> Vec<DVec3> {
-    let mut out = Vec::with_capacity(poly.len() + 1);
-    for i in 0..poly.len() {
-        let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
-        let (sp, sq) = (a.signed_distance(p) - epsilon, a.signed_distance(q) - epsilon);
-        if sp >= 0.0 {
-            out.push(p);
-        }
-        if (sp >= 0.0) != (sq >= 0.0) {
-            out.push(p.lerp(q, sp / (sp - sq)));
-        }
-    }
-    out
-}
-
-/// Distance between two convex planar polygons (counter-clockwise about their normals)
-/// that do not intersect.
-fn polygon_distance(p: &[DVec3], np: DVec3, q: &[DVec3], nq: DVec3) -> f64 {
-    let mut best = f64::INFINITY;
-    for &v in p {
-        best = best.min(point_polygon_distance(v, q, nq));
-    }
-    for &v in q {
-        best = best.min(point_polygon_distance(v, p, np));
-    }
-    for i in 0..p.len() {
-        for j in 0..q.len() {
-            let d = segment_distance(p[i], p[(i + 1) % p.len()], q[j], q[(j + 1) % q.len()]);
-            best = best.min(d);
-        }
-    }
-    best
-}
-
-/// Distance from `x` to a convex polygon with normal `n`.
-fn point_polygon_distance(x: DVec3, poly: &[DVec3], n: DVec3) -> f64 {
-    if poly.len() >= 3 {
-        let inside = (0..poly.len()).all(|i| {
-            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
-            (b - a).cross(x - a).dot(n) >= 0.0
-        });
-        if inside {
-            return (x - poly[0]).dot(n).abs();
-        }
-    }
-    (0..poly.len())
-        .map(|i| segment_distance(x, x, poly[i], poly[(i + 1) % poly.len()]))
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Distance between segments `p1 p2` and `q1 q2` (Ericson, 5.1.9; points allowed).
-fn segment_distance(p1: DVec3, p2: DVec3, q1: DVec3, q2: DVec3) -> f64 {
-    let (d1, d2, r) = (p2 - p1, q2 - q1, p1 - q1);
-    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
-    let tiny = 1e-300;
-    let (s, t) = if a <= tiny && e <= tiny {
-        (0.0, 0.0)
-    } else if a <= tiny {
-        (0.0, (f / e).clamp(0.0, 1.0))
-    } else {
-        let c = d1.dot(r);
-        if e <= tiny {
-            ((-c / a).clamp(0.0, 1.0), 0.0)
-        } else {
-            let b = d1.dot(d2);
-            let denom = a * e - b * b;
-            let mut s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-            let mut t = (b * s + f) / e;
-            if t < 0.0 {
-                t = 0.0;
-                s = (-c / a).clamp(0.0, 1.0);
-            } else if t > 1.0 {
-                t = 1.0;
-                s = ((b - c) / a).clamp(0.0, 1.0);
-            }
-            (s, t)
-        }
-    };
-    ((p1 + d1 * s) - (q1 + d2 * t)).length()
 }
 
 #[cfg(test)]

@@ -102,6 +102,19 @@ impl PlaneAccumulator {
         self.winding_abs += cross.length();
     }
 
+    /// Adds everything `other` accumulated (its moments moved to this origin).
+    pub fn merge(&mut self, other: &PlaneAccumulator) {
+        let d = other.origin - self.origin;
+        let outer = |a: DVec3, b: DVec3| DMat3::from_cols(a * b.x, a * b.y, a * b.z);
+        // Σ∫(x + d)(x + d)ᵀ = second + first dᵀ + d firstᵀ + area d dᵀ.
+        self.second +=
+            other.second + outer(other.first, d) + outer(d, other.first) + outer(d, d) * other.area;
+        self.first += other.first + d * other.area;
+        self.area += other.area;
+        self.winding += other.winding;
+        self.winding_abs += other.winding_abs;
+    }
+
     /// The least-squares plane: through the area centroid, normal along the covariance's
     /// smallest eigenvector, oriented to the side most of the area faces.
     /// `None` when no area was added.
@@ -217,5 +230,24 @@ mod tests {
         let fit = acc.fit().unwrap();
         assert!(fit.normal.dot(n) > 1.0 - 1e-6, "normal {:?}", fit.normal);
         assert!(plane.signed_distance(fit.origin).abs() < 1e-4);
+    }
+
+    #[test]
+    fn merged_accumulators_fit_like_one() {
+        let tris = [
+            [DVec3::ZERO, DVec3::X, DVec3::Z],
+            [DVec3::new(3.0, 0.1, 1.0), DVec3::new(4.0, 0.0, 1.0), DVec3::new(3.0, 0.0, 2.0)],
+            [DVec3::new(-2.0, 0.05, 5.0), DVec3::new(-1.0, 0.0, 5.0), DVec3::new(-2.0, 0.0, 6.0)],
+        ];
+        let mut all = PlaneAccumulator::new(DVec3::ZERO);
+        let (mut a, mut b) =
+            (PlaneAccumulator::new(DVec3::ONE), PlaneAccumulator::new(DVec3::new(9.0, -4.0, 2.0)));
+        for (k, t) in tris.iter().enumerate() {
+            all.add(*t);
+            if k == 0 { a.add(*t) } else { b.add(*t) }
+        }
+        a.merge(&b);
+        let (p, q) = (all.fit().unwrap(), a.fit().unwrap());
+        assert!(p.normal.dot(q.normal) > 1.0 - 1e-12 && (p.origin - q.origin).length() < 1e-9);
     }
 }

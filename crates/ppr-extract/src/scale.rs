@@ -1,10 +1,14 @@
-//! The level's size and the absolute tolerances derived from the relative parameters.
+//! The level's bounds (the local origin geometry is processed around) and the parameters'
+//! lengths as the pipeline uses them.
 
 use glam::DVec3;
 
 use crate::{ExtractParams, Level};
 
-/// Absolute lengths for one level: every relative parameter times the bounding-box diagonal.
+/// Where a level is and the absolute lengths extraction works with. Only `center` and
+/// `diagonal` depend on the level, and only for floating-point precision (the local
+/// origin, the smallest length that is not rounding noise); tolerances are the
+/// parameters' physical lengths.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SceneScale {
     /// Centre of the level's bounds: the local origin geometry is processed around.
@@ -21,7 +25,7 @@ pub struct SceneScale {
     pub small_triangle: f64,
     /// Smallest reflective area kept, square metres.
     pub min_area: f64,
-    /// Occluder reach, metres.
+    /// Occluder reach, metres (infinite: no reach).
     pub reach: f64,
 }
 
@@ -33,16 +37,15 @@ impl SceneScale {
             None => (DVec3::ZERO, 1.0),
         };
         let diagonal = if diagonal > 0.0 && diagonal.is_finite() { diagonal } else { 1.0 };
-        let distance_tolerance = params.distance_tolerance * diagonal;
         Self {
             center,
             diagonal,
-            distance_tolerance,
-            gap: params.gap_tolerance * diagonal,
+            distance_tolerance: params.distance_tolerance_m,
+            gap: params.gap_tolerance_m,
             cos_angle: params.angle_tolerance_deg.to_radians().cos(),
-            small_triangle: params.small_triangle_factor * distance_tolerance,
-            min_area: params.min_area_m2.unwrap_or(params.min_area_relative * diagonal * diagonal),
-            reach: params.reach_m.unwrap_or(params.reach * diagonal),
+            small_triangle: params.small_triangle_factor * params.distance_tolerance_m,
+            min_area: params.min_area_m2,
+            reach: params.reach_m.unwrap_or(f64::INFINITY),
         }
     }
 }

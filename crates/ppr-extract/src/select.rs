@@ -88,7 +88,7 @@ pub fn classify(
 pub fn select(level: &Level, params: &ExtractParams, scale: &SceneScale) -> Selection {
     let kinds: Vec<Option<ReflectorKind>> =
         level.sources.iter().map(|s| classify(s, &level.materials[s.material as usize], params)).collect();
-    let mut out = Selection::default();
+    let mut out = Selection { candidates: Vec::with_capacity(level.triangles.len()), degenerate: 0 };
     let tiny_edge = 1e-9 * scale.diagonal;
     for (i, t) in level.triangles.iter().enumerate() {
         let p = t.positions.map(|p| p - scale.center);

@@ -6,8 +6,11 @@
 //! tried: full-width bands above and below the hole, or full-height bands left and right of
 //! it), every polygon is clipped exactly along the cuts, and each non-empty band gets its
 //! own minimum-area rectangle. The split is kept when every extra shape saves at least
-//! `split_min_gain` of the parent rectangle's area. Pieces are split again, most wasteful
-//! first, until no split pays or `max_shapes_per_region` is reached.
+//! `split_min_gain` of the *region's* rectangle area (not the piece's: a triangle gets the
+//! two or three rectangles that pay, not a staircase of ever smaller ones). Pieces are
+//! split again, most wasteful first, until no split pays or `max_shapes_per_region` is
+//! reached. Each accepted split is recorded ([`SplitStep`]) so the density budget
+//! ([`crate::budget`]) can keep only the steps it can afford.
 
 use glam::DVec2;
 
@@ -51,37 +54,61 @@ pub struct SplitSettings {
     pub grid_cells: usize,
 }
 
+/// One accepted split: the shapes it added and the rectangle area it saved, m².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitStep {
+    /// Extra rectangles (parts − 1).
+    pub extra_shapes: usize,
+    /// Rectangle area saved (parent rectangle − parts' rectangles), m².
+    pub area_saved: f64,
+}
+
 /// Splits `piece` while it pays; returns the pieces in a deterministic order.
 pub fn split_region(piece: Piece, s: &SplitSettings) -> Vec<Piece> {
+    split_region_steps(piece, s, usize::MAX).0
+}
+
+/// Splits `piece` while it pays, at most `max_steps` times; returns the pieces in a
+/// deterministic order and the splits made, in order. The first `k` steps do not depend on
+/// `max_steps >= k`, so a caller can replay a prefix of the steps.
+pub fn split_region_steps(piece: Piece, s: &SplitSettings, max_steps: usize) -> (Vec<Piece>, Vec<SplitStep>) {
+    let root = piece.rect.area();
     let mut done: Vec<Piece> = Vec::new();
     let mut open: Vec<Piece> = vec![piece];
+    let mut steps = Vec::new();
     while let Some(idx) = most_wasteful(&open) {
         let p = open.swap_remove(idx);
         let budget = s.max_pieces.saturating_sub(done.len() + open.len());
-        match try_split(&p, s, budget) {
-            Some(parts) => open.extend(parts),
+        match (steps.len() < max_steps).then(|| try_split(&p, s, budget, root)).flatten() {
+            Some(parts) => {
+                let area_saved = p.rect.area() - parts.iter().map(|q| q.rect.area()).sum::<f64>();
+                steps.push(SplitStep { extra_shapes: parts.len() - 1, area_saved });
+                open.extend(parts);
+            }
             None => done.push(p),
         }
     }
     done.sort_by(|a, b| {
         b.rect.area().total_cmp(&a.rect.area()).then(a.rect.center.x.total_cmp(&b.rect.center.x))
     });
-    done
+    (done, steps)
 }
 
 fn most_wasteful(pieces: &[Piece]) -> Option<usize> {
     (0..pieces.len()).max_by(|&a, &b| pieces[a].waste().total_cmp(&pieces[b].waste()).then(b.cmp(&a)))
 }
 
-/// The best band split of `p` into at most `budget` pieces, if it pays.
-fn try_split(p: &Piece, s: &SplitSettings, budget: usize) -> Option<Vec<Piece>> {
+/// The best band split of `p` into at most `budget` pieces, if every extra piece saves at
+/// least `min_gain` of the region's whole rectangle (`root`, m²).
+fn try_split(p: &Piece, s: &SplitSettings, budget: usize, root: f64) -> Option<Vec<Piece>> {
     let parent = p.rect.area();
-    if budget < 2 || !(parent > 0.0) || p.waste() < s.min_gain * parent {
+    let least = s.min_gain * root;
+    if budget < 2 || !(parent > 0.0) || p.waste() < least {
         return None;
     }
     let grid = OccupancyGrid::rasterise(p, s.grid_cells);
     let hole = grid.largest_empty()?;
-    if (hole.area_cells() as f64) * grid.cell_area() < s.min_gain * parent {
+    if (hole.area_cells() as f64) * grid.cell_area() < least {
         return None;
     }
     let bounds = grid.hole_bounds(&hole, &p.polygons);
@@ -101,9 +128,7 @@ fn try_split(p: &Piece, s: &SplitSettings, budget: usize) -> Option<Vec<Piece>> 
         }
         let total: f64 = parts.iter().map(|q| q.rect.area()).sum();
         let gain = parent - total;
-        if gain >= s.min_gain * parent * (parts.len() - 1) as f64
-            && best.as_ref().is_none_or(|(t, _)| total < *t)
-        {
+        if gain >= least * (parts.len() - 1) as f64 && best.as_ref().is_none_or(|(t, _)| total < *t) {
             best = Some((total, parts));
         }
     }
@@ -169,27 +194,19 @@ impl OccupancyGrid {
         let mut grid = Self { rect, nu, nv, cell, occupied: vec![false; nu * nv] };
         // Conservative: a cell counts as touched when the polygon comes within `eps` of it.
         let eps = 1e-9 * (rect.half.x + rect.half.y);
+        let mut local: Vec<DVec2> = Vec::new();
         for poly in &p.polygons {
             // Local coordinates with the rectangle's corner at the origin.
-            let flat: Vec<DVec2> = poly.flat.iter().map(|&q| rect.local(q) + rect.half).collect();
-            let local = Polygon { flat, spatial: poly.spatial.clone() };
-            let (lo, hi) = local
-                .flat
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
+            local.clear();
+            local.extend(poly.flat.iter().map(|&q| rect.local(q) + rect.half));
+            let (lo, hi) =
+                local.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.y), h.max(q.y)));
             let j_lo = grid.row_of(lo - eps);
             let j_hi = grid.row_of(hi + eps);
             for j in j_lo..=j_hi {
                 let y0 = j as f64 * cell.y - eps;
                 let y1 = (j + 1) as f64 * cell.y + eps;
-                let Some(strip) = local.clip(DVec2::Y, y0, false).and_then(|q| q.clip(DVec2::Y, y1, true))
-                else {
-                    continue;
-                };
-                let (xl, xh) = strip
-                    .flat
-                    .iter()
-                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), q| (l.min(q.x), h.max(q.x)));
+                let Some((xl, xh)) = strip_x_range(&local, y0, y1) else { continue };
                 for i in grid.col_of(xl - eps)..=grid.col_of(xh + eps) {
                     grid.occupied[j * nu + i] = true;
                 }
@@ -283,6 +300,29 @@ impl OccupancyGrid {
         }
         out
     }
+}
+
+/// The x-range of the convex polygon `flat` within the strip `y0 <= y <= y1` (its vertices
+/// there and its edges' crossings of the two lines), or `None` when it misses the strip.
+fn strip_x_range(flat: &[DVec2], y0: f64, y1: f64) -> Option<(f64, f64)> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let n = flat.len();
+    for k in 0..n {
+        let (p, q) = (flat[k], flat[(k + 1) % n]);
+        if p.y >= y0 && p.y <= y1 {
+            lo = lo.min(p.x);
+            hi = hi.max(p.x);
+        }
+        for line in [y0, y1] {
+            let (sp, sq) = (p.y - line, q.y - line);
+            if (sp >= 0.0) != (sq >= 0.0) {
+                let x = p.lerp(q, sp / (sp - sq)).x;
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
 }
 
 /// Clips `poly` to `local(axis) <= limit` (`below`) or `>= limit` in `rect`'s centred frame.
@@ -415,5 +455,26 @@ mod tests {
         assert!(pieces.len() <= 3, "{}", pieces.len());
         let s = SplitSettings { max_pieces: 1, ..settings() };
         assert_eq!(split_region(region(&ring, 0.0), &s).len(), 1);
+    }
+
+    #[test]
+    fn a_triangle_gets_the_few_rectangles_that_pay() {
+        // Each further split of a triangle saves a quarter of the last one: with the gain
+        // measured against the region (not the piece) it stops after two or three shapes.
+        let tri = [DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::new(0.0, 10.0)];
+        let poly =
+            Polygon { flat: tri.to_vec(), spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect() };
+        let piece = Piece::new(vec![poly]).unwrap();
+        let (pieces, steps) = split_region_steps(piece.clone(), &settings(), usize::MAX);
+        assert!((2..=3).contains(&pieces.len()), "{} pieces: a staircase", pieces.len());
+        let total: f64 = pieces.iter().map(|q| q.rect.area()).sum();
+        assert!(total <= 0.8 * piece.rect.area(), "{total}");
+        for st in &steps {
+            assert!(st.area_saved >= 0.1 * piece.rect.area() * st.extra_shapes as f64, "{st:?}");
+        }
+        // A prefix of the steps replays exactly.
+        let (one, first) = split_region_steps(piece, &settings(), 1);
+        assert_eq!(first, steps[..1]);
+        assert_eq!(one.len(), 1 + steps[0].extra_shapes);
     }
 }

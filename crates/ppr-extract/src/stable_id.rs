@@ -2,15 +2,21 @@
 //! with other parameters gives the same id to the same surface (the inspector keeps manual
 //! edits by id).
 //!
-//! The id hashes (blake3) the kind, the plane quantised to 1/1000 of the normal and of the
-//! level's diagonal, the rectangle's centre quantised to 1/100 of the diagonal, and the
-//! primary source node and material names. Collisions are resolved deterministically
+//! The id hashes (blake3) the kind, the plane quantised to 1/1000 of the normal and to
+//! [`PLANE_OFFSET_UNIT_M`], the rectangle's centre quantised to [`CENTER_UNIT_M`], and the
+//! primary source node and material names. The units are physical, so a surface keeps its
+//! id when the level around it grows. Collisions are resolved deterministically
 //! (the next free id, in the order of the shapes' content keys).
 
 use std::collections::BTreeSet;
 
 use glam::DVec3;
 use ppr_format::ReflectorKind;
+
+/// Quantisation of the plane's offset from the origin, metres.
+pub const PLANE_OFFSET_UNIT_M: f64 = 0.01;
+/// Quantisation of the rectangle's centre, metres.
+pub const CENTER_UNIT_M: f64 = 0.1;
 
 /// The content an id is derived from.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,8 +27,6 @@ pub struct IdContent<'a> {
     pub normal: DVec3,
     /// Rectangle centre, world space.
     pub center: DVec3,
-    /// Level diagonal (the quantisation unit).
-    pub diagonal: f64,
     /// Primary node name.
     pub node: &'a str,
     /// Primary material name.
@@ -37,9 +41,9 @@ pub fn content_hash(c: &IdContent) -> u32 {
     for x in c.normal.to_array() {
         h.update(&q(x, 1e-3).to_le_bytes());
     }
-    h.update(&q(c.normal.dot(c.center), 1e-3 * c.diagonal).to_le_bytes());
+    h.update(&q(c.normal.dot(c.center), PLANE_OFFSET_UNIT_M).to_le_bytes());
     for x in c.center.to_array() {
-        h.update(&q(x, 1e-2 * c.diagonal).to_le_bytes());
+        h.update(&q(x, CENTER_UNIT_M).to_le_bytes());
     }
     for s in [c.node, c.material] {
         h.update(&(s.len() as u64).to_le_bytes());
@@ -71,14 +75,7 @@ mod tests {
     use super::*;
 
     fn content(center: DVec3) -> IdContent<'static> {
-        IdContent {
-            kind: ReflectorKind::Opaque,
-            normal: DVec3::Y,
-            center,
-            diagonal: 10.0,
-            node: "Floor",
-            material: "Marble",
-        }
+        IdContent { kind: ReflectorKind::Opaque, normal: DVec3::Y, center, node: "Floor", material: "Marble" }
     }
 
     #[test]

@@ -23,13 +23,18 @@ pub fn show(ui: &mut Ui, state: &mut InspectorState) {
     egui::Grid::new("extraction parameters").num_columns(2).show(ui, |ui| {
         number(ui, "Max roughness", &mut p.max_roughness, 0.01);
         number(ui, "Angle tolerance °", &mut p.angle_tolerance_deg, 0.05);
-        number(ui, "Distance tolerance (rel.)", &mut p.distance_tolerance, 1e-5);
-        number(ui, "Min area (rel.)", &mut p.min_area_relative, 1e-5);
+        number(ui, "Distance tolerance m", &mut p.distance_tolerance_m, 1e-4);
+        number(ui, "Min area m²", &mut p.min_area_m2, 1e-3);
         number(ui, "Split min gain", &mut p.split_min_gain, 0.01);
         let label = ui.label("Max shapes per region");
         ui.add(DragValue::new(&mut p.max_shapes_per_region).range(1..=64)).labelled_by(label.id);
         ui.end_row();
-        number(ui, "Occluder reach (rel.)", &mut p.reach, 0.01);
+        let mut limited = p.reach_m.is_some();
+        ui.checkbox(&mut limited, "Limit occluder reach");
+        let mut reach = p.reach_m.unwrap_or(10.0);
+        ui.add_enabled(limited, DragValue::new(&mut reach).speed(0.1).suffix(" m"));
+        ui.end_row();
+        p.reach_m = limited.then_some(reach);
     });
     if let Err(e) = p.validate() {
         ui.colored_label(egui::Color32::LIGHT_RED, e);

@@ -2,7 +2,8 @@
 //! extractor recorded in the set, or derived from the set's size when it has none.
 
 use glam::DVec3;
-use ppr_extract::occluders::occluder_lists;
+use ppr_extract::ExtractParams;
+use ppr_extract::occluders::{OccluderRule, ranked_occluder_lists};
 use ppr_format::ReflectorSet;
 
 use crate::reflector_geometry::CoplanarTolerance;
@@ -12,17 +13,19 @@ use crate::reflector_geometry::CoplanarTolerance;
 pub struct SetTolerances {
     /// A point near the reflectors (precision origin of the occluder BVH).
     pub origin: DVec3,
-    /// Distance tolerance, metres (`resolved_distance_tolerance_m`).
+    /// Distance tolerance, metres (`distance_tolerance_m`).
     pub distance: f64,
-    /// Occluder reach, metres (`resolved_reach_m`).
+    /// Occluder reach, metres (`reach_m`; infinite when the set has none).
     pub reach: f64,
+    /// Most occluders per list (`max_occluders`).
+    pub max_occluders: usize,
     /// Angle tolerance, degrees (`angle_tolerance_deg`).
     pub angle_deg: f64,
 }
 
 impl SetTolerances {
-    /// The tolerances recorded in `set.extractor.params`, with the extractor's defaults
-    /// (relative to the diagonal of the reflectors' bounds) for any that is missing.
+    /// The tolerances recorded in `set.extractor.params` (older records' names too, see
+    /// `ExtractParams::from_record`), with the extractor's defaults for any that is missing.
     pub fn of(set: &ReflectorSet) -> Self {
         let (lo, hi) = set
             .reflectors
@@ -31,17 +34,14 @@ impl SetTolerances {
             .fold((DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)), |(lo, hi), p| {
                 (lo.min(p), hi.max(p))
             });
-        let (origin, diagonal) =
-            if lo.x <= hi.x { ((lo + hi) * 0.5, (hi - lo).length()) } else { (DVec3::ZERO, 1.0) };
-        let diagonal = diagonal.max(1e-6);
-        let read = |key: &str| {
-            set.extractor.params.get(key).and_then(|v| v.as_f64()).filter(|v| v.is_finite() && *v > 0.0)
-        };
+        let origin = if lo.x <= hi.x { (lo + hi) * 0.5 } else { DVec3::ZERO };
+        let params = ExtractParams::from_record(&set.extractor.params);
         Self {
             origin,
-            distance: read("resolved_distance_tolerance_m").unwrap_or(5e-4 * diagonal),
-            reach: read("resolved_reach_m").unwrap_or(0.25 * diagonal),
-            angle_deg: read("angle_tolerance_deg").unwrap_or(1.0),
+            distance: params.distance_tolerance_m,
+            reach: params.reach_m.unwrap_or(f64::INFINITY),
+            max_occluders: params.max_occluders,
+            angle_deg: params.angle_tolerance_deg,
         }
     }
 
@@ -52,8 +52,10 @@ impl SetTolerances {
 
     /// Recomputes every occluder list of `set` (the extractor's rule and BVH).
     pub fn recompute_occluders(&self, set: &mut ReflectorSet) {
-        let lists = occluder_lists(&set.reflectors, self.origin, self.distance, self.reach);
-        for (r, list) in set.reflectors.iter_mut().zip(lists) {
+        let rule =
+            OccluderRule { epsilon: self.distance, reach: self.reach, max_per_list: self.max_occluders };
+        let lists = ranked_occluder_lists(&set.reflectors, self.origin, &rule);
+        for (r, list) in set.reflectors.iter_mut().zip(lists.lists) {
             r.occluders = list;
         }
     }

@@ -31,7 +31,7 @@ pub fn write_trade_report(
         "split_min_gain",
         "max_shapes_per_region",
         "angle_tolerance_deg",
-        "distance_tolerance",
+        "distance_tolerance_m",
         "rectangles",
         "coverage",
         "rect_area_m2",
@@ -77,7 +77,7 @@ pub fn write_trade_report(
          and PPR's GPU time per frame with that set (median over the scene's cameras of each \
          camera's median). Split threshold: a non-convex region is split when every extra \
          rectangle saves at least this share of its parent's area; ≤ n: rectangles per region; \
-         tolerances: angle and relative distance that make triangles one plane.\n"
+         tolerances: angle (°) and distance (m) that make triangles one plane.\n"
     );
     for n in notes {
         let _ = writeln!(md, "- {n}");

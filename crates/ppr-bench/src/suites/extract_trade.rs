@@ -30,7 +30,7 @@ pub struct TradeConfig {
 pub struct TradeRow {
     pub scene: String,
     pub setting: String,
-    /// Split threshold, most rectangles per region, angle (°) and distance (relative) tolerances.
+    /// Split threshold, most rectangles per region, angle (°) and distance (m) tolerances.
     pub params: (f64, usize, f64, f64),
     pub rectangles: usize,
     /// Reflective area over rectangle area, area-weighted over the set.
@@ -54,7 +54,7 @@ pub fn trade_settings(base: &ExtractParams) -> Vec<(String, ExtractParams)> {
     };
     let tol = |angle: f64, dist: f64| ExtractParams {
         angle_tolerance_deg: angle,
-        distance_tolerance: dist,
+        distance_tolerance_m: dist,
         ..base.clone()
     };
     vec![
@@ -64,8 +64,8 @@ pub fn trade_settings(base: &ExtractParams) -> Vec<(String, ExtractParams)> {
         ("default (gain 0.1, ≤8)".into(), base.clone()),
         ("split gain 0.03, ≤16".into(), split(0.03, 16)),
         ("split gain 0.01, ≤32".into(), split(0.01, 32)),
-        ("tight tolerances (0.25°, 1e-4)".into(), tol(0.25, 1e-4)),
-        ("loose tolerances (4°, 2e-3)".into(), tol(4.0, 2e-3)),
+        ("tight tolerances (0.25°, 1 mm)".into(), tol(0.25, 0.001)),
+        ("loose tolerances (4°, 20 mm)".into(), tol(4.0, 0.02)),
     ]
 }
 
@@ -146,7 +146,7 @@ pub fn run_extract_trade(
                     params.split_min_gain,
                     params.max_shapes_per_region,
                     params.angle_tolerance_deg,
-                    params.distance_tolerance,
+                    params.distance_tolerance_m,
                 ),
                 rectangles: set.reflectors.len(),
                 coverage: if rect_area > 0.0 { reflective / rect_area } else { 0.0 },

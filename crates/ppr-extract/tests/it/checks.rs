@@ -5,9 +5,9 @@ use ppr_extract::Extraction;
 use ppr_format::ReflectorSet;
 
 /// Asserts the set is valid, round-trips through JSON, and every reflector encloses its
-/// region vertices (within 1e-7 of the diagonal) and lies within `plane_tol_rel` × diagonal
-/// of them.
-pub fn assert_encloses_regions(x: &Extraction, plane_tol_rel: f64, what: &str) {
+/// region vertices (within 1e-7 of the diagonal) and lies within `plane_tol_m` metres of
+/// them.
+pub fn assert_encloses_regions(x: &Extraction, plane_tol_m: f64, what: &str) {
     let diag = x.stats.diagonal;
     x.set.validate().unwrap_or_else(|e| panic!("{what}: invalid set: {e}"));
     let json = x.set.to_json_string().unwrap();
@@ -38,12 +38,12 @@ pub fn assert_encloses_regions(x: &Extraction, plane_tol_rel: f64, what: &str) {
                 r.half_extents
             );
             assert!(
-                l.z.abs() <= plane_tol_rel * diag,
+                l.z.abs() <= plane_tol_m,
                 "{what}: {} (id {}) is {} m off the plane of {v:?} (tolerance {})",
                 r.name,
                 r.id,
                 l.z,
-                plane_tol_rel * diag
+                plane_tol_m
             );
         }
     }

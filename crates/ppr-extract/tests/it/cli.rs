@@ -81,4 +81,20 @@ fn exit_codes_and_errors() {
     let (code, out, _) = run(&["--help".as_ref()]);
     assert_eq!(code, 0);
     assert!(out.contains("EXIT CODES") && out.contains("--all-planar") && out.contains("EXAMPLES"), "{out}");
+    for option in
+        ["UNITS", "--unit", "--max-per-cube", "--near-planar-angle", "--max-occluders", "[default: 0.005]"]
+    {
+        assert!(out.contains(option), "--help lacks {option}: {out}");
+    }
+    // The density budget from the command line, and its note.
+    let target = d.join("budget.ppr.json");
+    let (code, out, err) = run(&[
+        os(&scenes_dir().join("small.glb")),
+        "-o".as_ref(),
+        os(&target),
+        "--max-per-cube".as_ref(),
+        "1".as_ref(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("density budget (1 rectangles per 10 m cube"), "{out}");
 }

@@ -35,7 +35,9 @@ fn every_shared_scene_extracts_a_valid_enclosing_set() {
         assert!(!level.triangles.is_empty(), "{name}: no triangles");
         for (preset, params) in ExtractParams::presets() {
             let x = extract(&level, &params, &|_, _| {});
-            assert_encloses_regions(&x, 3.0 * params.distance_tolerance, &format!("{name} ({preset})"));
+            // Near-planar merges may leave vertices up to half the error bound off the plane.
+            let plane_tol = (3.0 * params.distance_tolerance_m).max(params.max_reflection_error_m / 2.0);
+            assert_encloses_regions(&x, plane_tol, &format!("{name} ({preset})"));
             if preset == "all_planar" {
                 assert!(!x.set.reflectors.is_empty(), "{name}: --all-planar finds no planar area");
             }

@@ -65,7 +65,7 @@ fn grid(
 fn run(tris: &[[DVec3; 3]], params: &ExtractParams) -> Extraction {
     let level = Level::from_triangles("synthetic", tris, glossy());
     let x = extract(&level, params, &|_, _| {});
-    assert_encloses_regions(&x, 3.0 * params.distance_tolerance, "synthetic");
+    assert_encloses_regions(&x, 3.0 * params.distance_tolerance_m, "synthetic");
     x
 }
 
@@ -88,10 +88,13 @@ fn assert_single(x: &Extraction, w: f64, h: f64, normal: DVec3, tol: f64) {
 
 #[test]
 fn noisy_coplanar_triangles_make_one_rectangle() {
-    // 1e-4 relative noise (diagonal ≈ 11.2 m) on a 10 × 5 m plane of 3200 triangles.
+    // ±1.1 mm noise on a 10 × 5 m plane of 3200 triangles.
     let rot = DQuat::from_euler(glam::EulerRot::XYZ, 0.4, 0.2, -0.3);
     let tris = grid(DVec3::new(3.0, 1.0, -2.0), rot, 10.0, 5.0, 40, 40, 1.1e-3, |_, _| true);
-    let x = run(&tris, &ExtractParams::default());
+    // The noise tilts the 12.5 cm wide triangles by up to 1.0°: the angle tolerance must
+    // allow that (with relative parameters the few refused triangles were dropped as smaller
+    // than the minimum area; 0.01 m² keeps them).
+    let x = run(&tris, &ExtractParams { angle_tolerance_deg: 1.5, ..ExtractParams::default() });
     assert_single(&x, 10.0, 5.0, rot * DVec3::Y, 1e-3);
     assert!(x.set.reflectors[0].coverage > 0.99);
 }
@@ -181,7 +184,8 @@ fn far_from_the_origin_and_at_extreme_scales() {
             0.0,
             |_, _| true,
         ));
-        let x = run(&tris, &ExtractParams::default());
+        // A 10 m scene modelled at another scale: one level unit is 10 / size metres.
+        let x = run(&tris, &ExtractParams::default().in_level_units(10.0 / size));
         assert_eq!(x.set.reflectors.len(), 2, "at {center:?} size {size}");
         let r = &x.set.reflectors[0];
         assert!(
@@ -241,7 +245,7 @@ fn extraction_is_deterministic_and_ids_are_stable() {
     let base = ids(&ExtractParams::default());
     assert_eq!(
         base,
-        ids(&ExtractParams { reach: 0.9, ..ExtractParams::default() }),
+        ids(&ExtractParams { reach_m: Some(5.0), ..ExtractParams::default() }),
         "ids survive a parameter change"
     );
     let mut unique = base.clone();

@@ -235,7 +235,7 @@ fn background_open_and_reextract_through_the_state() {
     assert_eq!(state.set().expect("set").reflectors.len(), 15, "re-extraction is one undo step");
 
     // Bad parameters are refused before anything starts.
-    state.params.distance_tolerance = -1.0;
+    state.params.distance_tolerance_m = -1.0;
     let e = state.reextract().expect_err("refused");
     assert!(e.to_string().contains("distance_tolerance"), "{e}");
 
