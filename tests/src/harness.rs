@@ -398,7 +398,11 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
         let ulps = 4.0 * f64::from(f32::EPSILON) * d.abs().max(1e-30);
         let toward_near = if far > 0.5 { -ulps } else { ulps };
         let along = (unproject(x, y, d + toward_near) - p).length();
-        (f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length()).max(if along.is_finite() { along } else { 0.0 })
+        (f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length()).max(if along.is_finite() {
+            along
+        } else {
+            0.0
+        })
     };
     for y in 0..h {
         for x in 0..w {

@@ -18,8 +18,8 @@ use crate::passes::reflection::ReflectionBindings;
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::{
-    Ablation, BlockListPass, ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant, ReflectionPass,
-    SuperTileListPass, TileClassifyPass,
+    Ablation, BlockListPass, ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant,
+    ReflectionPass, SuperTileListPass, TileClassifyPass,
 };
 use crate::plan::{FramePlan, PlanParams};
 use crate::settings::{ReflectionSettings, WriteMode};
@@ -284,7 +284,8 @@ impl ReflectionRenderer {
         let tests = if plan.is_empty() {
             Vec::new()
         } else {
-            let tested: Vec<u32> = plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
+            let tested: Vec<u32> =
+                plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
             shape_tests(&self.table, &tested, camera.position)
         };
         debug_assert!(b.fits(&self.table, plan, self.debug_writes));

@@ -101,7 +101,8 @@ mod tests {
         let eye = DVec3::new(9.0, 1.7, 2.0);
         let t = shape_test(&shape, 7, eye);
         assert_eq!((t.shape, t.group), (7, 3));
-        let planes: Vec<DVec4> = std::iter::once(t.plane).chain(t.sides).map(|a| DVec4::from(a.map(f64::from))).collect();
+        let planes: Vec<DVec4> =
+            std::iter::once(t.plane).chain(t.sides).map(|a| DVec4::from(a.map(f64::from))).collect();
         let mut state = 0x1234_5678_u64;
         let mut next = || {
             state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);

@@ -42,8 +42,8 @@ pub fn source_rect(shape: &ShapeSource, eye: DVec3, clip_from_rel: &Mat4, [w, h]
     for face in faces {
         for v in clip_to_view(face) {
             let scale = v.abs().max_element();
-            if !(v.w > 1e-12 * scale) {
-                // Only the zero vector survives the side planes with w = 0.
+            // Only the zero vector survives the side planes with w = 0 (and NaN is skipped).
+            if v.w.partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
                 continue;
             }
             let px = [(v.x / v.w * 0.5 + 0.5) * f64::from(w), (0.5 - v.y / v.w * 0.5) * f64::from(h)];
@@ -56,7 +56,7 @@ pub fn source_rect(shape: &ShapeSource, eye: DVec3, clip_from_rel: &Mat4, [w, h]
     if lo[0] > hi[0] {
         return ScreenRect { min: [0, 0], max: [0, 0] };
     }
-    if !(lo.iter().chain(&hi).all(|x| x.is_finite())) {
+    if !lo.iter().chain(&hi).all(|x| x.is_finite()) {
         return full;
     }
     let clamp = |x: f64, max: u32| x.clamp(0.0, f64::from(max)) as u32;
@@ -171,7 +171,10 @@ mod tests {
             let lo = [0, 1].map(|a| pixels.iter().map(|p| p[a]).min().unwrap_or(0));
             let hi = [0, 1].map(|a| pixels.iter().map(|p| p[a] + 1).max().unwrap_or(0));
             for a in 0..2 {
-                assert!(rect.min[a] + 3 >= lo[a] && rect.max[a] <= hi[a] + 3, "camera {i}: {rect:?} vs {lo:?}..{hi:?}");
+                assert!(
+                    rect.min[a] + 3 >= lo[a] && rect.max[a] <= hi[a] + 3,
+                    "camera {i}: {rect:?} vs {lo:?}..{hi:?}"
+                );
             }
         }
     }
