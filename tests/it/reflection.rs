@@ -299,3 +299,37 @@ fn anti_bleeding_decides_the_same_at_any_exposure() {
         assert_eq!(off, 0, "x{k}: worst difference {worst}");
     }
 }
+
+#[test]
+fn a_far_mirror_under_standard_z_never_reflects_itself() {
+    // Issue 14, item 3: with standard Z the depth buffer's resolution falls with distance
+    // squared; 400 m away a depth step spans decimetres, more than a tolerance relative to
+    // distance (1e-4 of it), so the mirror's own pixels came out in front of its plane and
+    // were mirrored onto themselves (an offset near zero, which atomicMin always keeps).
+    // The on-plane tolerance now follows the depth buffer's precision: an empty mirror
+    // reflects nothing of itself.
+    let mut s = AnalyticScene::default();
+    s.mirror("far floor", DVec3::new(0.0, 0.0, -300.0), DVec3::X, DVec3::NEG_Z, [400.0, 400.0]);
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 280.0, 0.0),
+        DVec3::new(0.0, 0.0, -280.0),
+        Vec3::Y,
+        Projection { near: 0.05, far: Some(1000.0), ..Projection::default() },
+    );
+    let frame = s.render(&camera, SIZE);
+    let on_mirror = frame.depth.iter().filter(|&&d| d < 1.0).count();
+    let gpu = GpuFrame::upload(&frame);
+    assert!(on_mirror > (SIZE[0] * SIZE[1]) as usize / 2, "the mirror fills the view: {on_mirror}");
+    // With and without the depth-occlusion test (which also refuses a write onto a pixel
+    // in front of the plane): the tolerance alone must hold.
+    for occlusion in [ppr_runtime::Choice::Off, ppr_runtime::Choice::On] {
+        let mut r = renderer();
+        r.settings = ReflectionSettings::RAW;
+        r.plan_params.depth_occlusion = occlusion;
+        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        let out = run(&mut r, &gpu, &camera);
+        let written = out.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+        eprintln!("occlusion {occlusion:?}: {on_mirror} mirror pixels, {written} written");
+        assert_eq!(written, 0, "the mirror reflected itself (occlusion {occlusion:?})");
+    }
+}
