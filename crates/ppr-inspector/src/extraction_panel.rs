@@ -29,6 +29,13 @@ pub fn show(ui: &mut Ui, state: &mut InspectorState) {
         let label = ui.label("Max shapes per region");
         ui.add(DragValue::new(&mut p.max_shapes_per_region).range(1..=64)).labelled_by(label.id);
         ui.end_row();
+        number(ui, "Near-planar merge °", &mut p.near_planar_angle_deg, 0.05);
+        number(ui, "Max reflection error m", &mut p.max_reflection_error_m, 1e-3);
+        number(ui, "Budget cube m", &mut p.budget_cube_m, 0.5);
+        let label = ui.label("Max rectangles per cube");
+        ui.add(DragValue::new(&mut p.max_shapes_per_cube).range(1..=100_000)).labelled_by(label.id)
+            .on_hover_text("the density budget: rectangles a camera can see at once, per cube of the size above; what it merges, drops or keeps is listed in the messages");
+        ui.end_row();
         let mut limited = p.reach_m.is_some();
         ui.checkbox(&mut limited, "Limit occluder reach");
         let mut reach = p.reach_m.unwrap_or(10.0);
