@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# What ran on the lent H200 for docs/perf/runtime.md, scaling.md and comparison.md (recipe:
+# shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
+# `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
+# `.gpu/scenes/`) carried; results go to $OUT/results. About 250 s of device time.
+set -u
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+export WGPU_BACKEND=vulkan
+ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+if [ -f "$ICD" ]; then export VK_DRIVER_FILES=$ICD; fi
+B=.gpu/ppr-bench
+C="--scenes-dir .gpu/scenes"
+R=$OUT/results
+mkdir -p "$R"
+nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
+step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
+  timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
+  echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"; }
+step profile 70 $B runtime $C --projection-profile --frames 20 --out $R/profile
+step scaling 150 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64 --coverages 0.1,0.2,0.3,0.4,0.5
+T="--technique ppr-raw --technique ppr-holes --technique ppr --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique sspr"
+step compare 130 $B compare $C --out $R/compare --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
+step collision 60 $B compare $C --out $R/collision --scene collision-world --resolution 4k --frames 10 --technique ppr --technique ppr-raw --technique ssr-low --technique exact
