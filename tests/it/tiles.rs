@@ -208,7 +208,7 @@ fn without_parallel_shapes_culling_changes_no_pixel() {
         let written = a.pixels.iter().filter(|p| p.w > 0.0).count();
         eprintln!("case {case}: {} visible, {written} reflection pixels", a.plan.visible.len());
         for culling in CULLED {
-            let mut tiled = configured(culling, Choice::Auto);
+            let mut tiled = configured(culling, Choice::On);
             tiled.set_reflectors(&set).expect("a valid set");
             let b = run(&mut tiled, &gpu, &camera);
             assert!(!a.plan.parallel_rule && b.plan.parallel_rule);
@@ -458,4 +458,47 @@ fn super_tiles_run_from_the_plan_threshold() {
     r.plan_params.super_tiles_min_shapes = n + 1;
     let out = run(&mut r, &gpu, &camera);
     assert!(out.plan.tile_culling && !out.plan.super_tiles, "{}", out.plan);
+}
+
+#[test]
+fn the_default_plan_never_drops_a_reflection_the_plain_loop_shows() {
+    // Issue 14, item 1: a table top over a mirror floor (parallel planes, one group) and
+    // enough puddles that the plan turns tile culling on. The parallel rule used to come
+    // with it and keep only the nearest plane per pixel: the floor then lost the
+    // reflections of the box on the table. Whatever the plan picks, every write of the
+    // plain loop without the rule must stay.
+    let mut s = AnalyticScene::default();
+    s.quad(DVec3::new(0.0, 3.0, -9.0), DVec3::X, DVec3::Y, [8.0, 3.0], Albedo::Waves(0.3));
+    s.mirror("floor", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [4.0, 4.0]);
+    s.mirror("table top", DVec3::new(0.8, 0.8, -4.5), DVec3::X, DVec3::NEG_Z, [0.9, 0.6]);
+    s.cuboid(DVec3::new(0.5, 0.8, -4.7), DVec3::new(1.0, 1.6, -4.3), Vec3::new(0.9, 0.2, 0.1));
+    for i in 0..24 {
+        let c = DVec3::new(-3.5 + (i % 8) as f64, 0.0, -0.6 - (i / 8) as f64 * 0.3);
+        s.mirror(&format!("puddle {i}"), c, DVec3::X, DVec3::NEG_Z, [0.1, 0.1]);
+    }
+    let camera = Camera::look_at(
+        DVec3::new(0.0, 1.6, 1.5),
+        DVec3::new(0.4, 0.5, -4.0),
+        Vec3::Y,
+        Projection::default(),
+    );
+    let gpu = GpuFrame::upload(&s.render(&camera, SIZE));
+    let set = grouped_set(&s);
+
+    let mut plain = configured(Culling::Plain, Choice::Off);
+    plain.set_reflectors(&set).expect("a valid set");
+    run(&mut plain, &gpu, &camera);
+    let a = debug_masks(&plain);
+    let mut default = renderer();
+    default.plan_params.indirect = Choice::Off;
+    default.debug_writes = true;
+    default.set_reflectors(&set).expect("a valid set");
+    let out = run(&mut default, &gpu, &camera);
+    let b = debug_masks(&default);
+    let writes: usize = a.iter().map(|m| m.count_ones() as usize).sum();
+    let missing = a.iter().zip(&b).filter(|(p, d)| *p & !*d != 0).count();
+    eprintln!("{}\n{writes} writes in the plain loop, {missing} pixels lose some", out.plan);
+    assert!(out.plan.tile_culling, "enough shapes for block lists: {}", out.plan);
+    assert!(writes > 500, "{writes}");
+    assert_eq!(missing, 0, "the default plan dropped reflections");
 }

@@ -67,8 +67,12 @@ pub struct PlanParams {
     /// lists"), where they are never slower than flat tile lists from 512 shapes on in all
     /// three generated families; not yet timed on a GPU.
     pub super_tiles_min_shapes: usize,
-    /// Among parallel shapes, only the nearest plane reflects a pixel. `Auto`: with tile
-    /// culling.
+    /// Among parallel shapes, only the nearest plane reflects a pixel (the seed's bonus
+    /// slides). An approximation, never chosen by `Auto` (off): shapes of one plane never
+    /// both reflect a pixel, so among them the rule changes nothing, and among parallel
+    /// planes at different heights (a table top over a floor, stair treads) it drops real
+    /// reflections — the floor's of what stands on the table. `On` trades those for fewer
+    /// writes on many stacked parallel shapes.
     pub parallel_rule: Choice,
     /// Classify tiles and run the clear and reflection passes only over tiles that show
     /// a visible reflector (indirect dispatch).
@@ -268,7 +272,7 @@ impl FramePlan {
         plan.tile_culling = params.tile_culling.decide(plan.visible.len() >= params.tile_culling_min_shapes);
         plan.super_tiles = plan.tile_culling
             && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
-        plan.parallel_rule = params.parallel_rule.decide(plan.tile_culling);
+        plan.parallel_rule = params.parallel_rule.decide(false);
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         if params.source_boxes.decide(true) {
             let layers = plan.layers.iter().map(|l| l.shape);
