@@ -1,5 +1,12 @@
 //! Accuracy of a technique's reflection against the exact one, over reflector pixels, split
 //! into pixels whose reflected point is on screen and those where it is not.
+//!
+//! Every technique is scored as a renderer would show it: its colour blended over one
+//! fallback by its alpha (`mix(fallback, rgb, alpha)`; PPR's alpha is a confidence, the
+//! baselines' 0 or 1). The fallback is the same for every technique: the scene's own colour
+//! at the pixel, what the surface shows without a screen-space reflection. So a technique
+//! gains nothing by writing nothing, and its share of pixels without data stays beside its
+//! score.
 
 use image::Rgba32FImage;
 use ppr_testbed::image_io::ToneMap;
@@ -82,6 +89,8 @@ impl Quality {
         tone_map: ToneMap,
     ) -> Result<Self, BenchError> {
         let r = &reference.reference;
+        let shown = over_fallback(test, &reference.color)?;
+        let test = &shown;
         let psnr_on = psnr(r, test, &reference.on_screen, tone_map)?;
         let psnr_off = psnr(r, test, &reference.off_screen, tone_map)?;
         let (flip_on, flip_off) = if reference.measured.count() == 0 {
@@ -98,11 +107,38 @@ impl Quality {
             psnr_off,
             flip_on,
             flip_off,
-            holes_on: hole_share(test, &reference.on_screen),
-            holes_all: hole_share(test, &reference.measured),
+            holes_on: hole_share(&shown, &reference.on_screen),
+            holes_all: hole_share(&shown, &reference.measured),
             pixels: (reference.on_screen.count(), reference.off_screen.count()),
         })
     }
+}
+
+/// What a renderer shows: `test`'s colour over `fallback` by `test`'s alpha (clamped to
+/// [0, 1]; a non-finite alpha counts as 0). Keeps `test`'s alpha, for the hole shares.
+///
+/// # Errors
+/// Sizes differ.
+pub fn over_fallback(test: &Rgba32FImage, fallback: &Rgba32FImage) -> Result<Rgba32FImage, BenchError> {
+    if test.dimensions() != fallback.dimensions() {
+        return Err(ppr_testbed::TestbedError::SizeMismatch {
+            what: "reflection against its fallback".into(),
+            a: [test.width(), test.height()],
+            b: [fallback.width(), fallback.height()],
+        }
+        .into());
+    }
+    Ok(Rgba32FImage::from_fn(test.width(), test.height(), |x, y| {
+        let t = test.get_pixel(x, y).0;
+        let f = fallback.get_pixel(x, y).0;
+        let a = if t[3].is_finite() { t[3].clamp(0.0, 1.0) } else { 0.0 };
+        let mix = |c: usize| match a {
+            1.0 => t[c],
+            0.0 => f[c],
+            _ => f[c] + (t[c] - f[c]) * a,
+        };
+        image::Rgba([mix(0), mix(1), mix(2), t[3]])
+    }))
 }
 
 /// Mean of `values` over the mask (0 for an empty mask).
@@ -137,5 +173,42 @@ mod tests {
         assert_eq!(hole_share(&img, &mask), 0.5);
         assert_eq!(masked_mean(&[1.0, 3.0, 100.0, 100.0], &mask), 2.0);
         assert_eq!(masked_mean(&[1.0; 4], &PixelMask::from_fn(4, 1, |_, _| false)), 0.0);
+    }
+
+    /// Writing nothing scores as the fallback does, whatever colour the "holes" hold; a
+    /// technique that gets half the pixels right scores better than one that writes none.
+    #[test]
+    fn writing_nothing_scores_as_the_fallback() {
+        let (w, h) = (8, 4);
+        let exact = Rgba32FImage::from_fn(w, h, |x, _| image::Rgba([0.1 * x as f32, 0.5, 0.2, 1.0]));
+        let scene = Rgba32FImage::from_fn(w, h, |_, _| image::Rgba([0.3, 0.3, 0.3, 1.0]));
+        let all = PixelMask::from_fn(w, h, |_, _| true);
+        let reference = ReferenceFrame {
+            reference: exact.clone(),
+            color: scene.clone(),
+            on_screen: all.clone(),
+            off_screen: PixelMask::from_fn(w, h, |_, _| false),
+            measured: all,
+        };
+        // The exact colours, but flagged as no data: no credit for them.
+        let hidden = Rgba32FImage::from_fn(w, h, |x, y| {
+            let p = exact.get_pixel(x, y).0;
+            image::Rgba([p[0], p[1], p[2], 0.0])
+        });
+        let nothing = Quality::measure(&reference, &hidden, ToneMap::Clamp).expect("sizes");
+        let fallback_only = Quality::measure(&reference, &scene.clone(), ToneMap::Clamp);
+        assert!(nothing.psnr_on.is_finite(), "{nothing:?}");
+        assert_eq!(nothing.holes_on, 1.0);
+        // The scene's alpha is 1: scored as its colour, the same as the fallback.
+        assert_eq!(fallback_only.expect("sizes").psnr_on, nothing.psnr_on);
+        let half = Rgba32FImage::from_fn(w, h, |x, y| {
+            let p = exact.get_pixel(x, y).0;
+            image::Rgba([p[0], p[1], p[2], if x < w / 2 { 1.0 } else { 0.0 }])
+        });
+        let half = Quality::measure(&reference, &half, ToneMap::Clamp).expect("sizes");
+        assert!(half.psnr_on > nothing.psnr_on + 1.0, "{half:?} vs {nothing:?}");
+        assert_eq!(half.holes_on, 0.5);
+        let full = Quality::measure(&reference, &exact, ToneMap::Clamp).expect("sizes");
+        assert!(full.psnr_on.is_infinite(), "{full:?}");
     }
 }

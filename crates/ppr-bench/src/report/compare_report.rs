@@ -322,7 +322,10 @@ pub fn write_compare_report(
          the L2 cache. Quality is against the exact planar reflection (the scene \
          re-rendered from the mirrored camera), over reflector pixels, split into pixels whose \
          reflected point is on screen (what a screen-space method can get) and the rest; \
-         \"no data\" is the share of those pixels a technique left without a reflection. Quality \
+         \"no data\" is the share of those pixels a technique left without a reflection. Each \
+         technique is scored as a renderer shows it, its colour blended by its alpha over one \
+         fallback that is the same for all: the scene's own colour at the pixel (so writing \
+         nothing earns nothing). Quality \
          is measured at sizes up to {quality_max_pixels} pixels and marked `{SKIPPED}` beyond \
          (8K: FLIP on the CPU would dominate the run).\n"
     );
