@@ -91,18 +91,3 @@ struct Shape {
     _pad1: u32,
     _pad2: u32,
 }
-
-// Whether the ray from the camera (origin) to `p` crosses `s` before reaching `p`
-// (strictly between, so that a point on a coplanar neighbour is not occluded).
-fn ppr_segment_hits_shape(p: vec3<f32>, s: Shape) -> bool {
-    let dn = dot(p, s.normal);
-    if (abs(dn) <= 1e-20) {
-        return false;
-    }
-    let t = s.plane_dist / dn;
-    if (!(t > 0.0 && t < 0.9999)) {
-        return false;
-    }
-    let l = p * t - s.center;
-    return abs(dot(l, s.axis_u)) <= s.half_u && abs(dot(l, s.axis_v)) <= s.half_v;
-}

@@ -67,9 +67,10 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // Block counts and lists (block_lists.wgsl), read with TILE_CULLING.
 @group(0) @binding(11) var<storage, read> block_lists: array<u32>;
 
-// Whether the ray from the camera to `hit` crosses occluder `o` before reaching it: the
-// test of ppr_segment_hits_shape without a division (t = plane_dist / dot(hit, n) must lie
-// in (0, 0.9999), and the crossing point in the rectangle, each multiplied out by dn).
+// Whether the ray from the camera to `hit` crosses occluder `o` before reaching it
+// (strictly between, so that a point on a coplanar neighbour is not occluded), without a
+// division: t = plane_dist / dot(hit, n) must lie in (0, 0.9999), and the crossing point in
+// the rectangle, each multiplied out by dn.
 fn occluder_hit(hit: vec3<f32>, o: Shape) -> bool {
     let dn = dot(hit, o.normal);
     let pd = o.plane_dist;
@@ -382,11 +383,9 @@ fn main(
     for (var i = 0u; i <= count; i++) {
         var k = NO_SHAPE;
         if (i < count) {
-            k = i;
+            k = candidate(cand, i);
             if (use_list) {
                 k = block_lists[list_start + i];
-            } else if (cand.listed) {
-                k = super_lists[cand.start + i];
             }
             if (!use_list && !block_meets_source_box(k, lo, hi)) {
                 k = NO_SHAPE;
