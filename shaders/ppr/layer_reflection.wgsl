@@ -75,7 +75,7 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     for (var k = 0u; k < 4u; k++) {
         v[k + 1u] = read_layer(l, vpos + PPR_HOLE_OFFSETS[k]);
     }
-    var chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u);
+    var chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     var colour = ppr_reflected_colour(vpos, chosen);
     if (colour.a == 0.0 && l.kind == PPR_KIND_WATER && (frame.flags & PPR_FLAG_WATER_STRETCH) != 0u) {
         // Edge stretch: the nearest valid reflection along the plane's projected normal

@@ -127,7 +127,7 @@ fn main(
     for (var k = 0u; k < 4u; k++) {
         v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-    let chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u);
+    let chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     var colour = ppr_reflected_colour(vpos, chosen);
     if (NORMAL_MAPS && colour.a > 0.0) {
         colour = normal_mapped(vpos, chosen, colour);

@@ -15,9 +15,10 @@ struct PprChosen {
 }
 
 // Hole filling: take the neighbour with the smallest offset when this pixel has no data,
-// or when that neighbour's reflection is much closer (more than 6 px) than this one's.
-// `v[0]` is the pixel's own value, `v[1..4]` the neighbours at PPR_HOLE_OFFSETS.
-fn ppr_choose_value(v: array<u32, 5>, holes: bool) -> PprChosen {
+// or, with `replace_far` (the seed's rule, off by default), when that neighbour's
+// reflection is much closer (more than 6 px) than this one's. `v[0]` is the pixel's own
+// value, `v[1..4]` the neighbours at PPR_HOLE_OFFSETS.
+fn ppr_choose_value(v: array<u32, 5>, holes: bool, replace_far: bool) -> PprChosen {
     var chosen: PprChosen;
     chosen.value = v[0];
     chosen.holes_offset = vec2<i32>(0);
@@ -27,6 +28,9 @@ fn ppr_choose_value(v: array<u32, 5>, holes: bool) -> PprChosen {
     let minv = min(min(min(v[0], v[1]), min(v[2], v[3])), v[4]);
     var allow_hole_fill = true;
     if (v[0] != PPR_CLEAR_VALUE) {
+        if (!replace_far) {
+            return chosen;
+        }
         let d0 = ppr_decoded_offset(ppr_decode(v[0], frame.encoding));
         let dmin = ppr_decoded_offset(ppr_decode(minv, frame.encoding));
         let diff = d0 - dmin;

@@ -2,7 +2,8 @@
 # What ran on the lent H200 for docs/perf/runtime.md, scaling.md and comparison.md (recipe:
 # shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
 # `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
-# `.gpu/scenes/`) carried; results go to $OUT/results. About 250 s of device time.
+# `.gpu/scenes/`) carried; results go to $OUT/results.tar.gz (only 8 files come back from
+# the device, so everything travels as one archive). About 280 s of device time.
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -11,7 +12,7 @@ ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 if [ -f "$ICD" ]; then export VK_DRIVER_FILES=$ICD; fi
 B=.gpu/ppr-bench
 C="--scenes-dir .gpu/scenes"
-R=$OUT/results
+R=/tmp/results
 mkdir -p "$R"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
 step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
@@ -22,3 +23,4 @@ step scaling 150 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --t
 T="--technique ppr-raw --technique ppr-holes --technique ppr --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique sspr"
 step compare 130 $B compare $C --out $R/compare --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 step collision 60 $B compare $C --out $R/collision --scene collision-world --resolution 4k --frames 10 --technique ppr --technique ppr-raw --technique ssr-low --technique exact
+tar czf "$OUT/results.tar.gz" -C /tmp results

@@ -61,7 +61,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
 ];
 
 /// PPR settings accept `culling=on|off|auto` and `indirect=on|off|auto`.
-const PPR_KEYS: [&str; 2] = ["culling", "indirect"];
+const PPR_KEYS: [&str; 4] = ["culling", "indirect", "fade", "replace-far"];
 
 /// Settings each baseline accepts.
 fn keys_of(name: &str) -> &'static [&'static str] {
@@ -148,8 +148,14 @@ impl TechniqueSpec {
             }
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
-                "culling" | "indirect" => {
+                "culling" | "indirect" | "replace-far" => {
                     parse_choice(v).map_err(bad)?;
+                }
+                "fade" => {
+                    let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
+                    if !(0.0..=0.5).contains(&f) {
+                        return Err(bad(format!("fade: {f} is outside [0, 0.5]")));
+                    }
                 }
                 "stride" | "refine" | "iterations" => {
                     v.parse::<u32>().map_err(|e| bad(format!("{k}: {e}")))?;
@@ -203,7 +209,13 @@ pub fn build_technique(
         "ppr" => Some(ReflectionSettings::ALL),
         _ => None,
     };
-    if let Some(settings) = settings {
+    if let Some(mut settings) = settings {
+        if let Some(v) = spec.param("fade") {
+            settings.border_fade = v.parse::<f32>().map_err(|e| BenchError::Spec(format!("fade: {e}")))?;
+        }
+        if let Some(v) = spec.param("replace-far") {
+            settings.replace_far_reflections = parse_choice(v).map_err(BenchError::Spec)? == Choice::On;
+        }
         let mut params = ctx.plan_params;
         if let Some(v) = spec.param("culling") {
             params.tile_culling = parse_choice(v).map_err(BenchError::Spec)?;

@@ -18,6 +18,9 @@ pub const FLAG_WRITE_MAX: u32 = 32;
 
 /// Bit of [`FrameUniforms::flags`]: stretch water reflections into missing borders.
 pub const FLAG_WATER_STRETCH: u32 = 64;
+/// Hole filling also replaces a reflection by a neighbour's more than 6 px shorter one
+/// (the seed's rule; [`crate::ReflectionSettings::replace_far_reflections`]).
+pub const FLAG_REPLACE_FAR: u32 = 128;
 
 /// Bit of [`GpuShape::flags`]: the shape blocks reflections of the main buffer behind it
 /// (opaque and water shapes do; glass does not).

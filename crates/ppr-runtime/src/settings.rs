@@ -8,8 +8,17 @@ pub const DEFAULT_BORDER_FADE: f32 = 0.1;
 /// by default.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ReflectionSettings {
-    /// Fill holes from the neighbour with the smallest offset (the 6-pixel rule).
+    /// Fill pixels without a reflection from the neighbour with the smallest offset (seed:
+    /// `enableHolesFilling`).
     pub holes: bool,
+    /// The seed's 6-pixel rule, part of its hole filling (needs `holes`): a pixel that has a
+    /// reflection takes a neighbour's instead when the neighbour's offset is more than 6 px
+    /// shorter. Off by default: on the lent H200 and the software adapter it lowered the
+    /// on-screen PSNR on every camera of the demo and the kitchen but one (kitchen
+    /// `view-silver-metal`, 480×270: 26.1 dB raw, 20.2 with the rule, 25.6 without;
+    /// `docs/perf/comparison.md`), because a shorter neighbouring offset is as often a
+    /// different surface's reflection as the nearer one this pixel missed.
+    pub replace_far_reflections: bool,
     /// Sample the colour with the encoded sub-pixel fractions (bilinear).
     pub filtering: bool,
     /// Pull the filtered colour towards the unfiltered one in YCoCg (needs `filtering`).
@@ -42,6 +51,7 @@ impl ReflectionSettings {
     /// Every step on: the seed's final image, with the default border fade.
     pub const ALL: Self = Self {
         holes: true,
+        replace_far_reflections: false,
         filtering: true,
         anti_bleeding: true,
         water_edge_stretch: true,
@@ -50,6 +60,7 @@ impl ReflectionSettings {
     /// Every step off: raw decoded pixel data (alpha 1 wherever found: no fade).
     pub const RAW: Self = Self {
         holes: false,
+        replace_far_reflections: false,
         filtering: false,
         anti_bleeding: false,
         water_edge_stretch: false,
@@ -63,6 +74,7 @@ impl ReflectionSettings {
             | (if self.filtering { FLAG_FILTERING } else { 0 })
             | (if self.anti_bleeding { FLAG_ANTI_BLEEDING } else { 0 })
             | (if self.water_edge_stretch { FLAG_WATER_STRETCH } else { 0 })
+            | (if self.holes && self.replace_far_reflections { FLAG_REPLACE_FAR } else { 0 })
     }
 
     /// The border fade's width in pixels for a viewport (0 when off).
