@@ -37,7 +37,8 @@ Examples:
   ppr-bench extract-trade --out docs/perf
 
 Scenes: demo (assets/demo_room.glb), kitchen, small, collision-world, pool, mine (from
---scenes-dir), or a path to a .glb/.gltf (append :all-planar for levels with one material).
+--scenes-dir), the generated closed mirror rooms mirror-room, mirror-room-<boxes> and
+mirror-corridor, or a path to a .glb/.gltf (append :all-planar for levels with one material).
 Run on a GPU with WGPU_BACKEND=vulkan; without one, wgpu's GL backend on llvmpipe works
 (only --quick is practical there).";
 
