@@ -7,6 +7,7 @@
 //! rectangle fit or extraction setting can change what is measured, and every reflector
 //! pixel is on exactly one rectangle.
 
+pub mod one_frame;
 pub mod panels;
 pub mod room_cameras;
 
