@@ -36,8 +36,9 @@ pub struct SceneFrame {
     pub techniques: Vec<TechniqueFrame>,
 }
 
-/// Renders `scene` from `camera` at `size`, runs each technique once on that frame and
-/// scores it with the clamp tone map (`compare`'s default).
+/// Renders `scene` from `camera` at `size`, runs each technique once on that frame (PPR with
+/// `plan_params`; `compare` uses the default) and scores it with the clamp tone map
+/// (`compare`'s default).
 ///
 /// # Errors
 /// A technique cannot be built, or a readback fails.
@@ -47,6 +48,7 @@ pub fn render_scene_frame(
     camera: &Camera,
     size: [u32; 2],
     techniques: &[TechniqueSpec],
+    plan_params: &PlanParams,
 ) -> Result<SceneFrame, BenchError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
     let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
@@ -60,7 +62,7 @@ pub fn render_scene_frame(
         level: &scene.level,
         reflectors: &scene.reflectors,
         render: scene.render_settings(),
-        plan_params: PlanParams::default(),
+        plan_params: *plan_params,
     };
     let usage = wgpu::TextureUsages::STORAGE_BINDING
         | wgpu::TextureUsages::TEXTURE_BINDING
