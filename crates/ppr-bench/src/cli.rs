@@ -112,7 +112,7 @@ pub struct ScalingArgs {
     /// Screen coverages of the indirect-dispatch sweep (comma-separated).
     #[arg(long, value_delimiter = ',', default_value = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0")]
     pub coverages: Vec<f64>,
-    /// Level families (repeat; default: stairway, tiled-floor, facade).
+    /// Level families (repeat; default: stairway, tiled-floor, facade, rooms).
     #[arg(long = "family")]
     pub families: Vec<String>,
     /// Render size.
@@ -318,7 +318,7 @@ where
                     .iter()
                     .map(|f| {
                         LevelFamily::ALL.into_iter().find(|k| k.as_str() == f).ok_or_else(|| {
-                            BenchError::Spec(format!("unknown family `{f}` (stairway, tiled-floor, facade)"))
+                            BenchError::Spec(format!("unknown family `{f}` (stairway, tiled-floor, facade, rooms)"))
                         })
                     })
                     .collect::<Result<_, _>>()?
