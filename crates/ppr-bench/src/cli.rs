@@ -318,7 +318,9 @@ where
                     .iter()
                     .map(|f| {
                         LevelFamily::ALL.into_iter().find(|k| k.as_str() == f).ok_or_else(|| {
-                            BenchError::Spec(format!("unknown family `{f}` (stairway, tiled-floor, facade, rooms)"))
+                            BenchError::Spec(format!(
+                                "unknown family `{f}` (stairway, tiled-floor, facade, rooms)"
+                            ))
                         })
                     })
                     .collect::<Result<_, _>>()?

@@ -204,7 +204,8 @@ mod tests {
     #[test]
     fn a_camera_over_the_rectangle_gets_the_whole_screen() {
         let projection = Projection { far: Some(60.0), ..Projection::default() };
-        let camera = Camera::look_at(DVec3::new(0.5, 0.4, 2.5), DVec3::new(-1.0, 0.2, -3.0), Vec3::Y, projection);
+        let camera =
+            Camera::look_at(DVec3::new(0.5, 0.4, 2.5), DVec3::new(-1.0, 0.2, -3.0), Vec3::Y, projection);
         let mut shape = floor(4.0);
         shape.half_extents = [4.0, 3.0];
         let size = [160, 90];

@@ -164,7 +164,8 @@ mod tests {
 
     #[test]
     fn names_round_trip() {
-        for room in [MirrorRoom::BoxesInBox { boxes: 2 }, MirrorRoom::BoxesInBox { boxes: 7 }, MirrorRoom::Corridor]
+        for room in
+            [MirrorRoom::BoxesInBox { boxes: 2 }, MirrorRoom::BoxesInBox { boxes: 7 }, MirrorRoom::Corridor]
         {
             assert_eq!(MirrorRoom::from_name(&room.name()), Some(room));
         }

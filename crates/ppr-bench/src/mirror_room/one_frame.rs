@@ -90,9 +90,12 @@ pub fn render_scene_frame(
             output.texture.size(),
         );
         technique.prepare(device, queue, camera, size);
-        let frame = BenchFrame { level: &level, reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view) };
-        let mut encoder =
-            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("one-frame technique") });
+        let frame = BenchFrame {
+            level: &level,
+            reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+        };
+        let mut encoder = device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("one-frame technique") });
         technique.encode(&mut encoder, &frame);
         queue.submit([encoder.finish()]);
         let image = read_rgba_f32(device, queue, &output.texture)?;

@@ -22,7 +22,15 @@ impl MirrorPanels {
 
     /// Adds the mirror `center ± u ± v` (half vectors, orthogonal), reflecting towards
     /// `u × v`, tinted `color`, named `name`.
-    pub fn panel(&mut self, level: &mut Level, name: &str, color: [f32; 3], center: DVec3, u: DVec3, v: DVec3) {
+    pub fn panel(
+        &mut self,
+        level: &mut Level,
+        name: &str,
+        color: [f32; 3],
+        center: DVec3,
+        u: DVec3,
+        v: DVec3,
+    ) {
         let slot = self.quads.material(level, Material::polished(name, color));
         self.quads.quad(slot, center, u, v);
         let id = self.set.next_id();

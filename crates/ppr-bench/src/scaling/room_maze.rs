@@ -39,7 +39,7 @@ fn module_panels(k: usize) -> Vec<(DVec3, DVec3, DVec3)> {
         (-x, -z, y), // left wall, facing +x
         (x, z, y),   // right wall, facing -x
     ];
-    if k % 2 == 0 {
+    if k.is_multiple_of(2) {
         p.push((-z, x, y)); // back wall, facing +z
     }
     p

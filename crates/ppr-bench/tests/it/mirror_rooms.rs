@@ -38,9 +38,10 @@ fn quality<'a>(f: &'a SceneFrame, label: &str) -> &'a Quality {
 #[test]
 fn mirror_rooms_are_bench_scenes_by_name() {
     for name in ["mirror-room", "mirror-room-5", "mirror-corridor"] {
-        let spec = SceneSpec::parse(name, Path::new("."), Path::new("."))
-            .unwrap_or_else(|e| panic!("{name}: {e}"));
-        let scene = BenchScene::load(&spec, &SceneOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let spec =
+            SceneSpec::parse(name, Path::new("."), Path::new(".")).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let scene =
+            BenchScene::load(&spec, &SceneOptions::default()).unwrap_or_else(|e| panic!("{name}: {e}"));
         assert_eq!(scene.name, name);
         assert_eq!(scene.cameras.len(), 3, "{name}");
         assert!(scene.any_surface && !scene.cameras_derived, "{name}");
@@ -127,7 +128,10 @@ fn double_sided_mirrors_have_the_same_reference() {
     let a = frame(&gpu, &single, "corner", &["exact"]);
     let b = frame(&gpu, &double, "corner", &["exact"]);
     let (na, nb) = (a.reference.on_screen.count(), b.reference.on_screen.count());
-    assert!(na > 2000 && na.abs_diff(nb) * 100 <= na, "on-screen pixels: single-sided {na}, double-sided {nb}");
+    assert!(
+        na > 2000 && na.abs_diff(nb) * 100 <= na,
+        "on-screen pixels: single-sided {na}, double-sided {nb}"
+    );
     let p = psnr(&a.reference.reference, &b.reference.reference, &a.reference.measured, ToneMap::Clamp)
         .expect("sizes");
     assert!(p > 40.0, "the two references differ: {p:.2} dB");
