@@ -37,7 +37,8 @@ Examples:
   ppr-bench extract-trade --out docs/perf
 
 Scenes: demo (assets/demo_room.glb), kitchen, small, collision-world, pool, mine (from
---scenes-dir), or a path to a .glb/.gltf (append :all-planar for levels with one material).
+--scenes-dir), the generated closed mirror rooms mirror-room, mirror-room-<boxes> and
+mirror-corridor, or a path to a .glb/.gltf (append :all-planar for levels with one material).
 Run on a GPU with WGPU_BACKEND=vulkan; without one, wgpu's GL backend on llvmpipe works
 (only --quick is practical there).";
 
@@ -111,7 +112,7 @@ pub struct ScalingArgs {
     /// Screen coverages of the indirect-dispatch sweep (comma-separated).
     #[arg(long, value_delimiter = ',', default_value = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0")]
     pub coverages: Vec<f64>,
-    /// Level families (repeat; default: stairway, tiled-floor, facade).
+    /// Level families (repeat; default: stairway, tiled-floor, facade, rooms).
     #[arg(long = "family")]
     pub families: Vec<String>,
     /// Render size.
@@ -318,7 +319,9 @@ where
                     .iter()
                     .map(|f| {
                         LevelFamily::ALL.into_iter().find(|k| k.as_str() == f).ok_or_else(|| {
-                            BenchError::Spec(format!("unknown family `{f}` (stairway, tiled-floor, facade)"))
+                            BenchError::Spec(format!(
+                                "unknown family `{f}` (stairway, tiled-floor, facade, rooms)"
+                            ))
                         })
                     })
                     .collect::<Result<_, _>>()?

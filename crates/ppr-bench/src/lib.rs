@@ -19,6 +19,7 @@ pub mod config;
 pub mod error;
 pub mod exact_reference;
 pub mod frame_loop;
+pub mod mirror_room;
 pub mod ppr_runner;
 pub mod quality;
 pub mod quality_pool;

@@ -59,13 +59,18 @@ pub const KNOWN_SCENES: [(&str, &str, ExtractPreset); 6] = [
 
 impl SceneSpec {
     /// The scene `text` names: a known name (`demo`, `kitchen`, ...; shared scenes are
-    /// looked up in `scenes_dir`, the demo level in `assets_dir`'s parent layout), or a
+    /// looked up in `scenes_dir`, the demo level in `assets_dir`'s parent layout), a
+    /// generated mirror room (`mirror-room`, `mirror-room-<n>`, `mirror-corridor`), or a
     /// path to a `.glb`/`.gltf` (material-driven extraction, `:all-planar` suffix for
     /// every planar surface).
     ///
     /// # Errors
     /// [`BenchError::Spec`] for an unknown name that is not a path either.
     pub fn parse(text: &str, repo_root: &Path, scenes_dir: &Path) -> Result<Self, BenchError> {
+        // Generated scenes have no file: their path is their name (see `BenchScene::load`).
+        if crate::mirror_room::MirrorRoom::from_name(text).is_some() {
+            return Ok(Self { name: text.into(), path: text.into(), preset: ExtractPreset::AllPlanar });
+        }
         if let Some((name, rel, preset)) = KNOWN_SCENES.iter().find(|(n, _, _)| *n == text) {
             let path = if *name == "demo" { repo_root.join(rel) } else { scenes_dir.join(rel) };
             return Ok(Self { name: (*name).into(), path, preset: *preset });
@@ -139,6 +144,9 @@ impl BenchScene {
     /// # Errors
     /// The level cannot be read by the testbed or the extractor.
     pub fn load(spec: &SceneSpec, options: &SceneOptions) -> Result<Self, BenchError> {
+        if let Some(room) = crate::mirror_room::MirrorRoom::from_name(&spec.name) {
+            return Ok(crate::mirror_room::bench_scene(room, options));
+        }
         let level = Level::load_gltf(&spec.path)?;
         let extracted = load_level(&spec.path)
             .map_err(|e| BenchError::Level { path: spec.path.clone(), reason: e.to_string() })?;

@@ -11,6 +11,11 @@
 //! vectors, which handles the points at infinity), and the box of what is left, projected,
 //! bounds every pixel whose position can reflect into the rectangle, at any depth. The
 //! near and far planes are not clipped against: the box is conservative.
+//!
+//! That holds while the camera is outside the pyramid (every ray through it then enters
+//! through a face). A camera inside it (in front of the plane, straight over the
+//! rectangle: a player standing on a mirror floor) sees the pyramid around itself, so
+//! every pixel may reflect into the shape and the box is the whole screen.
 
 use glam::{DMat4, DVec3, DVec4, Mat4};
 
@@ -27,6 +32,9 @@ pub fn source_rect(shape: &ShapeSource, eye: DVec3, clip_from_rel: &Mat4, [w, h]
     let full = ScreenRect { min: [0, 0], max: [w, h] };
     let m = DMat4::from_cols_array(&clip_from_rel.to_cols_array().map(f64::from));
     let n = shape.normal.as_dvec3();
+    if eye_over_rectangle(shape, eye) {
+        return full;
+    }
     let mirrored_eye = 2.0 * shape.plane_dist_from(eye) * n;
     let corners = shape.corners().map(|c| c - eye);
     let point = |r: DVec3| m * r.extend(1.0);
@@ -64,6 +72,17 @@ pub fn source_rect(shape: &ShapeSource, eye: DVec3, clip_from_rel: &Mat4, [w, h]
         min: [clamp((lo[0] - MARGIN_PX).floor(), w), clamp((lo[1] - MARGIN_PX).floor(), h)],
         max: [clamp((hi[0] + MARGIN_PX).ceil(), w), clamp((hi[1] + MARGIN_PX).ceil(), h)],
     }
+}
+
+/// Whether `eye` lies in the shape's mirrored pyramid: in front of the plane, its foot on
+/// the plane inside the rectangle (with a relative margin, so that a camera on the
+/// pyramid's boundary counts as inside).
+fn eye_over_rectangle(shape: &ShapeSource, eye: DVec3) -> bool {
+    let height = -shape.plane_dist_from(eye);
+    let rel = eye - shape.center;
+    let margin = 1e-4 * (1.0 + rel.length());
+    let inside = |axis: glam::Vec3, half: f32| rel.dot(axis.as_dvec3()).abs() <= f64::from(half) + margin;
+    height > 0.0 && inside(shape.axis_u, shape.half_extents[0]) && inside(shape.axis_v, shape.half_extents[1])
 }
 
 /// Clips a polygon of homogeneous clip-space vectors (its positive hull) against the
@@ -176,6 +195,28 @@ mod tests {
                     "camera {i}: {rect:?} vs {lo:?}..{hi:?}"
                 );
             }
+        }
+    }
+
+    /// Standing on a mirror floor (an 8 × 6 m room's), looking along it: the walls at the
+    /// top of the view reflect into the floor at the camera's feet, so every row may
+    /// reflect. The box from the pyramid's faces alone lost the top third of the rows.
+    #[test]
+    fn a_camera_over_the_rectangle_gets_the_whole_screen() {
+        let projection = Projection { far: Some(60.0), ..Projection::default() };
+        let camera =
+            Camera::look_at(DVec3::new(0.5, 0.4, 2.5), DVec3::new(-1.0, 0.2, -3.0), Vec3::Y, projection);
+        let mut shape = floor(4.0);
+        shape.half_extents = [4.0, 3.0];
+        let size = [160, 90];
+        let rect = source_rect(&shape, camera.position, &camera.clip_from_relative(16.0 / 9.0), size);
+        let pixels = reflecting_pixels(&shape, &camera, size);
+        assert!(pixels.iter().any(|p| p[1] == 0), "the top row reflects into the floor");
+        for p in &pixels {
+            assert!(
+                p[0] >= rect.min[0] && p[0] < rect.max[0] && p[1] >= rect.min[1] && p[1] < rect.max[1],
+                "pixel {p:?} outside {rect:?}"
+            );
         }
     }
 

@@ -10,7 +10,8 @@ use crate::mesh::{FaceCulling, LevelMeshes};
 use crate::scene_layouts::SceneLayouts;
 use crate::view::ViewBindings;
 
-const CULLINGS: [FaceCulling; 3] = [FaceCulling::BackCcw, FaceCulling::BackCw, FaceCulling::None];
+const CULLINGS: [FaceCulling; 4] =
+    [FaceCulling::BackCcw, FaceCulling::BackCw, FaceCulling::None, FaceCulling::NoneCw];
 
 /// Whether a view sees the scene directly or through a mirror (which flips the winding).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,7 +39,7 @@ pub struct GBufferDraw<'a> {
 /// The scene raster pass: one pipeline per depth convention and culling mode.
 pub struct GBufferPass {
     /// `pipelines[depth][culling]`, indices from [`depth_index`] and [`culling_index`].
-    pipelines: [[wgpu::RenderPipeline; 3]; 2],
+    pipelines: [[wgpu::RenderPipeline; 4]; 2],
 }
 
 fn depth_index(depth: DepthMode) -> usize {
@@ -53,11 +54,12 @@ fn culling_index(culling: FaceCulling) -> usize {
         FaceCulling::BackCcw => 0,
         FaceCulling::BackCw => 1,
         FaceCulling::None => 2,
+        FaceCulling::NoneCw => 3,
     }
 }
 
 impl GBufferPass {
-    /// Builds the six pipelines.
+    /// Builds the eight pipelines.
     pub fn new(device: &wgpu::Device, layouts: &SceneLayouts) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer shader"),
@@ -73,6 +75,7 @@ impl GBufferPass {
                 FaceCulling::BackCcw => (wgpu::FrontFace::Ccw, Some(wgpu::Face::Back)),
                 FaceCulling::BackCw => (wgpu::FrontFace::Cw, Some(wgpu::Face::Back)),
                 FaceCulling::None => (wgpu::FrontFace::Ccw, None),
+                FaceCulling::NoneCw => (wgpu::FrontFace::Cw, None),
             };
             let compare = ppr_runtime::Projection { depth, ..Default::default() }.depth_compare();
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {

@@ -42,17 +42,24 @@ pub enum FaceCulling {
     BackCcw,
     /// Back faces culled; clockwise triangles are front faces (mirroring transform).
     BackCw,
-    /// Nothing culled (double-sided material).
+    /// Nothing culled (double-sided material); counter-clockwise triangles are front faces
+    /// (the shader's `front_facing`, which turns the normal of a back face around).
     None,
+    /// Nothing culled; clockwise triangles are front faces (double-sided material with a
+    /// mirroring transform, or seen through a mirror).
+    NoneCw,
 }
 
 impl FaceCulling {
-    /// The culling seen through a mirror: the winding flips, double-sided stays.
+    /// The culling seen through a mirror: the winding flips, double-sided or not (a
+    /// double-sided surface must still know its front, or its normal and lighting turn
+    /// around in the mirrored view).
     pub fn mirrored(self) -> Self {
         match self {
             Self::BackCcw => Self::BackCw,
             Self::BackCw => Self::BackCcw,
-            Self::None => Self::None,
+            Self::None => Self::NoneCw,
+            Self::NoneCw => Self::None,
         }
     }
 }
@@ -113,7 +120,8 @@ impl LevelMeshes {
             for (range, material) in &prim_ranges[inst.mesh] {
                 let m = &level.materials[*material];
                 let culling = match (m.double_sided, inst.flips_winding()) {
-                    (true, _) => FaceCulling::None,
+                    (true, false) => FaceCulling::None,
+                    (true, true) => FaceCulling::NoneCw,
                     (false, false) => FaceCulling::BackCcw,
                     (false, true) => FaceCulling::BackCw,
                 };

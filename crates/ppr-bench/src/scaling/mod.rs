@@ -3,3 +3,4 @@
 pub mod coverage_level;
 pub mod level_family;
 pub mod quad_builder;
+pub mod room_maze;
