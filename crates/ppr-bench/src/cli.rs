@@ -185,7 +185,8 @@ pub struct CompareArgs {
     /// Technique and setting, `name` or `name:key=value,...` (repeat; default: every PPR
     /// setting, exact, and the baselines with several SSR step counts and thicknesses).
     /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect= on|off|auto; fade= border fade
-    /// as a fraction of the shorter side, 0..0.5; replace-far= on|off, the seed's 6-px rule), exact,
+    /// as a fraction of the shorter side, 0..0.5; replace-far= on|off, the seed's 6-px rule;
+    /// tier= full|half|quarter, the resolution the passes run at), exact,
     /// ssr-brute (thickness=), ssr-low (stride=, refine=, thickness=), ssr-hiz
     /// (iterations=, thickness=), sspr, sspr-stretch, planar.
     #[arg(long = "technique")]

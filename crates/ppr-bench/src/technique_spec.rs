@@ -9,7 +9,7 @@ use ppr_baselines::{
     SsrTechnique,
 };
 use ppr_format::ReflectorSet;
-use ppr_runtime::{Choice, PlanParams, ReflectionSettings};
+use ppr_runtime::{Choice, PlanParams, ReflectionSettings, ResolutionTier};
 use ppr_testbed::{Level, ReflectionTechnique, RenderSettings};
 
 use crate::error::BenchError;
@@ -61,7 +61,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
 ];
 
 /// PPR settings accept `culling=on|off|auto` and `indirect=on|off|auto`.
-const PPR_KEYS: [&str; 4] = ["culling", "indirect", "fade", "replace-far"];
+const PPR_KEYS: [&str; 5] = ["culling", "indirect", "fade", "replace-far", "tier"];
 
 /// Settings each baseline accepts.
 fn keys_of(name: &str) -> &'static [&'static str] {
@@ -151,6 +151,9 @@ impl TechniqueSpec {
                 "culling" | "indirect" | "replace-far" => {
                     parse_choice(v).map_err(bad)?;
                 }
+                "tier" => {
+                    parse_tier(v).map_err(bad)?;
+                }
                 "fade" => {
                     let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
                     if !(0.0..=0.5).contains(&f) {
@@ -168,6 +171,15 @@ impl TechniqueSpec {
             }
         }
         Ok(())
+    }
+}
+
+fn parse_tier(v: &str) -> Result<ResolutionTier, String> {
+    match v {
+        "full" => Ok(ResolutionTier::Full),
+        "half" => Ok(ResolutionTier::Half),
+        "quarter" => Ok(ResolutionTier::Quarter),
+        _ => Err(format!("tier `{v}` is not full, half or quarter")),
     }
 }
 
@@ -212,6 +224,9 @@ pub fn build_technique(
     if let Some(mut settings) = settings {
         if let Some(v) = spec.param("fade") {
             settings.border_fade = v.parse::<f32>().map_err(|e| BenchError::Spec(format!("fade: {e}")))?;
+        }
+        if let Some(v) = spec.param("tier") {
+            settings.resolution = parse_tier(v).map_err(BenchError::Spec)?;
         }
         if let Some(v) = spec.param("replace-far") {
             settings.replace_far_reflections = parse_choice(v).map_err(BenchError::Spec)? == Choice::On;

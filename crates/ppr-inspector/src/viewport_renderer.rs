@@ -40,7 +40,7 @@ pub struct PreviewFrame {
     pub timings: Option<PassTimings>,
     /// Which timed passes ran (in [`PassTimings::passes`] order): a pass that ran without
     /// a time had timestamps the adapter got wrong.
-    pub passes_recorded: [bool; 5],
+    pub passes_recorded: [bool; ppr_runtime::timestamps::TIMED_PASSES as usize],
     /// Whether the device has timestamps at all.
     pub timestamps: bool,
     /// Quality against the reference (difference mode only).

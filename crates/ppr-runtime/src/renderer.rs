@@ -12,16 +12,19 @@ use crate::frame_upload::{FrameUpload, UploadTarget};
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
+use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::ReflectionBindings;
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
+use crate::passes::upsample::UpsampleBindings;
 use crate::passes::{
-    Ablation, BlockListPass, ClearPass, LayerReflectionPass, ProjectionPass, ProjectionVariant,
-    ReflectionPass, SuperTileListPass, TileClassifyPass,
+    Ablation, BlockListPass, ClearPass, DownsamplePass, LayerReflectionPass, ProjectionPass,
+    ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
 };
 use crate::plan::{FramePlan, PlanParams};
+use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shape_tests::shape_tests;
 use crate::shapes::ShapeTable;
@@ -131,6 +134,13 @@ pub struct ReflectionRenderer {
     projection: ProjectionPass,
     reflection: ReflectionPass,
     layer_reflection: LayerReflectionPass,
+    downsample: DownsamplePass,
+    upsample: UpsamplePass,
+    /// The reduced tiers' textures (allocated by the first reduced `prepare`).
+    reduced: Option<ReducedTargets>,
+    /// The full-size viewport of the last `prepare`, and whether it planned a reduced tier.
+    full_viewport: [u32; 2],
+    reduced_active: bool,
     table: ShapeTable,
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
@@ -161,6 +171,11 @@ impl ReflectionRenderer {
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
             layer_reflection: LayerReflectionPass::new(device),
+            downsample: DownsamplePass::new(device),
+            upsample: UpsamplePass::new(device),
+            reduced: None,
+            full_viewport: [0, 0],
+            reduced_active: false,
             table: ShapeTable::default(),
             table_dirty: true,
             buffers: None,
@@ -196,8 +211,17 @@ impl ReflectionRenderer {
     /// [`Self::encode`] copies in where it records the passes. Call before [`Self::encode`]
     /// once per view and frame; several views may be prepared and encoded (prepare, encode,
     /// prepare, encode) before one submit, each with its own camera.
+    ///
+    /// With a reduced [`crate::ResolutionTier`] the plan is built for the reduced viewport.
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
-        let mut plan = FramePlan::build(&self.table, camera, viewport, &self.plan_params);
+        let tier = self.settings.resolution;
+        let planned = tier.reduced(viewport);
+        self.full_viewport = viewport;
+        self.reduced_active = planned != viewport;
+        if self.reduced_active && self.reduced.as_ref().is_none_or(|r| r.size != planned) {
+            self.reduced = Some(ReducedTargets::new(&self.device, planned));
+        }
+        let mut plan = FramePlan::build(&self.table, camera, planned, &self.plan_params);
         if let Some(layout) = self.encoding_override {
             plan.encoding = layout;
         }
@@ -320,11 +344,36 @@ impl ReflectionRenderer {
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
+        // A reduced tier runs the passes on its own reduced textures (normal maps off).
+        let reduced = if self.reduced_active { self.reduced.as_ref() } else { None };
+        let depth = reduced.map_or(inputs.depth, |r| &r.depth.view);
+        let color = reduced.map_or(inputs.color, |r| &r.color.view);
+        let output = reduced.map_or(inputs.output, |r| &r.output.view);
+        let layer_output = inputs.layer_output.map(|o| reduced.map_or(o, |r| &r.layer_output.view));
+        let normals = if reduced.is_some() { None } else { inputs.normals };
 
         // This prepared frame's uniforms, shapes and lists, copied in here (not at the
         // submit), so that each encode runs with the camera it was prepared for.
         self.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
         let has_main = !plan.visible.is_empty();
+        if let Some(r) = reduced {
+            let bg = self.downsample.bind_group(
+                device,
+                &DownsampleBindings {
+                    uniforms: &b.uniforms,
+                    full_depth: inputs.depth,
+                    full_color: inputs.color,
+                    reduced_depth: &r.depth.view,
+                    reduced_color: &r.color.view,
+                },
+            );
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ppr downsample"),
+                timestamp_writes: timestamps(5),
+            });
+            self.downsample.encode(&mut pass, &bg, plan.viewport);
+            count(1);
+        }
         if plan.indirect && has_main {
             // The classification counts the active tiles from zero, at every encode.
             encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
@@ -334,7 +383,7 @@ impl ReflectionRenderer {
                 device,
                 &ClassifyBindings {
                     uniforms: &b.uniforms,
-                    depth: inputs.depth,
+                    depth,
                     shapes: &b.shapes,
                     visible: &b.visible,
                     screen_rects: &b.screen_rects,
@@ -391,7 +440,7 @@ impl ReflectionRenderer {
                 device,
                 &ProjectionBindings {
                     uniforms: &b.uniforms,
-                    depth: inputs.depth,
+                    depth,
                     shapes: &b.shapes,
                     tests: &b.tests,
                     occluders: &b.occluders,
@@ -416,7 +465,7 @@ impl ReflectionRenderer {
                     device,
                     &SuperTileBindings {
                         uniforms: &b.uniforms,
-                        depth: inputs.depth,
+                        depth,
                         tests: &b.tests,
                         source_boxes: &b.source_rects,
                         super_lists: &b.super_lists,
@@ -430,7 +479,7 @@ impl ReflectionRenderer {
                     device,
                     &BlockListBindings {
                         uniforms: &b.uniforms,
-                        depth: inputs.depth,
+                        depth,
                         tests: &b.tests,
                         source_boxes: &b.source_rects,
                         super_lists: &b.super_lists,
@@ -449,15 +498,15 @@ impl ReflectionRenderer {
                 &ReflectionBindings {
                     uniforms: &b.uniforms,
                     intermediate: &b.intermediate,
-                    color: inputs.color,
-                    output: inputs.output,
+                    color,
+                    output,
                     active_tiles: &b.active_tiles,
                     tile_flags: &b.tile_flags,
-                    depth: inputs.depth,
-                    normals: inputs.normals.unwrap_or(inputs.color),
+                    depth,
+                    normals: normals.unwrap_or(color),
                 },
             );
-            let normal_maps = plan.normal_maps && inputs.normals.is_some();
+            let normal_maps = plan.normal_maps && normals.is_some();
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),
@@ -469,7 +518,7 @@ impl ReflectionRenderer {
             }
             count(1);
         }
-        if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
+        if let (false, Some(layer_output)) = (plan.layers.is_empty(), layer_output) {
             let bg = self.layer_reflection.bind_group(
                 device,
                 &LayerBindings {
@@ -477,8 +526,8 @@ impl ReflectionRenderer {
                     atlas: &b.atlas,
                     layers: &b.layers,
                     shapes: &b.shapes,
-                    depth: inputs.depth,
-                    color: inputs.color,
+                    depth,
+                    color,
                     output: layer_output,
                 },
             );
@@ -490,8 +539,51 @@ impl ReflectionRenderer {
             self.layer_reflection.encode(&mut pass, &bg, [r.max[0] - r.min[0], r.max[1] - r.min[1]]);
             count(1);
         }
+        if let Some(r) = reduced {
+            self.encode_upsample(encoder, plan, inputs, r, timestamps(6));
+            count(u32::from(has_main) + u32::from(!plan.layers.is_empty() && inputs.layer_output.is_some()));
+        }
         if let Some(t) = &self.timer {
             t.resolve(encoder);
+        }
+    }
+
+    /// The reduced tiers' last pass: the reduced reflection (and layer reflection) to the
+    /// full-size outputs.
+    fn encode_upsample(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        plan: &FramePlan,
+        inputs: &FrameInputs<'_>,
+        r: &ReducedTargets,
+        timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
+    ) {
+        let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("ppr upsample"),
+            timestamp_writes,
+        });
+        let bindings = |reduced_output, output| UpsampleBindings {
+            uniforms: &b.uniforms,
+            full_depth: inputs.depth,
+            reduced_depth: &r.depth.view,
+            reduced_output,
+            output,
+            tile_flags: &b.tile_flags,
+        };
+        if !plan.visible.is_empty() {
+            let bg = self.upsample.bind_group(&self.device, &bindings(&r.output.view, inputs.output));
+            self.upsample.encode(&mut pass, &bg, self.full_viewport, plan.indirect, false);
+        }
+        if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
+            let bg = self.upsample.bind_group(&self.device, &bindings(&r.layer_output.view, layer_output));
+            // The layer rectangle at full size, and a pixel of margin each side.
+            let rect = plan.layer_rect;
+            let pixels = [0, 1].map(|a| {
+                let scale = f64::from(self.full_viewport[a]) / f64::from(plan.viewport[a]);
+                (f64::from(rect.max[a] - rect.min[a]) * scale).ceil() as u32 + 2
+            });
+            self.upsample.encode(&mut pass, &bg, pixels, false, true);
         }
     }
 
@@ -520,7 +612,8 @@ impl ReflectionRenderer {
         };
         let has_main = !plan.visible.is_empty();
         let layers = !plan.layers.is_empty() && self.layer_output_given.get();
-        [plan.indirect && has_main, true, true, has_main, layers]
+        let reduced = self.reduced_active;
+        [plan.indirect && has_main, true, true, has_main, layers, reduced, reduced && (has_main || layers)]
     }
 
     /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for

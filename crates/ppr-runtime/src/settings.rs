@@ -39,6 +39,43 @@ pub struct ReflectionSettings {
     /// seed's output). PPR has no distance limit (every on-screen offset is encoded), so
     /// nothing fades with distance.
     pub border_fade: f32,
+    /// At what resolution projection and reflection run ([`ResolutionTier`]); the output
+    /// is always full size.
+    pub resolution: ResolutionTier,
+}
+
+/// The resolution the PPR passes run at. Reduced tiers downsample depth and colour (a
+/// pass of their own), run clear, projection and reflection at half or a quarter of the
+/// size in each direction, and upsample the reflection to the output, edge-aware (a
+/// sample only blends into output pixels whose surface lies within 2 % of its own camera
+/// distance). Normal maps are not applied in reduced tiers. The frame plan is built for
+/// the reduced viewport (`FramePlan::viewport` is the reduced size).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ResolutionTier {
+    /// Every pixel (the seed).
+    #[default]
+    Full,
+    /// Half the width and height: a quarter of the pixels.
+    Half,
+    /// A quarter of the width and height: a sixteenth of the pixels.
+    Quarter,
+}
+
+impl ResolutionTier {
+    /// How many output pixels a reduced pixel spans in each direction.
+    pub fn divisor(self) -> u32 {
+        match self {
+            Self::Full => 1,
+            Self::Half => 2,
+            Self::Quarter => 4,
+        }
+    }
+
+    /// The size the passes run at for a full-size viewport (each side rounded up, never 0).
+    pub fn reduced(self, [w, h]: [u32; 2]) -> [u32; 2] {
+        let d = self.divisor();
+        [w.div_ceil(d).max(1), h.div_ceil(d).max(1)]
+    }
 }
 
 impl Default for ReflectionSettings {
@@ -56,6 +93,7 @@ impl ReflectionSettings {
         anti_bleeding: true,
         water_edge_stretch: true,
         border_fade: DEFAULT_BORDER_FADE,
+        resolution: ResolutionTier::Full,
     };
     /// Every step off: raw decoded pixel data (alpha 1 wherever found: no fade).
     pub const RAW: Self = Self {
@@ -65,6 +103,7 @@ impl ReflectionSettings {
         anti_bleeding: false,
         water_edge_stretch: false,
         border_fade: 0.0,
+        resolution: ResolutionTier::Full,
     };
 
     /// The settings as shader flags.

@@ -65,6 +65,8 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("projection", source_with(&[VIEW, TILE_TEST], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
+        ("downsample", source_with(&[VIEW], downsample::WGSL)),
+        ("upsample", source_with(&[VIEW], upsample::WGSL)),
     ]
 }
 

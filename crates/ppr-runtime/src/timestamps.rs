@@ -11,6 +11,10 @@ pub struct PassTimings {
     pub projection_ms: Option<f64>,
     pub reflection_ms: Option<f64>,
     pub layers_ms: Option<f64>,
+    /// Reduced-resolution tiers: depth and colour to the reduced size.
+    pub downsample_ms: Option<f64>,
+    /// Reduced-resolution tiers: the reflections back to the full size.
+    pub upsample_ms: Option<f64>,
 }
 
 impl PassTimings {
@@ -20,13 +24,15 @@ impl PassTimings {
     }
 
     /// (name, time) of each pass in order.
-    pub fn passes(&self) -> [(&'static str, Option<f64>); 5] {
+    pub fn passes(&self) -> [(&'static str, Option<f64>); TIMED_PASSES as usize] {
         [
             ("classify", self.classify_ms),
             ("clear", self.clear_ms),
             ("projection", self.projection_ms),
             ("reflection", self.reflection_ms),
             ("layers", self.layers_ms),
+            ("downsample", self.downsample_ms),
+            ("upsample", self.upsample_ms),
         ]
     }
 }
@@ -42,8 +48,9 @@ impl fmt::Display for PassTimings {
     }
 }
 
-/// Passes with a timestamp slot: classify, clear, projection, reflection, layers.
-pub const TIMED_PASSES: u32 = 5;
+/// Passes with a timestamp slot: classify, clear, projection, reflection, layers, and the
+/// reduced tiers' downsample and upsample, in [`PassTimings::passes`] order.
+pub const TIMED_PASSES: u32 = 7;
 
 /// A query set with a begin and an end timestamp per pass, and the buffers to read it.
 pub struct PassTimer {
@@ -125,6 +132,8 @@ impl PassTimer {
             projection_ms: ms(2),
             reflection_ms: ms(3),
             layers_ms: ms(4),
+            downsample_ms: ms(5),
+            upsample_ms: ms(6),
         })
     }
 }

@@ -14,6 +14,9 @@ pub struct PprTechnique {
     merge: LayerMerge,
     /// The runtime's main and layer outputs when the frame has layers, sized to it.
     layer_targets: Option<LayerTargets>,
+    /// The output size of the last `prepare` (the plan's viewport is smaller in a reduced
+    /// resolution tier).
+    size: [u32; 2],
 }
 
 /// Textures the runtime writes when a frame has glass or water layers.
@@ -128,7 +131,13 @@ impl PprTechnique {
         let mut renderer = ReflectionRenderer::new(device, queue, &RendererDesc::default());
         renderer.set_reflectors(reflectors)?;
         renderer.settings = settings;
-        Ok(Self { renderer, device: device.clone(), merge: LayerMerge::new(device), layer_targets: None })
+        Ok(Self {
+            renderer,
+            device: device.clone(),
+            merge: LayerMerge::new(device),
+            layer_targets: None,
+            size: [1, 1],
+        })
     }
 
     /// The main and layer targets for a frame of `size`, (re)created when it changes.
@@ -179,11 +188,12 @@ impl ReflectionTechnique for PprTechnique {
         camera: &Camera,
         size: [u32; 2],
     ) -> String {
+        self.size = size;
         self.renderer.prepare(camera, size).to_string()
     }
 
     fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, inputs: &ReflectionInputs<'_>) {
-        let size = self.renderer.plan().map_or([1, 1], |p| p.viewport);
+        let size = self.size;
         if self.renderer.plan().is_none_or(|p| p.layers.is_empty()) {
             let frame = FrameInputs {
                 normals: inputs.normal,

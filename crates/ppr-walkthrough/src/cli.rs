@@ -56,6 +56,10 @@ pub struct Args {
     /// Start with anti-bleeding off.
     #[arg(long)]
     pub no_anti_bleed: bool,
+    /// Resolution the PPR passes run at: full, half or quarter (each side); the reflection
+    /// is upsampled to the window, edge-aware. Half costs about a quarter of the pixels.
+    #[arg(long, default_value = "full", value_parser = parse_tier)]
+    pub tier: ppr_runtime::ResolutionTier,
     /// Lose the device on purpose after this frame (tests the recovery).
     #[arg(long)]
     pub lose_device_at: Option<u32>,
@@ -89,8 +93,19 @@ impl Args {
             holes: !self.no_holes,
             filtering: !self.no_filter,
             anti_bleeding: !self.no_anti_bleed,
+            resolution: self.tier,
             ..ppr_runtime::ReflectionSettings::ALL
         }
+    }
+}
+
+/// Parses a resolution tier: `full`, `half` or `quarter`.
+fn parse_tier(text: &str) -> Result<ppr_runtime::ResolutionTier, String> {
+    match text {
+        "full" => Ok(ppr_runtime::ResolutionTier::Full),
+        "half" => Ok(ppr_runtime::ResolutionTier::Half),
+        "quarter" => Ok(ppr_runtime::ResolutionTier::Quarter),
+        _ => Err(format!("{text:?}: expected full, half or quarter")),
     }
 }
 

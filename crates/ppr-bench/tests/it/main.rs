@@ -4,4 +4,5 @@
 mod mirror_rooms;
 mod quick_compare;
 mod quick_scaling;
+mod resolution_tiers;
 mod scaling_levels;

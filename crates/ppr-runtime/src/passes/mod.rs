@@ -2,19 +2,23 @@
 
 pub mod block_lists;
 pub mod clear;
+pub mod downsample;
 pub mod layer_reflection;
 pub mod projection;
 pub mod reflection;
 pub mod super_tile_lists;
 pub mod tile_classify;
+pub mod upsample;
 
 pub use block_lists::BlockListPass;
 pub use clear::ClearPass;
+pub use downsample::DownsamplePass;
 pub use layer_reflection::LayerReflectionPass;
 pub use projection::{Ablation, ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
 pub use super_tile_lists::SuperTileListPass;
 pub use tile_classify::TileClassifyPass;
+pub use upsample::UpsamplePass;
 
 /// Workgroup edge of the 2-D per-pixel passes (16 × 16 = 256 threads), as in the WGSL.
 pub const TILE: u32 = 16;
@@ -55,6 +59,20 @@ pub(crate) fn loaded_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
             sample_type: wgpu::TextureSampleType::Float { filterable: false },
             view_dimension: wgpu::TextureViewDimension::D2,
             multisampled: false,
+        },
+        count: None,
+    }
+}
+
+/// A storage texture the pass writes.
+pub(crate) fn write_texture_entry(binding: u32, format: wgpu::TextureFormat) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format,
+            view_dimension: wgpu::TextureViewDimension::D2,
         },
         count: None,
     }

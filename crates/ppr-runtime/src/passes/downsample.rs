@@ -1,0 +1,69 @@
+//! Downsample pass of the reduced-resolution tiers: full-resolution depth and colour to the
+//! reduced size the rest of the passes run at (`shaders/ppr/downsample.wgsl`).
+
+use super::{compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry};
+
+pub const WGSL: &str = include_str!("../../../../shaders/ppr/downsample.wgsl");
+
+/// Format of the reduced depth (read by the passes as an unfilterable float texture).
+pub const REDUCED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
+/// Format of the reduced colour.
+pub const REDUCED_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+
+/// What the downsample pass reads and writes.
+pub struct DownsampleBindings<'a> {
+    /// The reduced plan's uniforms.
+    pub uniforms: &'a wgpu::Buffer,
+    pub full_depth: &'a wgpu::TextureView,
+    pub full_color: &'a wgpu::TextureView,
+    pub reduced_depth: &'a wgpu::TextureView,
+    pub reduced_color: &'a wgpu::TextureView,
+}
+
+/// The downsample pass.
+pub struct DownsamplePass {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl DownsamplePass {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("ppr downsample"),
+            entries: &[
+                uniform_entry(0),
+                loaded_texture_entry(1),
+                loaded_texture_entry(2),
+                write_texture_entry(3, REDUCED_DEPTH_FORMAT),
+                write_texture_entry(4, REDUCED_COLOR_FORMAT),
+            ],
+        });
+        let module = crate::shader::module_with(device, "ppr downsample", &[crate::shader::VIEW], WGSL);
+        let pipeline = compute_pipeline(device, "ppr downsample", &layout, &module, "main", &[]);
+        Self { pipeline, layout }
+    }
+
+    pub fn bind_group(&self, device: &wgpu::Device, b: &DownsampleBindings<'_>) -> wgpu::BindGroup {
+        let view =
+            |binding, v| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) };
+        device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("ppr downsample"),
+            layout: &self.layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                view(1, b.full_depth),
+                view(2, b.full_color),
+                view(3, b.reduced_depth),
+                view(4, b.reduced_color),
+            ],
+        })
+    }
+
+    /// Records the pass over the reduced viewport.
+    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, reduced: [u32; 2]) {
+        let (x, y) = tile_groups(reduced);
+        pass.set_pipeline(&self.pipeline);
+        pass.set_bind_group(0, bind_group, &[]);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+}
