@@ -1,6 +1,7 @@
 //! The stability suite: hard cases, what "stable" means for each, and the check that holds
 //! it (docs/stability.md lists them with the bounds measured here).
 
+mod accuracy;
 mod cameras;
 mod encoding;
 mod extractor;
