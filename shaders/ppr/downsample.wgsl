@@ -1,17 +1,14 @@
-// Downsample pass of the reduced-resolution tiers: the scene's depth and colour at the
-// plan's reduced size, so that clear, projection and reflection run unchanged on a
-// quarter (half tier) or a sixteenth (quarter tier) of the pixels. `frame` is the reduced
-// plan's. Each reduced pixel takes the full-resolution samples around its centre: colour
-// bilinearly (at exact multiples, the mean of the central 2×2); depth bilinearly where the
-// four depths lie on one plane (NDC depth is affine in screen space over a plane, so a
+// Downsample pass of the reduced-resolution tiers: the scene's depth at the plan's reduced
+// size, so that clear, projection and reflection run unchanged on a quarter (half tier) or
+// a sixteenth (quarter tier) of the pixels (the reflection reads the full-size colour).
+// `frame` is the reduced plan's. Each reduced pixel takes the four full-resolution depths
+// around its centre: bilinearly where they lie on one plane (NDC depth is affine in screen space over a plane, so a
 // reflector's pixels stay exactly on it), else the nearest of the four to the camera (a
 // silhouette keeps its foreground instead of a point floating between two surfaces).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var full_depth: texture_2d<f32>;
-@group(0) @binding(2) var full_color: texture_2d<f32>;
-@group(0) @binding(3) var reduced_depth: texture_storage_2d<r32float, write>;
-@group(0) @binding(4) var reduced_color: texture_storage_2d<rgba16float, write>;
+@group(0) @binding(2) var reduced_depth: texture_storage_2d<r32float, write>;
 
 // Camera distance of a full-resolution pixel's depth (the same camera: rel_from_clip does
 // not depend on the resolution).
@@ -38,13 +35,6 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let p10 = clamp(base + vec2<i32>(1, 0), vec2<i32>(0), hi);
     let p01 = clamp(base + vec2<i32>(0, 1), vec2<i32>(0), hi);
     let p11 = clamp(base + vec2<i32>(1, 1), vec2<i32>(0), hi);
-
-    let c00 = textureLoad(full_color, p00, 0);
-    let c10 = textureLoad(full_color, p10, 0);
-    let c01 = textureLoad(full_color, p01, 0);
-    let c11 = textureLoad(full_color, p11, 0);
-    let colour = mix(mix(c00, c10, f.x), mix(c01, c11, f.x), f.y);
-    textureStore(reduced_color, vec2<i32>(gid.xy), colour);
 
     let d = vec4<f32>(
         textureLoad(full_depth, p00, 0).r,

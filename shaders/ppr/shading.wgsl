@@ -84,7 +84,12 @@ fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     let target_crd = vec2<f32>(vpos) + 0.5 - predicted;
     let target_unfiltered = vec2<f32>(vpos) + 0.5 - predicted_unfiltered;
     let unfiltered_px = clamp(vec2<i32>(floor(target_unfiltered)), vec2<i32>(0), vec2<i32>(frame.size) - 1);
-    let unfiltered = textureLoad(color_tex, unfiltered_px, 0).rgb;
+    // The colour may be larger than the frame (reduced-resolution tiers read the full-size
+    // colour): the scale is exactly 1 at full resolution, so the load is the same pixel.
+    let colour_dims = vec2<i32>(textureDimensions(color_tex));
+    let colour_scale = vec2<f32>(colour_dims) / frame.resolution.xy;
+    let colour_px = clamp(vec2<i32>(floor(target_unfiltered * colour_scale)), vec2<i32>(0), colour_dims - 1);
+    let unfiltered = textureLoad(color_tex, colour_px, 0).rgb;
     var result = unfiltered;
     var source = vec2<f32>(unfiltered_px) + 0.5;
     if ((frame.flags & PPR_FLAG_FILTERING) != 0u) {

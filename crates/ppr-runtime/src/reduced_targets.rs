@@ -1,7 +1,7 @@
-//! The textures of the reduced-resolution tiers: depth, colour and the reflection outputs at
+//! The textures of the reduced-resolution tiers: depth and the reflection outputs at
 //! the reduced size, reallocated only when that size changes.
 
-use crate::passes::downsample::{REDUCED_COLOR_FORMAT, REDUCED_DEPTH_FORMAT};
+use crate::passes::downsample::REDUCED_DEPTH_FORMAT;
 use crate::passes::reflection::OUTPUT_FORMAT;
 
 /// One reduced-size texture and its view.
@@ -27,11 +27,10 @@ impl ReducedTexture {
     }
 }
 
-/// Depth, colour, reflection and layer reflection at the reduced size.
+/// Depth, reflection and layer reflection at the reduced size.
 pub(crate) struct ReducedTargets {
     pub size: [u32; 2],
     pub depth: ReducedTexture,
-    pub color: ReducedTexture,
     pub output: ReducedTexture,
     pub layer_output: ReducedTexture,
 }
@@ -41,7 +40,6 @@ impl ReducedTargets {
         Self {
             size,
             depth: ReducedTexture::new(device, "ppr reduced depth", size, REDUCED_DEPTH_FORMAT),
-            color: ReducedTexture::new(device, "ppr reduced colour", size, REDUCED_COLOR_FORMAT),
             output: ReducedTexture::new(device, "ppr reduced output", size, OUTPUT_FORMAT),
             layer_output: ReducedTexture::new(device, "ppr reduced layer output", size, OUTPUT_FORMAT),
         }

@@ -344,10 +344,11 @@ impl ReflectionRenderer {
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
-        // A reduced tier runs the passes on its own reduced textures (normal maps off).
+        // A reduced tier runs the passes on its own reduced depth and outputs (normal maps
+        // off); the reflection reads the full-size colour.
         let reduced = if self.reduced_active { self.reduced.as_ref() } else { None };
         let depth = reduced.map_or(inputs.depth, |r| &r.depth.view);
-        let color = reduced.map_or(inputs.color, |r| &r.color.view);
+        let color = inputs.color;
         let output = reduced.map_or(inputs.output, |r| &r.output.view);
         let layer_output = inputs.layer_output.map(|o| reduced.map_or(o, |r| &r.layer_output.view));
         let normals = if reduced.is_some() { None } else { inputs.normals };
@@ -362,9 +363,7 @@ impl ReflectionRenderer {
                 &DownsampleBindings {
                     uniforms: &b.uniforms,
                     full_depth: inputs.depth,
-                    full_color: inputs.color,
                     reduced_depth: &r.depth.view,
-                    reduced_color: &r.color.view,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

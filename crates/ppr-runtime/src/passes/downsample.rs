@@ -1,5 +1,5 @@
-//! Downsample pass of the reduced-resolution tiers: full-resolution depth and colour to the
-//! reduced size the rest of the passes run at (`shaders/ppr/downsample.wgsl`).
+//! Downsample pass of the reduced-resolution tiers: full-resolution depth to the reduced
+//! size the rest of the passes run at (`shaders/ppr/downsample.wgsl`).
 
 use super::{compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry};
 
@@ -7,17 +7,13 @@ pub const WGSL: &str = include_str!("../../../../shaders/ppr/downsample.wgsl");
 
 /// Format of the reduced depth (read by the passes as an unfilterable float texture).
 pub const REDUCED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;
-/// Format of the reduced colour.
-pub const REDUCED_COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// What the downsample pass reads and writes.
 pub struct DownsampleBindings<'a> {
     /// The reduced plan's uniforms.
     pub uniforms: &'a wgpu::Buffer,
     pub full_depth: &'a wgpu::TextureView,
-    pub full_color: &'a wgpu::TextureView,
     pub reduced_depth: &'a wgpu::TextureView,
-    pub reduced_color: &'a wgpu::TextureView,
 }
 
 /// The downsample pass.
@@ -33,9 +29,7 @@ impl DownsamplePass {
             entries: &[
                 uniform_entry(0),
                 loaded_texture_entry(1),
-                loaded_texture_entry(2),
-                write_texture_entry(3, REDUCED_DEPTH_FORMAT),
-                write_texture_entry(4, REDUCED_COLOR_FORMAT),
+                write_texture_entry(2, REDUCED_DEPTH_FORMAT),
             ],
         });
         let module = crate::shader::module_with(device, "ppr downsample", &[crate::shader::VIEW], WGSL);
@@ -52,9 +46,7 @@ impl DownsamplePass {
             entries: &[
                 wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
                 view(1, b.full_depth),
-                view(2, b.full_color),
-                view(3, b.reduced_depth),
-                view(4, b.reduced_color),
+                view(2, b.reduced_depth),
             ],
         })
     }
