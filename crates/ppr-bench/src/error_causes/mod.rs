@@ -276,10 +276,11 @@ pub fn classify(frame: &CauseFrame<'_>, v: &PprVariants) -> Result<ErrorBreakdow
                     let id = images.reflector_id.get(x, y) as usize;
                     let reflector = id.checked_sub(1).and_then(|k| frame.reflectors.reflectors.get(k));
                     let surface = projector.world_of([x, y], images.depth[i]);
-                    let right_source = |sources: &[Option<IVec2>]| match (sources.get(i).copied().flatten(), reflected) {
-                        (Some(s), Some(r)) => (s - r).abs().max_element() <= 1,
-                        _ => false,
-                    };
+                    let right_source =
+                        |sources: &[Option<IVec2>]| match (sources.get(i).copied().flatten(), reflected) {
+                            (Some(s), Some(r)) => (s - r).abs().max_element() <= 1,
+                            _ => false,
+                        };
                     let layered = reflector.is_some_and(|r| r.kind != ReflectorKind::Opaque);
                     let raw_has = alpha(&raw, x, y) > 0.0;
                     if reflector.is_none_or(|r| !r.contains_projection(surface, 0.0)) {

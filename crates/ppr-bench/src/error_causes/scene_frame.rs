@@ -44,7 +44,8 @@ pub fn frame_breakdown(
     level.render(device, queue, camera, size);
     let images = FrameImages::read(device, queue, &level)?;
     let variants = runner.render(device, queue, &level, camera, size)?;
-    let frame = CauseFrame { images: &images, camera, reflectors: &scene.reflectors, tone_map: ToneMap::Clamp };
+    let frame =
+        CauseFrame { images: &images, camera, reflectors: &scene.reflectors, tone_map: ToneMap::Clamp };
     let breakdown = classify(&frame, &variants)?;
     let reference = ReferenceFrame::new(images.clone());
     let quality = Quality::measure(&reference, &variants.full, ToneMap::Clamp)?;

@@ -92,8 +92,13 @@ impl CauseRunner {
             anti_bleeding: false,
             ..unfaded
         };
-        let holes = ReflectionSettings { holes: true, replace_far_reflections: self.settings.replace_far_reflections, ..raw };
-        let (raw_image, raw_sources, parallel_rule) = self.frame(device, queue, level, camera, size, raw, self.params, true)?;
+        let holes = ReflectionSettings {
+            holes: true,
+            replace_far_reflections: self.settings.replace_far_reflections,
+            ..raw
+        };
+        let (raw_image, raw_sources, parallel_rule) =
+            self.frame(device, queue, level, camera, size, raw, self.params, true)?;
         let without_rule = if parallel_rule {
             let params = PlanParams { parallel_rule: Choice::Off, ..self.params };
             let (img, src, _) = self.frame(device, queue, level, camera, size, raw, params, true)?;
@@ -136,12 +141,10 @@ impl CauseRunner {
         renderer.settings = settings;
         renderer.plan_params = params;
         self.runner.prepare(device, queue, camera, size);
-        let frame = BenchFrame {
-            level,
-            reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
-        };
-        let mut encoder =
-            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("error-cause frame") });
+        let frame =
+            BenchFrame { level, reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view) };
+        let mut encoder = device
+            .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("error-cause frame") });
         self.runner.encode(&mut encoder, &frame);
         queue.submit([encoder.finish()]);
         let image = read_rgba_f32(device, queue, &output.texture)?;

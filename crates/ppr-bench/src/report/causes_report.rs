@@ -83,8 +83,8 @@ pub fn causes_markdown(rows: &[CauseRow]) -> String {
          On-screen pixels take the first that applies, from four untimed renders of the frame (raw, \
          hole filling, full without the border fade, full) and raw PPR's intermediate buffer: the \
          surface point is *outside the fitted rectangle*; the *border fade* costs more than half of \
-         the pixel's error; the *parallel rule* lost it (the plan never enables the rule unless \
-         asked, so this row is empty here); raw PPR had no data and hole filling supplied it (*hole \
+         the pixel's error; the *parallel rule* lost it (empty unless the plan had the rule on, \
+         as each table's first line says: `PlanParams::parallel_rule` is never on by `Auto`); raw PPR had no data and hole filling supplied it (*hole \
          filled*) or nothing did (*hole left*); raw PPR's source pixel is more than a pixel from \
          where the exact reflected point projects (*wrong source*: an occluder missed or a wrong \
          surface won); filtering and anti-bleeding raised the error by more than half of it \
@@ -108,7 +108,11 @@ pub fn causes_markdown(rows: &[CauseRow]) -> String {
             b.psnr(Group::OffScreen),
             b.group_pixels(Group::OffScreen),
             if b.parallel_rule { "on" } else { "off" },
-            dominant(&b).map_or("none".into(), |c| format!("{} ({:.0} %)", c.as_str(), 100.0 * b.error_share(c))),
+            dominant(&b).map_or("none".into(), |c| format!(
+                "{} ({:.0} %)",
+                c.as_str(),
+                100.0 * b.error_share(c)
+            )),
         );
         let mut t = MarkdownTable::new(&["score", "cause", "#pixels %", "#error %", "#PSNR without (dB)"]);
         for cause in Cause::ALL {

@@ -94,8 +94,13 @@ pub fn run_compare(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let frames = FrameLoop::new(device, cfg);
-    let mut outcome =
-        CompareOutcome { adapter: gpu.describe(), results: Vec::new(), sheets: Vec::new(), notes, causes: Vec::new() };
+    let mut outcome = CompareOutcome {
+        adapter: gpu.describe(),
+        results: Vec::new(),
+        sheets: Vec::new(),
+        notes,
+        causes: Vec::new(),
+    };
 
     for scene in &scenes {
         // Metrics wait until the scene's timing is done: CPU threads busy with FLIP delay
@@ -209,8 +214,12 @@ pub fn run_compare(
                 // Untimed, after this camera's timed runs: the breakdown's renders and CPU work
                 // never sit between timed frames.
                 if let Some(images) = &images {
-                    let frame =
-                        CauseFrame { images, camera: &cam.camera, reflectors: &scene.reflectors, tone_map: cfg.tone_map };
+                    let frame = CauseFrame {
+                        images,
+                        camera: &cam.camera,
+                        reflectors: &scene.reflectors,
+                        tone_map: cfg.tone_map,
+                    };
                     for (label, runner) in &mut cause_runners {
                         let variants = runner.render(device, queue, &level, &cam.camera, size)?;
                         outcome.causes.push(CauseRow {
