@@ -17,6 +17,7 @@ pub mod cameras;
 pub mod cli;
 pub mod config;
 pub mod error;
+pub mod error_causes;
 pub mod exact_reference;
 pub mod frame_loop;
 pub mod mirror_room;

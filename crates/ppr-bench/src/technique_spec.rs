@@ -205,6 +205,42 @@ pub struct TechniqueContext<'a> {
     pub plan_params: PlanParams,
 }
 
+/// The reflection settings and plan parameters of a PPR spec (`ppr-raw`, `ppr-holes`,
+/// `ppr-filter`, `ppr` with their settings over `base`); `None` for other techniques.
+///
+/// # Errors
+/// [`BenchError::Spec`] for an unknown setting or a value that does not parse.
+pub fn ppr_settings(
+    spec: &TechniqueSpec,
+    base: PlanParams,
+) -> Result<Option<(ReflectionSettings, PlanParams)>, BenchError> {
+    spec.check_keys()?;
+    let mut settings = match spec.name.as_str() {
+        "ppr-raw" => ReflectionSettings::RAW,
+        "ppr-holes" => ReflectionSettings { holes: true, ..ReflectionSettings::RAW },
+        "ppr-filter" => ReflectionSettings { holes: true, filtering: true, ..ReflectionSettings::RAW },
+        "ppr" => ReflectionSettings::ALL,
+        _ => return Ok(None),
+    };
+    if let Some(v) = spec.param("fade") {
+        settings.border_fade = v.parse::<f32>().map_err(|e| BenchError::Spec(format!("fade: {e}")))?;
+    }
+    if let Some(v) = spec.param("replace-far") {
+        settings.replace_far_reflections = parse_choice(v).map_err(BenchError::Spec)? == Choice::On;
+    }
+    if let Some(v) = spec.param("tier") {
+        settings.resolution = parse_tier(v).map_err(BenchError::Spec)?;
+    }
+    let mut params = base;
+    if let Some(v) = spec.param("culling") {
+        params.tile_culling = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    if let Some(v) = spec.param("indirect") {
+        params.indirect = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    Ok(Some((settings, params)))
+}
+
 /// Builds the technique `spec` names.
 ///
 /// # Errors
@@ -213,31 +249,7 @@ pub fn build_technique(
     spec: &TechniqueSpec,
     ctx: &TechniqueContext<'_>,
 ) -> Result<Box<dyn BenchTechnique>, BenchError> {
-    spec.check_keys()?;
-    let settings = match spec.name.as_str() {
-        "ppr-raw" => Some(ReflectionSettings::RAW),
-        "ppr-holes" => Some(ReflectionSettings { holes: true, ..ReflectionSettings::RAW }),
-        "ppr-filter" => Some(ReflectionSettings { holes: true, filtering: true, ..ReflectionSettings::RAW }),
-        "ppr" => Some(ReflectionSettings::ALL),
-        _ => None,
-    };
-    if let Some(mut settings) = settings {
-        if let Some(v) = spec.param("fade") {
-            settings.border_fade = v.parse::<f32>().map_err(|e| BenchError::Spec(format!("fade: {e}")))?;
-        }
-        if let Some(v) = spec.param("tier") {
-            settings.resolution = parse_tier(v).map_err(BenchError::Spec)?;
-        }
-        if let Some(v) = spec.param("replace-far") {
-            settings.replace_far_reflections = parse_choice(v).map_err(BenchError::Spec)? == Choice::On;
-        }
-        let mut params = ctx.plan_params;
-        if let Some(v) = spec.param("culling") {
-            params.tile_culling = parse_choice(v).map_err(BenchError::Spec)?;
-        }
-        if let Some(v) = spec.param("indirect") {
-            params.indirect = parse_choice(v).map_err(BenchError::Spec)?;
-        }
+    if let Some((settings, params)) = ppr_settings(spec, ctx.plan_params)? {
         return Ok(Box::new(PprRunner::new(
             ctx.device,
             ctx.queue,

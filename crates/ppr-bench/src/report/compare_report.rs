@@ -1,6 +1,7 @@
 //! The comparison's files: `comparison.csv` (one row per run), `comparison_passes.csv` (one
-//! row per pass), `comparison.md` (tables per scene and size, the seed's ratios, the
-//! Pareto fronts), `pareto_<scene>.png` and `image_sheet.png`.
+//! row per pass), `comparison_causes.csv` (full PPR's error by cause), `comparison.md` (tables
+//! per scene and size, the seed's ratios, the Pareto fronts, the error by cause),
+//! `pareto_<scene>.png` and `image_sheet.png`.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -8,6 +9,7 @@ use std::path::{Path, PathBuf};
 
 use crate::config::Resolution;
 use crate::error::BenchError;
+use crate::report::causes_report::{causes_csv, causes_markdown};
 use crate::report::csv_file::{CsvTable, num};
 use crate::report::image_sheet::write_sheet;
 use crate::report::markdown::{MarkdownTable, ms};
@@ -305,6 +307,11 @@ pub fn write_compare_report(
     let csv = dir.join("comparison_passes.csv");
     passes_csv(outcome).write(&csv)?;
     files.push(csv);
+    if !outcome.causes.is_empty() {
+        let csv = dir.join("comparison_causes.csv");
+        causes_csv(&outcome.causes).write(&csv)?;
+        files.push(csv);
+    }
 
     let aggs = aggregate(&outcome.results);
     let mut md = String::new();
@@ -384,6 +391,7 @@ pub fn write_compare_report(
         md.push_str(&scene_table(list));
         let _ = writeln!(md);
     }
+    md.push_str(&causes_markdown(&outcome.causes));
     if !outcome.sheets.is_empty() {
         let path = dir.join("image_sheet.png");
         write_sheet(&path, &outcome.sheets)?;

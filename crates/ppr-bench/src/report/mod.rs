@@ -1,5 +1,6 @@
 //! Files the suites write: CSV, markdown tables, plots and image sheets.
 
+pub mod causes_report;
 pub mod compare_report;
 pub mod csv_file;
 pub mod image_sheet;

@@ -12,6 +12,7 @@ use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs};
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
+use crate::error_causes::{CauseFrame, CauseRow, CauseRunner, classify};
 use crate::frame_loop::FrameLoop;
 use crate::quality::{Quality, ReferenceFrame};
 use crate::quality_pool::QualityPool;
@@ -52,6 +53,9 @@ pub struct CompareOutcome {
     pub sheets: Vec<SheetRow>,
     /// Per scene: what was noticed while loading, and scenes that were skipped.
     pub notes: Vec<String>,
+    /// Full PPR's error by cause, per camera and size where quality was measured
+    /// (`error_causes`; computed on untimed frames after each camera's timed runs).
+    pub causes: Vec<CauseRow>,
 }
 
 /// Runs the comparison on `gpu`.
@@ -90,8 +94,13 @@ pub fn run_compare(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let frames = FrameLoop::new(device, cfg);
-    let mut outcome =
-        CompareOutcome { adapter: gpu.describe(), results: Vec::new(), sheets: Vec::new(), notes };
+    let mut outcome = CompareOutcome {
+        adapter: gpu.describe(),
+        results: Vec::new(),
+        sheets: Vec::new(),
+        notes,
+        causes: Vec::new(),
+    };
 
     for scene in &scenes {
         // Metrics wait until the scene's timing is done: CPU threads busy with FLIP delay
@@ -111,8 +120,12 @@ pub fn run_compare(
             plan_params: PlanParams::default(),
         };
         let mut techniques = Vec::new();
+        let mut cause_runners = Vec::new();
         for spec in &cc.techniques {
             techniques.push(build_technique(spec, &ctx)?);
+            if let Some(r) = CauseRunner::new(device, queue, &scene.reflectors, spec, ctx.plan_params)? {
+                cause_runners.push((spec.label(), r));
+            }
         }
         for (cam_index, cam) in scene.cameras.iter().enumerate() {
             for &res in &cc.resolutions {
@@ -124,10 +137,18 @@ pub fn run_compare(
                 level.encode_gbuffer(&mut encoder);
                 level.encode_reference(&mut encoder);
                 queue.submit([encoder.finish()]);
-                let reference = if res.pixels() <= cc.quality_max_pixels {
-                    Some(Arc::new(ReferenceFrame::new(FrameImages::read(device, queue, &level)?)))
+                let images = if res.pixels() <= cc.quality_max_pixels {
+                    Some(FrameImages::read(device, queue, &level)?)
                 } else {
                     None
+                };
+                // The breakdown keeps the G-buffer and the reference's reflected points.
+                let (reference, images) = match images {
+                    Some(i) if !cause_runners.is_empty() => {
+                        (Some(Arc::new(ReferenceFrame::new(i.clone()))), Some(i))
+                    }
+                    Some(i) => (Some(Arc::new(ReferenceFrame::new(i))), None),
+                    None => (None, None),
                 };
                 let sheet_here = cam_index == 0 && res == cc.sheet_resolution;
                 let mut sheet = match (&reference, sheet_here) {
@@ -189,6 +210,26 @@ pub fn run_compare(
                 }
                 if let Some(s) = sheet {
                     sheets.push(s);
+                }
+                // Untimed, after this camera's timed runs: the breakdown's renders and CPU work
+                // never sit between timed frames.
+                if let Some(images) = &images {
+                    let frame = CauseFrame {
+                        images,
+                        camera: &cam.camera,
+                        reflectors: &scene.reflectors,
+                        tone_map: cfg.tone_map,
+                    };
+                    for (label, runner) in &mut cause_runners {
+                        let variants = runner.render(device, queue, &level, &cam.camera, size)?;
+                        outcome.causes.push(CauseRow {
+                            scene: scene.name.clone(),
+                            camera: cam.name.clone(),
+                            resolution: res,
+                            technique: label.clone(),
+                            breakdown: classify(&frame, &variants)?,
+                        });
+                    }
                 }
             }
         }

@@ -26,9 +26,14 @@ fn quick_compare_writes_a_full_csv_a_table_and_a_plot() {
         root.join("../shared/scenes").display().to_string(),
     ];
     let files = ppr_bench::cli::run_cli(args).expect("quick bench runs");
-    for name in
-        ["comparison.csv", "comparison_passes.csv", "comparison.md", "pareto_demo.png", "image_sheet.png"]
-    {
+    for name in [
+        "comparison.csv",
+        "comparison_passes.csv",
+        "comparison_causes.csv",
+        "comparison.md",
+        "pareto_demo.png",
+        "image_sheet.png",
+    ] {
         let path = out.path().join(name);
         assert!(path.is_file(), "{name} missing (wrote {files:?})");
         assert!(std::fs::metadata(&path).expect("metadata").len() > 0, "{name} is empty");
