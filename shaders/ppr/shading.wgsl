@@ -84,16 +84,32 @@ fn ppr_reflected_colour(vpos: vec2<i32>, chosen: PprChosen) -> vec4<f32> {
     let target_crd = vec2<f32>(vpos) + 0.5 - predicted;
     let target_unfiltered = vec2<f32>(vpos) + 0.5 - predicted_unfiltered;
     let unfiltered_px = clamp(vec2<i32>(floor(target_unfiltered)), vec2<i32>(0), vec2<i32>(frame.size) - 1);
-    // The colour may be larger than the frame (reduced-resolution tiers read the full-size
-    // colour): the scale is exactly 1 at full resolution, so the load is the same pixel.
-    let colour_dims = vec2<i32>(textureDimensions(color_tex));
-    let colour_scale = vec2<f32>(colour_dims) / frame.resolution.xy;
-    let colour_px = clamp(vec2<i32>(floor(target_unfiltered * colour_scale)), vec2<i32>(0), colour_dims - 1);
-    let unfiltered = textureLoad(color_tex, colour_px, 0).rgb;
+    // The colour is larger than the frame in the reduced-resolution tiers (they read the
+    // full-size colour): there each sample is prefiltered over the reduced pixel's
+    // footprint, bilinear taps between texels, as a reduced colour would be. At full
+    // resolution the loads are the seed's.
+    let reduced = any(vec2<f32>(textureDimensions(color_tex)) != frame.resolution.xy);
+    var unfiltered: vec3<f32>;
+    if (reduced) {
+        let uv = (vec2<f32>(unfiltered_px) + 0.5) * frame.resolution.zw;
+        unfiltered = textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb;
+    } else {
+        unfiltered = textureLoad(color_tex, unfiltered_px, 0).rgb;
+    }
     var result = unfiltered;
     var source = vec2<f32>(unfiltered_px) + 0.5;
     if ((frame.flags & PPR_FLAG_FILTERING) != 0u) {
-        let filtered = textureSampleLevel(color_tex, linear_sampler, target_crd * frame.resolution.zw, 0.0).rgb;
+        var filtered: vec3<f32>;
+        if (reduced) {
+            let q = 0.25 * frame.resolution.zw;
+            let uv = target_crd * frame.resolution.zw;
+            filtered = 0.25 * (textureSampleLevel(color_tex, linear_sampler, uv + vec2<f32>(-q.x, -q.y), 0.0).rgb
+                + textureSampleLevel(color_tex, linear_sampler, uv + vec2<f32>(q.x, -q.y), 0.0).rgb
+                + textureSampleLevel(color_tex, linear_sampler, uv + vec2<f32>(-q.x, q.y), 0.0).rgb
+                + textureSampleLevel(color_tex, linear_sampler, uv + vec2<f32>(q.x, q.y), 0.0).rgb);
+        } else {
+            filtered = textureSampleLevel(color_tex, linear_sampler, target_crd * frame.resolution.zw, 0.0).rgb;
+        }
         source = target_crd;
         if ((frame.flags & PPR_FLAG_ANTI_BLEEDING) != 0u) {
             result = fix_color_bleeding(filtered, unfiltered);
