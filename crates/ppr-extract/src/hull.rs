@@ -15,7 +15,8 @@ pub fn orient(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 /// (then the two extreme points).
 pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     let mut pts: Vec<DVec2> = points.to_vec();
-    pts.sort_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    // Points equal under this order are equal bit for bit: an unstable sort gives the same.
+    pts.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
     pts.dedup();
     if pts.len() < 3 {
         return pts;
