@@ -1,6 +1,7 @@
-//! A fast, deterministic hasher for the integer keys of spatial hash grids (FxHash's
-//! multiply-rotate per word, finished with MurmurHash3's 64-bit mix so that the low bits
-//! the table indexes with depend on every input bit; not for untrusted keys).
+//! Spatial hash grids' keys and tables: a fast, deterministic hasher for integer keys
+//! (FxHash's multiply-rotate per word, finished with MurmurHash3's 64-bit mix so that the
+//! low bits the table indexes with depend on every input bit; not for untrusted keys), and
+//! [`CellTable`], a flat open-addressing table of packed cell keys for the hot grids.
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
