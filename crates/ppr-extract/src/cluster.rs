@@ -42,10 +42,12 @@ pub fn grow_regions(
     progress: &mut dyn FnMut(f32),
 ) -> Vec<GrownRegion> {
     let n = candidates.len();
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_unstable_by(|&a, &b| {
-        candidates[b as usize].area.total_cmp(&candidates[a as usize].area).then(a.cmp(&b))
-    });
+    // Larger area first, then lower index: sorted on flat keys (the order of
+    // `f64::total_cmp`, reversed) rather than by reading the candidates in the comparisons.
+    let mut keyed: Vec<(i64, u32)> =
+        candidates.iter().enumerate().map(|(i, c)| (!total_order_key(c.area), i as u32)).collect();
+    keyed.sort_unstable();
+    let order: Vec<u32> = keyed.into_iter().map(|(_, i)| i).collect();
     let mut assigned = vec![false; n];
     // The region that last expanded each weld point (+1; 0: none yet).
     let mut expanded_by = vec![0u32; conn.vertex_count()];
@@ -116,7 +118,28 @@ pub fn grow_regions(
     regions
 }
 
+/// An integer that orders like [`f64::total_cmp`].
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ (((bits >> 63) as u64) >> 1) as i64
+}
+
 fn accepts(c: &Candidate, plane: &Plane, scale: &SceneScale) -> bool {
     c.positions.iter().all(|&p| plane.signed_distance(p).abs() <= scale.distance_tolerance)
         && (c.normal.dot(plane.normal).abs() >= scale.cos_angle || c.longest_edge <= scale.small_triangle)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::total_order_key;
+
+    #[test]
+    fn total_order_keys_order_like_total_cmp() {
+        let xs = [f64::NEG_INFINITY, -2.5, -1e-300, -0.0, 0.0, 1e-300, 0.5, 3.0, f64::INFINITY];
+        for a in xs {
+            for b in xs {
+                assert_eq!(total_order_key(a).cmp(&total_order_key(b)), a.total_cmp(&b), "{a} {b}");
+            }
+        }
+    }
 }

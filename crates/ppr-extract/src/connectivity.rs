@@ -8,16 +8,17 @@
 //! touching or overlapping coplanar pieces) is a *contact*: the triangle becomes one more
 //! user of that point. Two triangles are connected when they use a common weld point.
 //!
-//! Everything is linear in the number of candidates: hash grids hold linked lists in flat
-//! arrays (no allocation per cell) and index cells by Morton code (neighbouring cells share
-//! cache lines), a vertex's users are stored once (a fan of `k`
+//! Everything is linear in the number of candidates: the grids are flat open-addressing
+//! tables of packed cell keys ([`CellTable`]); the weld's cells hold linked lists in flat
+//! arrays, the contact grid's cells runs of a point array sorted by cell (no allocation per
+//! cell, each cell's points in one run of memory), a vertex's users are stored once (a fan of `k`
 //! triangles costs `k`, not `k²`), and a triangle spanning many grid cells is tested
 //! against the points of a Morton-ordered point hierarchy instead of cell by cell.
 
 use glam::DVec3;
 
 use crate::SceneScale;
-use crate::int_hash::{CellMap, cell_of};
+use crate::int_hash::{CellTable, cell_of, packed_cell};
 use crate::point_hierarchy::PointHierarchy;
 use crate::select::Candidate;
 
@@ -111,68 +112,83 @@ fn cell3(p: DVec3, cell: f64) -> Cell {
     (cell_of(p.x, cell), cell_of(p.y, cell), cell_of(p.z, cell))
 }
 
+/// How many positions (weld) or triangles (contacts) ahead the grid look-ups are
+/// prefetched.
+const PREFETCH_AHEAD: usize = 16;
+
 /// Welds corner positions within `tol`: per-candidate welded ids and the weld points.
 /// A position joins the earliest weld point within `tol` (deterministic).
 fn weld(candidates: &[Candidate], tol: f64) -> (Vec<[u32; 3]>, Vec<DVec3>) {
+    // Exact positions seen lately (meshes reuse a vertex within a few triangles) take the
+    // weld point of the position they repeat, which is the one the grid would give (ids only
+    // grow, so the earliest stays so). Whether a corner repeats depends on the positions
+    // alone, so the repeats are found first and the grid sees only the other positions,
+    // whose look-ups it can then prefetch.
+    let mut recent: Vec<([u64; 3], u32)> = vec![([u64::MAX; 3], NONE); RECENT_SLOTS];
+    let mut fresh: Vec<DVec3> = Vec::new();
+    let mut corner_fresh: Vec<[u32; 3]> = Vec::with_capacity(candidates.len());
+    for c in candidates {
+        corner_fresh.push(c.positions.map(|p| {
+            let bits = p.to_array().map(f64::to_bits);
+            let slot = recent_slot(bits);
+            if recent[slot].0 != bits {
+                recent[slot] = (bits, fresh.len() as u32);
+                fresh.push(p);
+            }
+            recent[slot].1
+        }));
+    }
+    drop(recent);
     // Cells of 8·tol: the ball of radius tol around a point reaches a neighbouring cell only
     // near a cell's side, so most new points look in one cell.
     let cell = 8.0 * tol;
-    let mut head: CellMap<u32> = CellMap::default();
-    head.reserve(candidates.len());
+    let keys: Vec<u64> = fresh.iter().map(|&p| packed_cell(cell3(p, cell))).collect();
+    let mut head = CellTable::with_capacity(fresh.len());
     let mut next: Vec<u32> = Vec::new();
     let mut points: Vec<DVec3> = Vec::new();
-    let mut welded = Vec::with_capacity(candidates.len());
-    // Exact positions seen lately (meshes reuse a vertex within a few triangles): a hit
-    // gives the same weld point the grid would (ids only grow, so the earliest stays so).
-    let mut recent: Vec<([u64; 3], u32)> = vec![([u64::MAX; 3], NONE); RECENT_SLOTS];
-    for c in candidates {
-        let mut ids = [0u32; 3];
-        for (k, &p) in c.positions.iter().enumerate() {
-            let bits = p.to_array().map(f64::to_bits);
-            let slot = recent_slot(bits);
-            if recent[slot].0 == bits {
-                ids[k] = recent[slot].1;
-                continue;
+    // The earliest weld point within tol of `p` in the cell `key`, or `found` when earlier.
+    let earliest_in = |head: &CellTable, next: &[u32], points: &[DVec3], key: u64, p: DVec3, found: u32| {
+        let mut found = found;
+        let mut id = head.get(key).unwrap_or(NONE);
+        while id != NONE {
+            if id < found && points[id as usize].distance_squared(p) <= tol * tol {
+                found = id;
             }
-            let base = cell3(p, cell);
-            let earliest_in = |c: Cell, found: u32| {
-                let mut found = found;
-                let mut id = head.get(&c).copied().unwrap_or(NONE);
-                while id != NONE {
-                    if id < found && points[id as usize].distance_squared(p) <= tol * tol {
-                        found = id;
-                    }
-                    id = next[id as usize];
-                }
-                found
-            };
-            // The point's own cell first (exact duplicates are there), then its neighbours.
-            let mut found = earliest_in(base, NONE);
-            if found == NONE {
-                // Only the cells the ball of radius tol reaches (most points: none).
-                let (lo, hi) = (cell3(p - DVec3::splat(tol), cell), cell3(p + DVec3::splat(tol), cell));
-                for x in lo.0..=hi.0 {
-                    for y in lo.1..=hi.1 {
-                        for z in lo.2..=hi.2 {
-                            if (x, y, z) != base {
-                                found = earliest_in((x, y, z), found);
-                            }
+            id = next[id as usize];
+        }
+        found
+    };
+    let mut fresh_ids: Vec<u32> = Vec::with_capacity(fresh.len());
+    for (i, &p) in fresh.iter().enumerate() {
+        if let Some(&ahead) = keys.get(i + PREFETCH_AHEAD) {
+            head.prefetch(ahead);
+        }
+        let base = cell3(p, cell);
+        // The point's own cell first (exact duplicates are there), then its neighbours.
+        let mut found = earliest_in(&head, &next, &points, keys[i], p, NONE);
+        if found == NONE {
+            // Only the cells the ball of radius tol reaches (most points: none).
+            let (lo, hi) = (cell3(p - DVec3::splat(tol), cell), cell3(p + DVec3::splat(tol), cell));
+            for x in lo.0..=hi.0 {
+                for y in lo.1..=hi.1 {
+                    for z in lo.2..=hi.2 {
+                        if (x, y, z) != base {
+                            found = earliest_in(&head, &next, &points, packed_cell((x, y, z)), p, found);
                         }
                     }
                 }
             }
-            if found == NONE {
-                found = points.len() as u32;
-                points.push(p);
-                let slot = head.entry(base).or_insert(NONE);
-                next.push(*slot);
-                *slot = found;
-            }
-            recent[slot] = (bits, found);
-            ids[k] = found;
         }
-        welded.push(ids);
+        if found == NONE {
+            found = points.len() as u32;
+            points.push(p);
+            let first = head.entry_or(keys[i], NONE);
+            next.push(*first);
+            *first = found;
+        }
+        fresh_ids.push(found);
     }
+    let welded = corner_fresh.into_iter().map(|f| f.map(|i| fresh_ids[i as usize])).collect();
     (welded, points)
 }
 
@@ -190,48 +206,82 @@ fn contacts(candidates: &[Candidate], welded: &[[u32; 3]], points: &[DVec3], gap
     // Cell sides off round coordinates: a floor at y = 0 lies inside one layer of cells, not
     // on the side between two (half the look-ups would find empty cells).
     let shift = DVec3::splat(CELL_SHIFT * cell);
-    let mut head: CellMap<u32> = CellMap::default();
-    head.reserve(points.len());
-    let mut next = vec![NONE; points.len()];
-    for (i, p) in points.iter().enumerate() {
-        let slot = head.entry(cell3(*p + shift, cell)).or_insert(NONE);
-        next[i] = *slot;
-        *slot = i as u32;
-    }
+    // The points grouped by cell (ascending ids in each), with their positions beside them
+    // so that a query reads each cell's points from one run of memory.
+    let mut cells = CellTable::with_capacity(points.len());
+    let mut cell_count = 0u32;
+    let point_cells: Vec<u32> = points
+        .iter()
+        .map(|p| {
+            let c = cells.entry_or(packed_cell(cell3(*p + shift, cell)), NONE);
+            if *c == NONE {
+                *c = cell_count;
+                cell_count += 1;
+            }
+            *c
+        })
+        .collect();
+    let (cell_offsets, cell_items) =
+        csr(cell_count as usize, point_cells.iter().enumerate().map(|(i, &c)| (c, i as u32)));
+    drop(point_cells);
+    let cell_points: Vec<DVec3> = cell_items.iter().map(|&i| points[i as usize]).collect();
     let mut hierarchy: Option<PointHierarchy> = None;
     let mut out = Vec::new();
     let mut found: Vec<u32> = Vec::new();
-    for (t, c) in candidates.iter().enumerate() {
+    let query_cells = |c: &Candidate| {
         let lo = c.positions[0].min(c.positions[1]).min(c.positions[2]) - DVec3::splat(gap);
         let hi = c.positions[0].max(c.positions[1]).max(c.positions[2]) + DVec3::splat(gap);
-        let (l, h) = (cell3(lo + shift, cell), cell3(hi + shift, cell));
+        (lo, hi, cell3(lo + shift, cell), cell3(hi + shift, cell))
+    };
+    for (t, c) in candidates.iter().enumerate() {
+        if let Some(ahead) = candidates.get(t + PREFETCH_AHEAD) {
+            let (_, _, l, h) = query_cells(ahead);
+            if (h.0 - l.0 + 1) * (h.1 - l.1 + 1) * (h.2 - l.2 + 1) <= 8 {
+                for x in l.0..=h.0 {
+                    for y in l.1..=h.1 {
+                        for z in l.2..=h.2 {
+                            cells.prefetch(packed_cell((x, y, z)));
+                        }
+                    }
+                }
+            }
+        }
+        let (lo, hi, l, h) = query_cells(c);
         let span = (h.0 - l.0 + 1) as f64 * (h.1 - l.1 + 1) as f64 * (h.2 - l.2 + 1) as f64;
+        let corners = welded[t];
+        // Points in the box that are not corners, then the exact distance in id order.
+        let wanted = |v: u32, p: DVec3| !corners.contains(&v) && p.cmpge(lo).all() && p.cmple(hi).all();
         found.clear();
         if span <= MAX_CELLS_PER_QUERY {
             for x in l.0..=h.0 {
                 for y in l.1..=h.1 {
                     for z in l.2..=h.2 {
-                        let mut v = head.get(&(x, y, z)).copied().unwrap_or(NONE);
-                        while v != NONE {
-                            found.push(v);
-                            v = next[v as usize];
+                        let Some(k) = cells.get(packed_cell((x, y, z))) else { continue };
+                        let run = cell_offsets[k as usize] as usize..cell_offsets[k as usize + 1] as usize;
+                        for (&v, &p) in cell_items[run.clone()].iter().zip(&cell_points[run]) {
+                            if wanted(v, p) {
+                                found.push(v);
+                            }
                         }
                     }
                 }
             }
         } else {
+            let start = found.len();
             hierarchy.get_or_insert_with(|| PointHierarchy::new(points)).query(lo, hi, &mut found);
+            let mut kept = start;
+            for k in start..found.len() {
+                let v = found[k];
+                if wanted(v, points[v as usize]) {
+                    found[kept] = v;
+                    kept += 1;
+                }
+            }
+            found.truncate(kept);
         }
         found.sort_unstable();
         for &v in &found {
-            if welded[t].contains(&v) {
-                continue;
-            }
-            let p = points[v as usize];
-            if p.cmpge(lo).all()
-                && p.cmple(hi).all()
-                && point_triangle_distance_sq(p, c.positions) <= gap * gap
-            {
+            if point_triangle_distance_sq(points[v as usize], c.positions) <= gap * gap {
                 out.push((v, t as u32));
             }
         }

@@ -3,12 +3,14 @@
 //! the minimum-area rectangle, the split of non-convex regions, and the density budget
 //! that decides which regions and splits are kept ([`crate::budget`]).
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::{BTreeMap, HashSet};
+use std::hash::BuildHasherDefault;
 
 use ppr_format::ReflectorKind;
 
 use crate::budget::{BudgetReport, BudgetRule, RegionOffer, apply_budget};
 use crate::cluster::{Connectivity, GrownRegion};
+use crate::int_hash::IntHasher;
 use crate::level::Level;
 use crate::parallel_map::{map_ranges, map_slice_mut};
 use crate::plane::Plane;
@@ -89,6 +91,9 @@ pub fn prepare_regions(
     stats: &mut FitStats,
 ) -> Vec<PreparedRegion> {
     let mut out = Vec::new();
+    // Welded corner triples already met in the region (only membership matters: any hasher
+    // gives the same answer).
+    let mut seen: HashSet<[u32; 3], BuildHasherDefault<IntHasher>> = HashSet::default();
     for region in regions {
         // Quick reject on raw area before any work.
         let raw_area: f64 = region.members.iter().map(|&m| candidates[m as usize].area).sum();
@@ -97,7 +102,7 @@ pub fn prepare_regions(
             continue;
         }
         let Some(plane) = region.moments.fit() else { continue };
-        let mut seen: BTreeSet<[u32; 3]> = BTreeSet::new();
+        seen.clear();
         let mut polygons = Vec::with_capacity(region.members.len());
         let mut source_area: BTreeMap<u32, f64> = BTreeMap::new();
         let mut last_source = (u32::MAX, 0.0);

@@ -1,6 +1,7 @@
-//! A fast, deterministic hasher for the integer keys of spatial hash grids (FxHash's
-//! multiply-rotate per word, finished with MurmurHash3's 64-bit mix so that the low bits
-//! the table indexes with depend on every input bit; not for untrusted keys).
+//! Spatial hash grids' keys and tables: a fast, deterministic hasher for integer keys
+//! (FxHash's multiply-rotate per word, finished with MurmurHash3's 64-bit mix so that the
+//! low bits the table indexes with depend on every input bit; not for untrusted keys), and
+//! [`CellTable`], a flat open-addressing table of packed cell keys for the hot grids.
 
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
@@ -39,9 +40,103 @@ impl Hasher for IntHasher {
     }
 }
 
-/// Integer cell of `x` on a grid of `cell` size (saturating far outside the grid).
+/// Integer cell of `x` on a grid of `cell` size (saturating far outside the grid): the
+/// floor of `x / cell` without a call to libm's `floor` (the baseline x86-64 target has no
+/// rounding instruction), equal to `(x / cell).floor() as i64` for every input.
 pub fn cell_of(x: f64, cell: f64) -> i64 {
-    (x / cell).floor() as i64
+    let q = x / cell;
+    let t = q as i64;
+    if (t as f64) > q { t.saturating_sub(1) } else { t }
+}
+
+/// Bits per axis of a [`packed_cell`] key.
+const PACK_BITS: u32 = 21;
+
+/// A grid cell packed into 63 bits, 21 per axis, wrapping: cells `2^21` apart along an axis
+/// share a key. Users filter what they find by position (distance or box tests), so a
+/// shared key merges two lists without changing any answer, as long as one query never
+/// spans `2^21` cells.
+pub fn packed_cell((x, y, z): (i64, i64, i64)) -> u64 {
+    const MASK: u64 = (1 << PACK_BITS) - 1;
+    (x as u64 & MASK) | (y as u64 & MASK) << PACK_BITS | (z as u64 & MASK) << (2 * PACK_BITS)
+}
+
+/// A flat open-addressing map from [`packed_cell`] keys to `u32` values (linear probing,
+/// Fibonacci hashing, load at most one half): one flat array of key-value slots, no
+/// allocation per entry, one probe per look-up in most cases; [`CellTable::prefetch`] lets
+/// a caller that knows its next keys hide the memory latency of large tables.
+pub struct CellTable {
+    slots: Vec<(u64, u32)>,
+    len: usize,
+    /// `64 - log2(slots)`.
+    shift: u32,
+}
+
+/// A key no packed cell has (they use 63 bits).
+const EMPTY_KEY: u64 = u64::MAX;
+
+impl CellTable {
+    /// A table for about `n` entries before it grows.
+    pub fn with_capacity(n: usize) -> Self {
+        let slots = (2 * n).max(16).next_power_of_two();
+        Self { slots: vec![(EMPTY_KEY, 0); slots], len: 0, shift: 64 - slots.trailing_zeros() }
+    }
+
+    fn home(&self, key: u64) -> usize {
+        (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> self.shift) as usize
+    }
+
+    /// The value of `key`, if present.
+    pub fn get(&self, key: u64) -> Option<u32> {
+        let mask = self.slots.len() - 1;
+        let mut i = self.home(key);
+        loop {
+            let (k, v) = self.slots[i];
+            if k == key {
+                return Some(v);
+            }
+            if k == EMPTY_KEY {
+                return None;
+            }
+            i = (i + 1) & mask;
+        }
+    }
+
+    /// The value of `key`, inserted as `default` when absent.
+    pub fn entry_or(&mut self, key: u64, default: u32) -> &mut u32 {
+        if 2 * (self.len + 1) > self.slots.len() {
+            self.grow();
+        }
+        let mask = self.slots.len() - 1;
+        let mut i = self.home(key);
+        loop {
+            let k = self.slots[i].0;
+            if k == EMPTY_KEY {
+                self.slots[i] = (key, default);
+                self.len += 1;
+            }
+            if k == key || k == EMPTY_KEY {
+                return &mut self.slots[i].1;
+            }
+            i = (i + 1) & mask;
+        }
+    }
+
+    /// Asks the processor to start loading the slot where a look-up of `key` begins (a
+    /// hint: no effect on any result).
+    pub fn prefetch(&self, key: u64) {
+        prefetch(&self.slots[self.home(key)]);
+    }
+
+    fn grow(&mut self) {
+        let mut bigger = Self::with_capacity(self.slots.len());
+        for &(k, v) in &self.slots {
+            if k != EMPTY_KEY {
+                *bigger.entry_or(k, v) = v;
+            }
+        }
+        *self = bigger;
+    }
 }
 
 /// A hasher for grid cells `(i64, i64, i64)` that keeps space local: the low 57 bits of the
@@ -94,10 +189,58 @@ fn morton19(v: u64) -> u64 {
 /// A map from grid cells, hashed with [`CellHasher`].
 pub type CellMap<V> = HashMap<(i64, i64, i64), V, BuildHasherDefault<CellHasher>>;
 
+/// Asks the processor to start loading the cache line of `r` (a hint).
+pub fn prefetch<T>(r: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch reads nothing a program can observe and never faults; `r` is a valid
+    // reference, and SSE is part of every x86-64 target.
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>((r as *const T).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = r;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use std::hash::BuildHasher;
+
+    #[test]
+    fn cell_of_is_the_floor() {
+        for x in [
+            -2.5,
+            -2.0,
+            -1e-300,
+            -0.0,
+            0.0,
+            0.3,
+            2.0,
+            1e300,
+            -1e300,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+        ] {
+            for cell in [1.0, 0.04, 3.0] {
+                assert_eq!(cell_of(x, cell), (x / cell).floor() as i64, "{x} / {cell}");
+            }
+        }
+    }
+
+    #[test]
+    fn cell_table_finds_what_it_holds() {
+        let mut t = CellTable::with_capacity(1);
+        for k in 0..1000i64 {
+            *t.entry_or(packed_cell((k, -k, 3 * k)), 7) += k as u32;
+        }
+        for k in 0..1000i64 {
+            assert_eq!(t.get(packed_cell((k, -k, 3 * k))), Some(7 + k as u32));
+        }
+        assert_eq!(t.get(packed_cell((1, 1, 1))), None);
+        assert_eq!(packed_cell((1 << 21, 0, 0)), packed_cell((0, 0, 0)), "wraps");
+    }
 
     #[test]
     fn neighbouring_cells_get_neighbouring_indices_and_mixed_tags() {

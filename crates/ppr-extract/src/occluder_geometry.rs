@@ -60,22 +60,48 @@ fn clip_front(poly: &[DVec3; 4], a: &Reflector, epsilon: f64) -> ([DVec3; 8], us
 }
 
 /// Distance between two convex planar polygons (counter-clockwise about their normals)
-/// that do not intersect.
+/// that do not intersect: the least of the vertex-to-polygon and edge-to-edge distances.
+/// A candidate whose boxes are farther apart than the best so far (by more than rounding)
+/// cannot be the least and is not computed: the result is the same, bit for bit.
 fn polygon_distance(p: &[DVec3], np: DVec3, q: &[DVec3], nq: DVec3) -> f64 {
+    let bounds = |s: &[DVec3]| {
+        s.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)))
+    };
+    let ((pl, ph), (ql, qh)) = (bounds(p), bounds(q));
+    // Rounding of the computed distances and of the box gaps, with a wide margin.
+    let size = pl.abs().max(ph.abs()).max(ql.abs()).max(qh.abs()).max_element();
+    let slack = 1e-9 * size;
+    let beyond = |gap: f64, best: f64| gap > best + slack + 1e-9 * best;
     let mut best = f64::INFINITY;
     for &v in p {
-        best = best.min(point_polygon_distance(v, q, nq));
+        if !beyond(box_gap((v, v), (ql, qh)), best) {
+            best = best.min(point_polygon_distance(v, q, nq));
+        }
     }
     for &v in q {
-        best = best.min(point_polygon_distance(v, p, np));
+        if !beyond(box_gap((v, v), (pl, ph)), best) {
+            best = best.min(point_polygon_distance(v, p, np));
+        }
     }
     for i in 0..p.len() {
+        let (p1, p2) = (p[i], p[(i + 1) % p.len()]);
+        let pb = (p1.min(p2), p1.max(p2));
+        if beyond(box_gap(pb, (ql, qh)), best) {
+            continue;
+        }
         for j in 0..q.len() {
-            let d = segment_distance(p[i], p[(i + 1) % p.len()], q[j], q[(j + 1) % q.len()]);
-            best = best.min(d);
+            let (q1, q2) = (q[j], q[(j + 1) % q.len()]);
+            if !beyond(box_gap(pb, (q1.min(q2), q1.max(q2))), best) {
+                best = best.min(segment_distance(p1, p2, q1, q2));
+            }
         }
     }
     best
+}
+
+/// Distance between the boxes `[al, ah]` and `[bl, bh]` (0 when they overlap).
+fn box_gap((al, ah): (DVec3, DVec3), (bl, bh): (DVec3, DVec3)) -> f64 {
+    (bl - ah).max(al - bh).max(DVec3::ZERO).length()
 }
 
 /// Distance from `x` to a convex polygon with normal `n`.

@@ -24,11 +24,18 @@ impl Polygon {
         0.5 * twice.abs()
     }
 
+    /// Whether every vertex is on the kept side of the cut of [`Polygon::clip`] (which then
+    /// returns the polygon unchanged).
+    pub fn keeps_all(&self, dir: DVec2, limit: f64, keep_below: bool) -> bool {
+        let side = |p: DVec2| if keep_below { limit - dir.dot(p) } else { dir.dot(p) - limit };
+        self.flat.iter().all(|&p| side(p) >= 0.0)
+    }
+
     /// The part where `dir · p <= limit` (`keep_below`) or `>= limit`; `None` when empty.
     pub fn clip(&self, dir: DVec2, limit: f64, keep_below: bool) -> Option<Polygon> {
         let side = |p: DVec2| if keep_below { limit - dir.dot(p) } else { dir.dot(p) - limit };
         let n = self.flat.len();
-        if self.flat.iter().all(|&p| side(p) >= 0.0) {
+        if self.keeps_all(dir, limit, keep_below) {
             return Some(self.clone());
         }
         let mut out = Polygon { flat: Vec::with_capacity(n + 1), spatial: Vec::with_capacity(n + 1) };

@@ -12,6 +12,8 @@
 //! reached. Each accepted split is recorded ([`SplitStep`]) so the density budget
 //! ([`crate::budget`]) can keep only the steps it can afford.
 
+use std::borrow::Cow;
+
 use glam::DVec2;
 
 use crate::polygon::Polygon;
@@ -167,12 +169,23 @@ struct Band {
 
 impl Band {
     fn clip(&self, poly: &Polygon) -> Option<Polygon> {
-        let mut out = poly.clone();
-        for &(axis, limit, below) in &self.limits {
-            out = clip_local(&out, &self.rect, axis, limit, below)?;
-        }
-        Some(out)
+        clip_all(poly, &self.rect, &self.limits).map(Cow::into_owned)
     }
+}
+
+/// `poly` clipped by each of `cuts` in turn, copied only when a cut changes it; `None` when
+/// nothing is left. A cut `(axis, limit, below)` keeps `local(axis) <= limit` (`below`) or
+/// `>= limit` in `rect`'s centred frame (axis 0: along `rect.axis`, 1: across).
+fn clip_all<'a>(poly: &'a Polygon, rect: &Rect2, cuts: &[(usize, f64, bool)]) -> Option<Cow<'a, Polygon>> {
+    let mut out = Cow::Borrowed(poly);
+    for &(axis, limit, below) in cuts {
+        let dir = if axis == 0 { rect.axis } else { rect.perp() };
+        let limit = dir.dot(rect.center) + limit;
+        if !out.keeps_all(dir, limit, below) {
+            out = Cow::Owned(out.clip(dir, limit, below)?);
+        }
+    }
+    Some(out)
 }
 
 /// Which cells of the rectangle's grid any polygon touches.
@@ -325,12 +338,6 @@ fn strip_x_range(flat: &[DVec2], y0: f64, y1: f64) -> Option<(f64, f64)> {
     (lo <= hi).then_some((lo, hi))
 }
 
-/// Clips `poly` to `local(axis) <= limit` (`below`) or `>= limit` in `rect`'s centred frame.
-fn clip_local(poly: &Polygon, rect: &Rect2, axis: usize, limit: f64, below: bool) -> Option<Polygon> {
-    let dir = if axis == 0 { rect.axis } else { rect.perp() };
-    poly.clip(dir, dir.dot(rect.center) + limit, below)
-}
-
 /// The largest (`below`) or smallest local coordinate along `axis` of the geometry that lies
 /// on that side of `cut`, within the open window `other` on the other axis.
 fn extreme(
@@ -344,10 +351,8 @@ fn extreme(
     let eps = 1e-9 * (rect.half.x + rect.half.y);
     let mut best: Option<f64> = None;
     for poly in polygons {
-        let Some(part) = clip_local(poly, rect, 1 - axis, other.0 + eps, false)
-            .and_then(|q| clip_local(&q, rect, 1 - axis, other.1 - eps, true))
-            .and_then(|q| clip_local(&q, rect, axis, cut, below))
-        else {
+        let cuts = [(1 - axis, other.0 + eps, false), (1 - axis, other.1 - eps, true), (axis, cut, below)];
+        let Some(part) = clip_all(poly, rect, &cuts) else {
             continue;
         };
         for &v in &part.flat {
