@@ -1,5 +1,5 @@
 //! Loading glTF files written here: hierarchy flattening, instancing, negative scale,
-//! materials, textures, cameras, external buffers and the meshopt refusal.
+//! materials, textures, cameras, external buffers and required extensions.
 
 use std::path::Path;
 
@@ -198,15 +198,23 @@ fn glb_loads_the_same_level() {
 }
 
 #[test]
-fn meshopt_compressed_levels_are_refused_clearly() {
+fn required_extensions_that_keep_geometry_load_and_others_are_refused_by_name() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut gltf = TestGltf::new();
-    gltf.json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
-    gltf.json["extensionsRequired"] = json!(["EXT_meshopt_compression"]);
+    let harmless = ["KHR_lights_punctual", "KHR_materials_clearcoat", "KHR_texture_transform"];
+    gltf.json["extensionsUsed"] = json!(harmless);
+    gltf.json["extensionsRequired"] = json!(harmless);
+    gltf.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 5.0}]}});
+    check_level(&Level::load_gltf(gltf.write_gltf(dir.path())).expect("lights and materials do not change geometry"));
+    gltf.json["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
+    gltf.json["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
     let err = Level::load_gltf(gltf.write_gltf(dir.path())).expect_err("must refuse");
-    assert!(matches!(err, TestbedError::UnsupportedGltf { .. }), "{err:?}");
+    assert!(
+        matches!(err, TestbedError::Level(ppr_level::LoadError::UnsupportedExtension { .. })),
+        "{err:?}"
+    );
     let text = err.to_string();
-    assert!(text.contains("EXT_meshopt_compression") && text.contains("level.gltf"), "{text}");
+    assert!(text.contains("KHR_draco_mesh_compression") && text.contains("level.gltf"), "{text}");
 }
 
 #[test]
