@@ -58,7 +58,11 @@ impl Level {
                 primitives: mesh
                     .primitives
                     .iter()
-                    .map(|p| MeshPrimitive { vertices: p.vertices(), indices: p.indices.clone(), material: p.material })
+                    .map(|p| MeshPrimitive {
+                        vertices: p.vertices(),
+                        indices: p.indices.clone(),
+                        material: p.material,
+                    })
                     .collect(),
             });
         }
@@ -74,7 +78,13 @@ impl Level {
         for cam in &scene.cameras {
             match cam.projection {
                 CameraProjection::Perspective { yfov, znear, zfar } => {
-                    level.cameras.push(LevelCamera { name: cam.name.clone(), world: cam.world, yfov, znear, zfar });
+                    level.cameras.push(LevelCamera {
+                        name: cam.name.clone(),
+                        world: cam.world,
+                        yfov,
+                        znear,
+                        zfar,
+                    });
                 }
                 CameraProjection::Orthographic { .. } => {
                     level.warnings.push(format!("camera {} is orthographic, ignored", cam.name));
@@ -82,9 +92,11 @@ impl Level {
             }
         }
         level.warnings.extend(scene.notes.iter().cloned());
-        level
-            .validate()
-            .map_err(|reason| TestbedError::InvalidGltf { path: scene.path.clone().into(), field: "level".into(), reason })?;
+        level.validate().map_err(|reason| TestbedError::InvalidGltf {
+            path: scene.path.clone().into(),
+            field: "level".into(),
+            reason,
+        })?;
         Ok(level)
     }
 }

@@ -204,15 +204,15 @@ fn required_extensions_that_keep_geometry_load_and_others_are_refused_by_name() 
     let harmless = ["KHR_lights_punctual", "KHR_materials_clearcoat", "KHR_texture_transform"];
     gltf.json["extensionsUsed"] = json!(harmless);
     gltf.json["extensionsRequired"] = json!(harmless);
-    gltf.json["extensions"] = json!({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 5.0}]}});
-    check_level(&Level::load_gltf(gltf.write_gltf(dir.path())).expect("lights and materials do not change geometry"));
+    gltf.json["extensions"] =
+        json!({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 5.0}]}});
+    check_level(
+        &Level::load_gltf(gltf.write_gltf(dir.path())).expect("lights and materials do not change geometry"),
+    );
     gltf.json["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
     gltf.json["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
     let err = Level::load_gltf(gltf.write_gltf(dir.path())).expect_err("must refuse");
-    assert!(
-        matches!(err, TestbedError::Level(ppr_level::LoadError::UnsupportedExtension { .. })),
-        "{err:?}"
-    );
+    assert!(matches!(err, TestbedError::Level(ppr_level::LoadError::UnsupportedExtension { .. })), "{err:?}");
     let text = err.to_string();
     assert!(text.contains("KHR_draco_mesh_compression") && text.contains("level.gltf"), "{text}");
 }
