@@ -4,3 +4,4 @@
 mod quick_compare;
 mod quick_scaling;
 mod scaling_levels;
+mod shared_scenes;

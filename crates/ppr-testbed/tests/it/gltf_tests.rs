@@ -247,3 +247,18 @@ fn cameras_from_names_and_descriptions() {
         assert!(parse_camera(bad, ProjectionChoice::default()).is_err(), "{bad} must not parse");
     }
 }
+
+/// Every shared scene (`../shared/scenes/`) opens in the testbed (and so in `ppr-render`),
+/// as it does in the extractor: both read it through `ppr-level`.
+#[test]
+fn every_shared_scene_opens() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    let files = ppr_level::level_files(&dir);
+    assert!(files.len() >= 5, "the shared scenes are missing from {}: {files:?}", dir.display());
+    for path in files {
+        let level = Level::load_gltf(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        level.validate().unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let extracted = ppr_level::load_level(&path).expect("the extractor's view");
+        assert_eq!(level.triangle_count(), extracted.triangles.len(), "{}", path.display());
+    }
+}
