@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use ppr_extract::{ExtractParams, extract, load_level};
+use ppr_extract::{ExtractParams, extract};
 use ppr_format::{ReflectorKind, ReflectorSet};
 use ppr_runtime::{Camera, Projection};
 use ppr_testbed::Level;
@@ -147,9 +147,13 @@ impl BenchScene {
         if let Some(room) = crate::mirror_room::MirrorRoom::from_name(&spec.name) {
             return Ok(crate::mirror_room::bench_scene(room, options));
         }
-        let level = Level::load_gltf(&spec.path)?;
-        let extracted = load_level(&spec.path)
-            .map_err(|e| BenchError::Level { path: spec.path.clone(), reason: e.to_string() })?;
+        // One read of the file (ppr-level, as every tool): drawn by the testbed, flattened for the extractor.
+        let level_error =
+            |e: ppr_level::LoadError| BenchError::Level { path: spec.path.clone(), reason: e.to_string() };
+        let loaded =
+            ppr_level::load_scene(&spec.path, &ppr_level::LoadParams::render()).map_err(level_error)?;
+        let level = Level::from_scene(&loaded)?;
+        let extracted = ppr_level::Level::from_scene(&loaded).map_err(level_error)?;
         let extraction = extract(&extracted, &spec.preset.params(), &|_, _| {});
         let any_surface = spec.preset == ExtractPreset::AllPlanar;
         let mut notes = vec![format!(

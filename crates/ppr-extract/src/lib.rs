@@ -6,9 +6,10 @@
 //!            ─► parallel groups, stable ids, occluder lists ─► ReflectorSet
 //! ```
 //!
-//! - [`load_level`] reads `.glb` / `.gltf` (external, embedded or meshopt-compressed
-//!   buffers, quantized positions, skins at rest pose, GPU instancing) into world-space
-//!   triangles with their source node, mesh and material ([`Level`]).
+//! - [`load_level`] (from `ppr-level`, the loader every tool shares) reads `.glb` /
+//!   `.gltf` (external, embedded or meshopt-compressed buffers, quantized positions, skins
+//!   at rest pose, GPU instancing) into world-space triangles with their source node, mesh
+//!   and material ([`Level`]).
 //! - [`extract`] turns a level into an [`Extraction`]: the [`ppr_format::ReflectorSet`],
 //!   each reflector's region vertices, warnings and stage timings. Candidate selection is
 //!   documented in [`select`]; near-planar merging in [`near_planar`]; splitting in
@@ -57,7 +58,6 @@ pub mod generated_levels;
 pub mod hull;
 mod int_hash;
 mod level;
-mod load;
 pub mod near_planar;
 mod occluder_geometry;
 pub mod occluders;
@@ -76,7 +76,9 @@ pub mod summary;
 
 pub use extract::extract;
 pub use extraction::{Extraction, ExtractionStats, Stage, Warning};
-pub use level::{Level, LevelTriangle, MaterialInfo, ReflectorOverride, TriangleSource};
-pub use load::{LoadError, can_read_extension, load_level, load_level_from_bytes};
 pub use params::{CandidateRule, ExtractParams};
+pub use ppr_level::{
+    Level, LevelTriangle, LoadError, MaterialInfo, ReflectorOverride, TriangleSource, can_read_extension,
+    load_level, load_level_from_bytes,
+};
 pub use scale::SceneScale;

@@ -176,6 +176,23 @@ impl ExtractionJob {
     }
 }
 
+/// The level read once by `ppr-level`: flattened for the extractor and, when asked,
+/// converted for the testbed's renderer (textures decoded only then).
+fn load_levels(
+    path: &std::path::Path,
+    render: bool,
+) -> Result<(Arc<ppr_extract::Level>, Option<Arc<ppr_testbed::Level>>), String> {
+    let params = if render { ppr_level::LoadParams::render() } else { ppr_level::LoadParams::geometry() };
+    let scene = ppr_level::load_scene(path, &params).map_err(|e| e.to_string())?;
+    let extract_level = ppr_level::Level::from_scene(&scene).map_err(|e| e.to_string())?;
+    let render_level = if render {
+        Some(Arc::new(ppr_testbed::Level::from_scene(&scene).map_err(|e| e.to_string())?))
+    } else {
+        None
+    };
+    Ok((Arc::new(extract_level), render_level))
+}
+
 fn run(
     request: JobRequest,
     sender: &Sender<JobEvent>,
@@ -194,21 +211,10 @@ fn run(
     };
     send(JobEvent::Progress(JobProgress { stage: Stage::Load, fraction: 0.0 }));
     let (extract_level, render_level) = match &request.source {
-        LevelSource::File(path) => {
-            let extract_level = match ppr_extract::load_level(path) {
-                Ok(l) => Arc::new(l),
-                Err(e) => return fail(e.to_string()),
-            };
-            let render_level = if request.load_render_level {
-                match ppr_testbed::Level::load_gltf(path) {
-                    Ok(l) => Some(Arc::new(l)),
-                    Err(e) => return fail(e.to_string()),
-                }
-            } else {
-                None
-            };
-            (extract_level, render_level)
-        }
+        LevelSource::File(path) => match load_levels(path, request.load_render_level) {
+            Ok((extract_level, render_level)) => (extract_level, render_level),
+            Err(message) => return fail(message),
+        },
         LevelSource::Loaded(level) => (level.clone(), None),
     };
     send(JobEvent::Progress(JobProgress { stage: Stage::Load, fraction: 1.0 }));

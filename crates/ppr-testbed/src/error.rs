@@ -21,12 +21,9 @@ pub enum TestbedError {
     /// A texture format the testbed cannot read back or convert.
     #[error("{what}: texture format {format:?} is not supported here")]
     UnsupportedFormat { what: String, format: wgpu::TextureFormat },
-    /// The glTF file could not be read or parsed.
-    #[error("{}: cannot load glTF: {source}", path.display())]
-    Gltf { path: PathBuf, source: gltf::Error },
-    /// The glTF file uses something the testbed does not handle.
-    #[error("{}: {what}", path.display())]
-    UnsupportedGltf { path: PathBuf, what: String },
+    /// `ppr-level` refused the glTF file (the message names the file and the field).
+    #[error(transparent)]
+    Level(#[from] ppr_level::LoadError),
     /// A glTF file was read but a field in it is not usable.
     #[error("{}: {field}: {reason}", path.display())]
     InvalidGltf { path: PathBuf, field: String, reason: String },

@@ -8,17 +8,8 @@
 use glam::{DMat4, DVec3, Quat, Vec3};
 use ppr_runtime::{Camera, Projection};
 
-/// One vertex as the G-buffer pass reads it (32 bytes, interleaved).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct Vertex {
-    /// Object-space position, metres.
-    pub position: [f32; 3],
-    /// Object-space normal (unit length).
-    pub normal: [f32; 3],
-    /// First texture coordinate set.
-    pub uv: [f32; 2],
-}
+/// One vertex as the G-buffer pass reads it (32 bytes, interleaved): `ppr-level`'s.
+pub use ppr_level::Vertex;
 
 /// A triangle list with one material.
 #[derive(Clone, Debug, Default, PartialEq)]

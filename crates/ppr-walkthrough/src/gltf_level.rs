@@ -1,27 +1,20 @@
 //! A glTF level loaded the way a game might: positions, normals, UVs, base colour factor and
-//! texture, the few material numbers that decide reflectivity, and the file's cameras.
+//! texture, the few material numbers that decide reflectivity, and the file's cameras. The
+//! file is read by `ppr-level` (standing in for a game's own asset loader; it is the loader
+//! every tool of the workspace shares) and kept in the forward pass's terms.
 //!
 //! Everything stays on the CPU here (`LevelData`), so the GPU side can be rebuilt from it
 //! after a device loss. World transforms are `f64`: each frame the camera position is
 //! subtracted before anything is rounded to `f32`.
 
-use std::collections::HashMap;
 use std::path::Path;
 
-use anyhow::{Context, Result, bail};
-use glam::{DMat4, DQuat, DVec3, Vec3};
+use anyhow::Result;
+use glam::{DMat4, DVec3, Vec3};
+use ppr_level::{AlphaMode, CameraProjection, LoadParams};
 
-/// One vertex as the forward pass reads it (32 bytes, interleaved).
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
-pub struct Vertex {
-    /// Object-space position, metres.
-    pub position: [f32; 3],
-    /// Object-space normal.
-    pub normal: [f32; 3],
-    /// Texture coordinate set 0.
-    pub uv: [f32; 2],
-}
+/// One vertex as the forward pass reads it (32 bytes, interleaved): `ppr-level`'s.
+pub use ppr_level::Vertex;
 
 /// A triangle list with one material.
 #[derive(Clone, Debug, Default)]
@@ -148,79 +141,54 @@ impl LevelData {
     /// Loads the default scene (or the first) of a `.glb` or `.gltf` file.
     ///
     /// # Errors
-    /// When the file cannot be read or parsed, or a primitive is broken (no positions,
-    /// indices out of range).
+    /// When `ppr-level` refuses the file (the message names the file and the field).
     pub fn load(path: &Path) -> Result<Self> {
-        let (doc, buffers, images) =
-            gltf::import(path).with_context(|| format!("{}: cannot load the glTF level", path.display()))?;
-        let mut level = LevelData::default();
-        let mut texture_of_image = HashMap::new();
-        for material in doc.materials() {
-            let texture = material.pbr_metallic_roughness().base_color_texture().and_then(|info| {
-                let image = info.texture().source().index();
-                if let Some(&t) = texture_of_image.get(&image) {
-                    return Some(t);
+        let scene = ppr_level::load_scene(path, &LoadParams::render())?;
+        let mut level = LevelData {
+            textures: scene
+                .textures
+                .into_iter()
+                .map(|t| Texture { width: t.width, height: t.height, rgba8: t.rgba8 })
+                .collect(),
+            warnings: scene.notes,
+            ..LevelData::default()
+        };
+        level.materials = scene.materials.iter().map(material).collect();
+        level.instances = scene
+            .instances
+            .iter()
+            .map(|inst| Instance {
+                node_name: inst.node_name.clone(),
+                mesh: inst.mesh,
+                world: inst.world,
+                reflector_hint: inst.ppr.reflector.or_else(|| scene.meshes.get(inst.mesh)?.ppr.reflector),
+            })
+            .collect();
+        level.meshes = scene
+            .meshes
+            .iter()
+            .map(|mesh| {
+                mesh.primitives
+                    .iter()
+                    .map(|p| Primitive {
+                        vertices: p.vertices(),
+                        indices: p.indices.clone(),
+                        material: p.material,
+                    })
+                    .collect()
+            })
+            .collect();
+        for cam in scene.cameras {
+            match cam.projection {
+                CameraProjection::Perspective { yfov, znear, zfar } => {
+                    level.cameras.push(LevelCamera { name: cam.name, world: cam.world, yfov, znear, zfar });
                 }
-                let Some(rgba8) = images.get(image).and_then(to_rgba8) else {
-                    level.warnings.push(format!("image {image}: pixel format not supported, ignored"));
-                    return None;
-                };
-                let data = &images[image];
-                level.textures.push(Texture { width: data.width, height: data.height, rgba8 });
-                texture_of_image.insert(image, level.textures.len() - 1);
-                Some(level.textures.len() - 1)
-            });
-            level.materials.push(read_material(&material, texture));
-        }
-        let default_material = level.materials.len();
-        level.materials.push(Material::default());
-        for mesh in doc.meshes() {
-            let mut primitives = Vec::new();
-            for (k, prim) in mesh.primitives().enumerate() {
-                let what = format!("mesh {} primitive {k}", mesh.name().unwrap_or("?"));
-                if prim.mode() != gltf::mesh::Mode::Triangles {
-                    level.warnings.push(format!("{what}: not a triangle list, skipped"));
-                    continue;
+                CameraProjection::Orthographic { .. } => {
+                    level.warnings.push(format!("camera {} is orthographic, ignored", cam.name));
                 }
-                primitives.push(read_primitive(&prim, &buffers, default_material, &what)?);
-            }
-            level.meshes.push(primitives);
-        }
-        if let Some(scene) = doc.default_scene().or_else(|| doc.scenes().next()) {
-            for node in scene.nodes() {
-                level.visit(&node, DMat4::IDENTITY, None);
             }
         }
         Ok(level)
-    }
-
-    fn visit(&mut self, node: &gltf::Node, parent: DMat4, parent_hint: Option<bool>) {
-        let world = parent * local_transform(node);
-        let hint = reflector_hint(node.extras()).or(parent_hint);
-        let name = node.name().map_or_else(|| format!("#{}", node.index()), str::to_owned);
-        if let Some(mesh) = node.mesh() {
-            let reflector_hint = hint.or_else(|| reflector_hint(mesh.extras()));
-            self.instances.push(Instance {
-                node_name: name.clone(),
-                mesh: mesh.index(),
-                world,
-                reflector_hint,
-            });
-        }
-        if let Some(camera) = node.camera()
-            && let gltf::camera::Projection::Perspective(p) = camera.projection()
-        {
-            self.cameras.push(LevelCamera {
-                name: camera.name().map_or_else(|| name.clone(), str::to_owned),
-                world,
-                yfov: p.yfov(),
-                znear: p.znear(),
-                zfar: p.zfar(),
-            });
-        }
-        for child in node.children() {
-            self.visit(&child, world, hint);
-        }
     }
 
     /// World-space bounds of every instance, if there is any geometry.
@@ -245,104 +213,23 @@ impl LevelData {
     }
 }
 
-fn read_primitive(
-    prim: &gltf::Primitive,
-    buffers: &[gltf::buffer::Data],
-    default_material: usize,
-    what: &str,
-) -> Result<Primitive> {
-    let reader = prim.reader(|b| buffers.get(b.index()).map(|d| d.0.as_slice()));
-    let Some(positions) = reader.read_positions() else { bail!("{what}: no POSITION attribute") };
-    let positions: Vec<[f32; 3]> = positions.collect();
-    let count = positions.len();
-    let mut indices: Vec<u32> = match reader.read_indices() {
-        Some(ix) => ix.into_u32().collect(),
-        None => (0..u32::try_from(count)?).collect(),
-    };
-    indices.truncate(indices.len() - indices.len() % 3);
-    if indices.iter().any(|&i| i as usize >= count) {
-        bail!("{what}: an index is out of range ({count} vertices)");
-    }
-    let normals: Vec<[f32; 3]> = match reader.read_normals() {
-        Some(n) => n.collect(),
-        None => flat_normals(&positions, &indices),
-    };
-    let uvs: Vec<[f32; 2]> = reader.read_tex_coords(0).map(|t| t.into_f32().collect()).unwrap_or_default();
-    let vertices = (0..count)
-        .map(|i| Vertex {
-            position: positions[i],
-            normal: normals.get(i).copied().unwrap_or([0.0, 1.0, 0.0]),
-            uv: uvs.get(i).copied().unwrap_or_default(),
-        })
-        .collect();
-    Ok(Primitive { vertices, indices, material: prim.material().index().unwrap_or(default_material) })
-}
-
-fn read_material(material: &gltf::Material, base_color_texture: Option<usize>) -> Material {
-    let pbr = material.pbr_metallic_roughness();
+fn material(m: &ppr_level::Material) -> Material {
     Material {
-        name: material.name().unwrap_or("?").to_owned(),
-        base_color: pbr.base_color_factor(),
-        base_color_texture,
-        emissive: material.emissive_factor(),
-        roughness: pbr.roughness_factor(),
-        metallic: pbr.metallic_factor(),
-        transmission: material.transmission().map_or(0.0, |t| t.transmission_factor()),
-        unlit: material.unlit(),
-        double_sided: material.double_sided(),
-        blend: match material.alpha_mode() {
-            gltf::material::AlphaMode::Blend => AlphaBlend::Blend,
-            _ => AlphaBlend::Opaque,
+        name: m.name.clone(),
+        base_color: m.base_color,
+        base_color_texture: m.base_color_texture,
+        emissive: m.emissive,
+        roughness: m.roughness,
+        metallic: m.metallic,
+        transmission: m.transmission,
+        unlit: m.unlit,
+        double_sided: m.double_sided,
+        blend: match m.alpha_mode {
+            AlphaMode::Blend => AlphaBlend::Blend,
+            AlphaMode::Opaque | AlphaMode::Mask { .. } => AlphaBlend::Opaque,
         },
-        reflector_hint: reflector_hint(material.extras()),
+        reflector_hint: m.ppr.reflector,
     }
-}
-
-fn local_transform(node: &gltf::Node) -> DMat4 {
-    match node.transform() {
-        gltf::scene::Transform::Matrix { matrix } => {
-            DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
-        }
-        gltf::scene::Transform::Decomposed { translation, rotation, scale } => {
-            let [x, y, z, w] = rotation.map(f64::from);
-            DMat4::from_scale_rotation_translation(
-                DVec3::from(scale.map(f64::from)),
-                DQuat::from_xyzw(x, y, z, w).normalize(),
-                DVec3::from(translation.map(f64::from)),
-            )
-        }
-    }
-}
-
-/// `extras.ppr.reflector` as a bool, if present.
-fn reflector_hint(extras: &gltf::json::Extras) -> Option<bool> {
-    let value: serde_json::Value = serde_json::from_str(extras.as_ref()?.get()).ok()?;
-    value.get("ppr")?.get("reflector")?.as_bool()
-}
-
-/// Face normals for a primitive that has none (each vertex takes its last triangle's).
-fn flat_normals(positions: &[[f32; 3]], indices: &[u32]) -> Vec<[f32; 3]> {
-    let mut normals = vec![[0.0, 1.0, 0.0]; positions.len()];
-    for t in indices.chunks_exact(3) {
-        let [a, b, c] = [t[0], t[1], t[2]].map(|i| Vec3::from(positions[i as usize]));
-        let n = (b - a).cross(c - a).try_normalize().unwrap_or(Vec3::Y);
-        for &i in t {
-            normals[i as usize] = n.to_array();
-        }
-    }
-    normals
-}
-
-fn to_rgba8(data: &gltf::image::Data) -> Option<Vec<u8>> {
-    use gltf::image::Format;
-    let px = &data.pixels;
-    Some(match data.format {
-        Format::R8G8B8A8 => px.clone(),
-        Format::R8G8B8 => px.chunks_exact(3).flat_map(|c| [c[0], c[1], c[2], 255]).collect(),
-        Format::R8G8 => px.chunks_exact(2).flat_map(|c| [c[0], c[0], c[0], c[1]]).collect(),
-        Format::R8 => px.iter().flat_map(|&v| [v, v, v, 255]).collect(),
-        _ => return None,
-    })
 }
 
 #[cfg(test)]

@@ -2,8 +2,9 @@
 //! extraction setting makes against how well they cover the reflective area, and what
 //! each setting costs at run time (projection and reflection GPU time).
 
-use ppr_extract::{ExtractParams, extract, load_level};
+use ppr_extract::{ExtractParams, extract};
 use ppr_format::{ReflectorKind, ReflectorSet};
+use ppr_level::load_level;
 use ppr_runtime::{PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;

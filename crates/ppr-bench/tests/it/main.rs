@@ -7,3 +7,4 @@ mod quick_compare;
 mod quick_scaling;
 mod resolution_tiers;
 mod scaling_levels;
+mod shared_scenes;

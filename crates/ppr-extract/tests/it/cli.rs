@@ -67,6 +67,55 @@ fn exit_codes_and_errors() {
     json["extensionsRequired"] = serde_json::json!(["KHR_draco_mesh_compression"]);
     std::fs::write(d.join("draco.gltf"), serde_json::to_vec(&json).unwrap()).unwrap();
     assert_error(&[os(&d.join("draco.gltf"))], 2, "KHR_draco_mesh_compression");
+    // Hostile sizes, URIs and coordinates: exit 2 with the file and field named, never an abort.
+    let floor = || {
+        let mut b = ppr_level::gltf_builder::GltfBuilder::new();
+        let m = b.material("m", 0.1, 0.0, None);
+        let (p, i) = ppr_level::gltf_builder::quad_xz(0.0, 0.0, 1.0, 1.0, 0.0);
+        let mesh = b.mesh("floor", &p, &i, m, ppr_level::gltf_builder::PositionFormat::F32);
+        b.node("n", mesh, [0.0; 3], [0.0, 0.0, 0.0, 1.0], [1.0; 3]);
+        b
+    };
+    type Edit = fn(&mut serde_json::Value);
+    let hostile: [(&str, Edit, &str); 4] = [
+        (
+            "count.glb",
+            |j| j["accessors"][0]["count"] = serde_json::json!(1u64 << 60),
+            "accessors[0] is out of range",
+        ),
+        (
+            "offset.glb",
+            |j| j["accessors"][0]["byteOffset"] = serde_json::json!(1u64 << 62),
+            "accessors[0] is out of range",
+        ),
+        (
+            "uri.glb",
+            |j| j["buffers"] = serde_json::json!([{"byteLength": 64, "uri": "/dev/zero"}]),
+            "buffers[0]: uri `/dev/zero` refused",
+        ),
+        (
+            "far.glb",
+            |j| j["nodes"][0]["translation"] = serde_json::json!([0.0, 0.0, 3.0e7]),
+            "nodes[0] (\"n\")",
+        ),
+    ];
+    for (name, edit, needle) in hostile {
+        let mut b = floor();
+        if name == "uri.glb" {
+            // The URI replaces the BIN chunk: a .gltf beside nothing.
+            let path = d.join("uri.gltf");
+            let written = b.write_gltf(d, "uri").unwrap();
+            let mut json: serde_json::Value =
+                serde_json::from_slice(&std::fs::read(&written).unwrap()).unwrap();
+            edit(&mut json);
+            std::fs::write(&path, serde_json::to_vec(&json).unwrap()).unwrap();
+            assert_error(&[os(&path)], 2, needle);
+            continue;
+        }
+        edit(&mut b.json);
+        std::fs::write(d.join(name), b.glb()).unwrap();
+        assert_error(&[os(&d.join(name))], 2, needle);
+    }
     // Usage errors.
     let (code, _, err) = run(&[]);
     assert_eq!(code, 1, "{err}");

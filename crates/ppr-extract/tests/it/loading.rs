@@ -7,7 +7,7 @@ use ppr_format::ReflectorKind;
 use serde_json::json;
 
 use crate::checks::assert_encloses_regions;
-use crate::gltf_writer::{GltfBuilder, PositionFormat, quad_xz};
+use ppr_level::gltf_builder::{GltfBuilder, PositionFormat, quad_xz};
 
 const IDENTITY_ROTATION: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
 
@@ -104,7 +104,7 @@ fn gltf_with_external_buffer_and_its_errors() {
     let dir = tempfile::tempdir().unwrap();
     let (mut b, mesh) = floor_builder(PositionFormat::F32);
     b.node("n", mesh, [0.0; 3], IDENTITY_ROTATION, [1.0; 3]);
-    let path = b.write_gltf(dir.path(), "level");
+    let path = b.write_gltf(dir.path(), "level").unwrap();
     let level = load_level(&path).unwrap();
     assert_eq!(level.triangles.len(), 2);
     assert!(level.hash.starts_with("blake3:"));

@@ -3,7 +3,6 @@
 mod checks;
 mod cli;
 mod demo_level;
-mod gltf_writer;
 mod level_size;
 mod loading;
 mod near_planar;

@@ -3,5 +3,6 @@
 //! (`ui_tests`, with snapshots in `tests/snapshots/`).
 
 mod demo;
+mod shared_scenes;
 mod state_tests;
 mod ui_tests;

@@ -1,5 +1,5 @@
 //! Loading glTF files written here: hierarchy flattening, instancing, negative scale,
-//! materials, textures, cameras, external buffers and the meshopt refusal.
+//! materials, textures, cameras, external buffers and required extensions.
 
 use std::path::Path;
 
@@ -198,15 +198,23 @@ fn glb_loads_the_same_level() {
 }
 
 #[test]
-fn meshopt_compressed_levels_are_refused_clearly() {
+fn required_extensions_that_keep_geometry_load_and_others_are_refused_by_name() {
     let dir = tempfile::tempdir().expect("tempdir");
     let mut gltf = TestGltf::new();
-    gltf.json["extensionsUsed"] = json!(["EXT_meshopt_compression"]);
-    gltf.json["extensionsRequired"] = json!(["EXT_meshopt_compression"]);
+    let harmless = ["KHR_lights_punctual", "KHR_materials_clearcoat", "KHR_texture_transform"];
+    gltf.json["extensionsUsed"] = json!(harmless);
+    gltf.json["extensionsRequired"] = json!(harmless);
+    gltf.json["extensions"] =
+        json!({"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 5.0}]}});
+    check_level(
+        &Level::load_gltf(gltf.write_gltf(dir.path())).expect("lights and materials do not change geometry"),
+    );
+    gltf.json["extensionsUsed"] = json!(["KHR_draco_mesh_compression"]);
+    gltf.json["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
     let err = Level::load_gltf(gltf.write_gltf(dir.path())).expect_err("must refuse");
-    assert!(matches!(err, TestbedError::UnsupportedGltf { .. }), "{err:?}");
+    assert!(matches!(err, TestbedError::Level(ppr_level::LoadError::UnsupportedExtension { .. })), "{err:?}");
     let text = err.to_string();
-    assert!(text.contains("EXT_meshopt_compression") && text.contains("level.gltf"), "{text}");
+    assert!(text.contains("KHR_draco_mesh_compression") && text.contains("level.gltf"), "{text}");
 }
 
 #[test]
@@ -237,5 +245,20 @@ fn cameras_from_names_and_descriptions() {
         "zoom=3",
     ] {
         assert!(parse_camera(bad, ProjectionChoice::default()).is_err(), "{bad} must not parse");
+    }
+}
+
+/// Every shared scene (`../shared/scenes/`) opens in the testbed (and so in `ppr-render`),
+/// as it does in the extractor: both read it through `ppr-level`.
+#[test]
+fn every_shared_scene_opens() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
+    let files = ppr_level::level_files(&dir);
+    assert!(files.len() >= 5, "the shared scenes are missing from {}: {files:?}", dir.display());
+    for path in files {
+        let level = Level::load_gltf(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        level.validate().unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let extracted = ppr_level::load_level(&path).expect("the extractor's view");
+        assert_eq!(level.triangle_count(), extracted.triangles.len(), "{}", path.display());
     }
 }

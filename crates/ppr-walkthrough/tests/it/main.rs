@@ -10,3 +10,4 @@ mod composite;
 mod device_loss;
 mod headless_vs_testbed;
 mod hot_reload;
+mod shared_scenes;

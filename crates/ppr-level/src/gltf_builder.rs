@@ -1,4 +1,6 @@
-//! Builds small glTF files in code (as `.glb`, or `.gltf` + `.bin`) for loader tests.
+//! Small glTF files built in code (as `.glb`, or `.gltf` + `.bin`): what the loader tests
+//! of every tool write their levels with, good and malformed alike (edit [`GltfBuilder::json`]
+//! or [`GltfBuilder::bin`] before packing to break one field).
 
 use std::path::{Path, PathBuf};
 
@@ -15,11 +17,20 @@ pub enum PositionFormat {
 
 /// A glTF document under construction.
 pub struct GltfBuilder {
+    /// The glTF JSON; arrays `nodes`, `meshes`, `materials`, `accessors`, `bufferViews`.
     pub json: Value,
+    /// The one buffer's bytes.
     pub bin: Vec<u8>,
 }
 
+impl Default for GltfBuilder {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
 impl GltfBuilder {
+    /// An empty document with one scene and one buffer (filled when packed).
     pub fn new() -> Self {
         Self {
             json: json!({"asset": {"version": "2.0"}, "scenes": [{"nodes": []}], "scene": 0,
@@ -28,13 +39,17 @@ impl GltfBuilder {
         }
     }
 
-    fn push(&mut self, key: &str, v: Value) -> usize {
-        let arr = self.json[key].as_array_mut().expect("array");
+    fn push_value(&mut self, key: &str, v: Value) -> usize {
+        if !self.json[key].is_array() {
+            self.json[key] = json!([]);
+        }
+        let arr = self.json[key].as_array_mut().expect("made an array above");
         arr.push(v);
         arr.len() - 1
     }
 
-    fn view(&mut self, bytes: &[u8]) -> usize {
+    /// Appends `bytes` (4-byte aligned) as a new buffer view; returns its index.
+    pub fn view(&mut self, bytes: &[u8]) -> usize {
         while !self.bin.len().is_multiple_of(4) {
             self.bin.push(0);
         }
@@ -123,8 +138,21 @@ impl GltfBuilder {
         scale: [f64; 3],
     ) -> usize {
         let n = self.push("nodes", json!({"name": name, "mesh": mesh, "translation": translation, "rotation": rotation, "scale": scale}));
-        self.json["scenes"][0]["nodes"].as_array_mut().expect("array").push(json!(n));
+        self.push_root(n);
         n
+    }
+
+    /// Adds a JSON object to the array `key` (`"accessors"`, `"nodes"`, ...); returns its index.
+    pub fn push(&mut self, key: &str, v: Value) -> usize {
+        self.push_value(key, v)
+    }
+
+    /// Lists node `n` among the scene's root nodes.
+    pub fn push_root(&mut self, n: usize) {
+        if !self.json["scenes"][0]["nodes"].is_array() {
+            self.json["scenes"][0]["nodes"] = json!([]);
+        }
+        self.json["scenes"][0]["nodes"].as_array_mut().expect("made an array above").push(json!(n));
     }
 
     fn finish_buffers(&mut self, uri: Option<&str>) {
@@ -141,7 +169,7 @@ impl GltfBuilder {
     /// The `.glb` bytes.
     pub fn glb(mut self) -> Vec<u8> {
         self.finish_buffers(None);
-        let mut json = serde_json::to_vec(&self.json).expect("json");
+        let mut json = serde_json::to_vec(&self.json).expect("a serde_json::Value always serialises");
         while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
@@ -158,13 +186,16 @@ impl GltfBuilder {
     }
 
     /// Writes `<dir>/<stem>.gltf` and `<dir>/<stem>.bin`; returns the `.gltf` path.
-    pub fn write_gltf(mut self, dir: &Path, stem: &str) -> PathBuf {
+    ///
+    /// # Errors
+    /// When a file cannot be written.
+    pub fn write_gltf(mut self, dir: &Path, stem: &str) -> std::io::Result<PathBuf> {
         let bin_name = format!("{stem}.bin");
         self.finish_buffers(Some(&bin_name));
-        std::fs::write(dir.join(&bin_name), &self.bin).expect("write bin");
+        std::fs::write(dir.join(&bin_name), &self.bin)?;
         let path = dir.join(format!("{stem}.gltf"));
-        std::fs::write(&path, serde_json::to_vec_pretty(&self.json).expect("json")).expect("write gltf");
-        path
+        std::fs::write(&path, serde_json::to_vec_pretty(&self.json).map_err(std::io::Error::other)?)?;
+        Ok(path)
     }
 }
 

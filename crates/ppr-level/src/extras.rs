@@ -1,11 +1,29 @@
-//! Material properties and `extras.ppr` overrides of nodes, meshes and materials.
+//! `extras.ppr` of nodes, meshes and materials: the one reader of the workspace.
 
 use std::path::Path;
 
 use ppr_format::ReflectorKind;
 
-use super::LoadError;
-use crate::level::{MaterialInfo, ReflectorOverride};
+use crate::LoadError;
+
+/// Per node, mesh or material override read from glTF `extras` (`{"ppr": {...}}`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReflectorOverride {
+    /// `"reflector": true|false`: force the triangles in or out of the candidate set.
+    pub reflector: Option<bool>,
+    /// `"kind": "opaque"|"transparent"|"water"`: force the reflector kind.
+    pub kind: Option<ReflectorKind>,
+}
+
+impl ReflectorOverride {
+    /// This override where it says something, else `fallback`.
+    pub fn or(self, fallback: ReflectorOverride) -> ReflectorOverride {
+        ReflectorOverride {
+            reflector: self.reflector.or(fallback.reflector),
+            kind: self.kind.or(fallback.kind),
+        }
+    }
+}
 
 /// Reads `{"ppr": {"reflector": bool, "kind": "..."}}` from a glTF `extras` value.
 /// `owner` names the object for error messages, e.g. `materials[2] ("Glass")`.
@@ -45,33 +63,6 @@ pub(crate) fn display_name(name: Option<&str>, index: usize) -> String {
         Some(n) if !n.is_empty() => n.to_owned(),
         _ => format!("#{index}"),
     }
-}
-
-/// Reads every material of the document; the glTF default material is appended last.
-pub(crate) fn read_materials(path: &Path, doc: &gltf::Document) -> Result<Vec<MaterialInfo>, LoadError> {
-    let mut out = Vec::new();
-    for m in doc.materials() {
-        let index = m.index().unwrap_or(0);
-        let name = display_name(m.name(), index);
-        let pbr = m.pbr_metallic_roughness();
-        let clearcoat = m.extension_value("KHR_materials_clearcoat");
-        let number = |key: &str, default: f64| {
-            clearcoat.and_then(|c| c.get(key)).and_then(serde_json::Value::as_f64).unwrap_or(default)
-        };
-        let owner = format!("materials[{index}] ({name:?})");
-        out.push(MaterialInfo {
-            roughness: f64::from(pbr.roughness_factor()),
-            metallic: f64::from(pbr.metallic_factor()),
-            transmission: m.transmission().map_or(0.0, |t| f64::from(t.transmission_factor())),
-            clearcoat: number("clearcoatFactor", 0.0),
-            clearcoat_roughness: number("clearcoatRoughnessFactor", 0.0),
-            extras: read_override(path, &owner, m.extras())?,
-            normal_map: m.normal_texture().is_some(),
-            name,
-        });
-    }
-    out.push(MaterialInfo::gltf_default());
-    Ok(out)
 }
 
 #[cfg(test)]

@@ -41,7 +41,7 @@ pub enum LoadError {
     },
     /// `extensionsRequired` names an extension this build cannot read.
     #[error(
-        "{}: requires glTF extension `{extension}`, which ppr-extract cannot read (supported: KHR_mesh_quantization, EXT_meshopt_compression, EXT_mesh_gpu_instancing and material/texture extensions)",
+        "{}: requires glTF extension `{extension}`, which the level loader cannot read (supported: KHR_mesh_quantization, EXT_meshopt_compression, EXT_mesh_gpu_instancing, and the light, texture and material extensions that do not change geometry)",
         path.display()
     )]
     UnsupportedExtension {
@@ -61,6 +61,19 @@ pub enum LoadError {
         uri: String,
         /// The I/O error.
         source: std::io::Error,
+    },
+    /// A buffer URI that is not a relative path inside the level's folder (absolute, with a
+    /// `..` component or a scheme), or that names something other than a regular file.
+    #[error("{}: buffers[{index}]: uri `{uri}` refused: {reason}", path.display())]
+    UnsafeUri {
+        /// The glTF file.
+        path: PathBuf,
+        /// Index of the buffer.
+        index: usize,
+        /// The URI as written in the file.
+        uri: String,
+        /// Why it is refused.
+        reason: String,
     },
     /// A buffer is shorter than its `byteLength`, or has no data where data is needed.
     #[error("{}: buffers[{index}]: {reason}", path.display())]
@@ -102,6 +115,37 @@ pub enum LoadError {
         /// Where in it.
         detail: String,
     },
+    /// A world-space vertex farther from the origin than the reflector-set format allows
+    /// (`ppr_format::MAX_COORDINATE` metres on any axis).
+    #[error(
+        "{}: nodes[{node}] ({name:?}): vertex {vertex} lies at {position:?} in world space, beyond the ±{limit} m that reflector sets allow; move the level nearer the origin",
+        path.display()
+    )]
+    PositionOutOfRange {
+        /// The glTF file.
+        path: PathBuf,
+        /// Index of the node that places the vertex.
+        node: usize,
+        /// The node's name, or `#index`.
+        name: String,
+        /// Index of the vertex in its mesh's primitive.
+        vertex: usize,
+        /// Where it lands, metres.
+        position: [f64; 3],
+        /// The limit, metres.
+        limit: f64,
+    },
+    /// The level asks for more than the loader holds (node visits, triangles): the limit
+    /// and what exceeded it are named.
+    #[error("{}: {field}: {reason}", path.display())]
+    TooLarge {
+        /// The glTF file.
+        path: PathBuf,
+        /// What grew too large, e.g. `nodes` or `meshes[3]`.
+        field: String,
+        /// The size and the limit.
+        reason: String,
+    },
     /// `EXT_meshopt_compression` data that the decoder refused.
     #[error("{}: bufferViews[{view}]: EXT_meshopt_compression: {reason}", path.display())]
     Meshopt {
@@ -134,10 +178,13 @@ impl LoadError {
             | Self::Invalid { path, .. }
             | Self::UnsupportedExtension { path, .. }
             | Self::MissingBuffer { path, .. }
+            | Self::UnsafeUri { path, .. }
             | Self::BadBuffer { path, .. }
             | Self::OutOfRange { path, .. }
             | Self::BadAccessor { path, .. }
             | Self::NonFinitePosition { path, .. }
+            | Self::PositionOutOfRange { path, .. }
+            | Self::TooLarge { path, .. }
             | Self::Meshopt { path, .. }
             | Self::BadExtras { path, .. } => path,
         }

@@ -6,8 +6,8 @@ use std::path::Path;
 
 use gltf::accessor::{DataType, Dimensions};
 
-use super::LoadError;
-use super::buffers::BufferData;
+use crate::LoadError;
+use crate::buffers::BufferData;
 
 /// Size in bytes of one component.
 fn component_size(t: DataType) -> usize {
@@ -73,7 +73,8 @@ impl AccessorValues {
     }
 }
 
-/// Reads `accessor` into f64 values (matrices column-major), checking every offset.
+/// Reads `accessor` into f64 values (matrices column-major), checking every offset and
+/// size before the values are allocated.
 pub(crate) fn read_accessor(
     path: &Path,
     data: &BufferData,
@@ -89,7 +90,6 @@ pub(crate) fn read_accessor(
     let elem_size = col_stride * (cols - 1) + rows * csize;
     let components = cols * rows;
     let count = accessor.count();
-    let mut values = vec![0.0; count * components];
     let decode = |bytes: &[u8], out: &mut [f64]| {
         for c in 0..cols {
             for r in 0..rows {
@@ -97,38 +97,60 @@ pub(crate) fn read_accessor(
             }
         }
     };
-    if let Some(view) = accessor.view() {
-        let vb = data.view(&view)?;
-        let stride = vb.stride.unwrap_or(elem_size);
-        let offset = accessor.offset();
-        if stride < elem_size {
-            return Err(LoadError::BadAccessor {
-                path: path.to_owned(),
-                field,
-                reason: format!(
-                    "byteStride {stride} of bufferViews[{}] is smaller than an element ({elem_size} bytes)",
-                    view.index()
-                ),
-            });
-        }
-        if count > 0 {
-            let needed = (count - 1).checked_mul(stride).and_then(|n| n.checked_add(offset + elem_size));
-            if needed.is_none_or(|n| n > vb.bytes.len()) {
-                return Err(LoadError::OutOfRange {
+    let view = match accessor.view() {
+        Some(view) => Some((data.view(&view)?, view.index())),
+        None => None,
+    };
+    let out_of_range =
+        |reason: String| LoadError::OutOfRange { path: path.to_owned(), field: field.clone(), reason };
+    // Every check before the allocation below.
+    let placement = match &view {
+        Some((vb, view_index)) => {
+            let stride = vb.stride.unwrap_or(elem_size);
+            let offset = accessor.offset();
+            if stride < elem_size {
+                return Err(LoadError::BadAccessor {
                     path: path.to_owned(),
                     field,
                     reason: format!(
-                        "{count} elements of {elem_size} bytes (stride {stride}) from byteOffset {offset} need {} bytes but bufferViews[{}] has {}",
-                        needed.map_or_else(|| "too many".to_owned(), |n| n.to_string()),
-                        view.index(),
-                        vb.bytes.len()
+                        "byteStride {stride} of bufferViews[{view_index}] is smaller than an element ({elem_size} bytes)"
                     ),
                 });
             }
+            if count > 0 {
+                let needed = (count - 1)
+                    .checked_mul(stride)
+                    .and_then(|n| n.checked_add(offset))
+                    .and_then(|n| n.checked_add(elem_size));
+                if needed.is_none_or(|n| n > vb.bytes.len()) {
+                    return Err(out_of_range(format!(
+                        "count {count} elements of {elem_size} bytes (stride {stride}) from byteOffset {offset} need {} bytes but bufferViews[{view_index}] has {}",
+                        needed.map_or_else(|| "more than 2^64".to_owned(), |n| n.to_string()),
+                        vb.bytes.len()
+                    )));
+                }
+            }
+            Some((vb.bytes, stride, offset))
         }
+        None => {
+            // Without a buffer view the values are zeros (plus sparse substitutions): the
+            // count alone sets the size, so it is bounded by what the file holds.
+            let limit = data.total_buffer_bytes();
+            if count.checked_mul(elem_size).is_none_or(|n| n > limit) {
+                return Err(out_of_range(format!(
+                    "count {count} elements of {elem_size} bytes without a bufferView exceed the {limit} bytes of the file's buffers"
+                )));
+            }
+            None
+        }
+    };
+    let total =
+        count.checked_mul(components).ok_or_else(|| out_of_range(format!("count {count} overflows")))?;
+    let mut values = vec![0.0; total];
+    if let Some((bytes, stride, offset)) = placement {
         for i in 0..count {
             let at = offset + i * stride;
-            decode(&vb.bytes[at..at + elem_size], &mut values[i * components..(i + 1) * components]);
+            decode(&bytes[at..at + elem_size], &mut values[i * components..(i + 1) * components]);
         }
     }
     if let Some(sparse) = accessor.sparse() {
@@ -163,13 +185,13 @@ fn apply_sparse(
         gltf::accessor::sparse::IndexType::U32 => 4,
     };
     let ioff = idx.offset();
-    if ioff + n * isize > ivb.bytes.len() {
+    if n.checked_mul(isize).and_then(|b| b.checked_add(ioff)).is_none_or(|end| end > ivb.bytes.len()) {
         return Err(out_of_range("indices"));
     }
     let vals = sparse.values();
     let vvb = data.view(&vals.view())?;
     let voff = vals.offset();
-    if voff + n * elem_size > vvb.bytes.len() {
+    if n.checked_mul(elem_size).and_then(|b| b.checked_add(voff)).is_none_or(|end| end > vvb.bytes.len()) {
         return Err(out_of_range("values"));
     }
     for k in 0..n {

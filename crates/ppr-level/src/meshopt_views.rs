@@ -3,7 +3,14 @@
 
 use std::path::Path;
 
-use super::LoadError;
+use crate::LoadError;
+
+/// At most this many decoded bytes per compressed byte. Meshoptimizer's vertex codec (v0,
+/// what `EXT_meshopt_compression` specifies) spends at least 2 header bits per 16 bytes of
+/// a byte channel (64×, reached only by constant data); its index codecs at least one byte
+/// per triangle (12×) or per index (4×). A larger ratio cannot be the encoder's output,
+/// so the view is refused before its output is allocated.
+const MAX_EXPANSION: usize = 64;
 
 /// Decodes the buffer view `view` described by the extension object `ext`.
 /// `buffer(i)` gives the bytes of buffer `i`.
@@ -34,7 +41,13 @@ pub(crate) fn decode_meshopt_view<'a>(
     let size = count
         .checked_mul(stride)
         .filter(|&s| s <= 1 << 31)
-        .ok_or_else(|| fail("count × byteStride is too large".into()))?;
+        .ok_or_else(|| fail(format!("count {count} × byteStride {stride} is too large")))?;
+    if size > src.len().saturating_mul(MAX_EXPANSION).saturating_add(256) {
+        return Err(fail(format!(
+            "count {count} × byteStride {stride} = {size} bytes cannot come from {} compressed bytes (at most {MAX_EXPANSION}× expansion)",
+            src.len()
+        )));
+    }
     // u32 storage keeps the output 4-byte aligned, as the filters require.
     let mut words = vec![0u32; size.div_ceil(4)];
     let dst = words.as_mut_ptr().cast::<std::ffi::c_void>();

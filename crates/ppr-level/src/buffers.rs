@@ -4,11 +4,11 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use base64::Engine as _;
 use gltf::Document;
 
-use super::LoadError;
-use super::meshopt_views::decode_meshopt_view;
+use crate::LoadError;
+use crate::meshopt_views::decode_meshopt_view;
+use crate::uri::{self, FileReadError, UriTarget};
 
 /// The bytes of every buffer, and of every meshopt-compressed buffer view once decoded.
 pub(crate) struct BufferData {
@@ -44,7 +44,7 @@ impl BufferData {
                     None if is_meshopt_fallback(&buffer) => None,
                     None => return Err(bad("has no `uri` and the file has no .glb BIN chunk".into())),
                 },
-                gltf::buffer::Source::Uri(uri) => Some(read_uri(path, index, uri, base_dir)?),
+                gltf::buffer::Source::Uri(uri) => Some(read_uri(path, index, uri, declared, base_dir)?),
             };
             if let Some(data) = &data
                 && data.len() < declared
@@ -97,60 +97,40 @@ impl BufferData {
         })?;
         Ok(ViewBytes { bytes, stride: view.stride() })
     }
+
+    /// The bytes of every buffer together: what the file holds, the bound on what an
+    /// accessor without a buffer view may describe.
+    pub(crate) fn total_buffer_bytes(&self) -> usize {
+        self.buffers.iter().flatten().map(Vec::len).sum()
+    }
 }
 
 fn is_meshopt_fallback(buffer: &gltf::Buffer) -> bool {
     buffer.extension_value("EXT_meshopt_compression").is_some()
 }
 
-fn read_uri(path: &Path, index: usize, uri: &str, base_dir: &Path) -> Result<Vec<u8>, LoadError> {
-    if let Some(rest) = uri.strip_prefix("data:") {
-        let bad = |reason: String| LoadError::BadBuffer { path: path.to_owned(), index, reason };
-        let (_, payload) = rest.split_once(";base64,").ok_or_else(|| bad("data URI is not base64".into()))?;
-        return base64::engine::general_purpose::STANDARD
-            .decode(payload)
-            .map_err(|e| bad(format!("data URI is not valid base64: {e}")));
-    }
-    let decoded = percent_decode(uri);
-    let file = base_dir.join(&decoded);
-    std::fs::read(&file).map_err(|source| LoadError::MissingBuffer {
-        path: path.to_owned(),
-        index,
-        uri: file.display().to_string(),
-        source,
-    })
-}
-
-/// Decodes `%XX` escapes of a relative URI (glTF URIs are RFC 3986).
-fn percent_decode(uri: &str) -> String {
-    let bytes = uri.as_bytes();
-    let mut out = Vec::with_capacity(bytes.len());
-    let mut i = 0;
-    while i < bytes.len() {
-        let hex = |b: u8| (b as char).to_digit(16);
-        if bytes[i] == b'%'
-            && i + 2 < bytes.len()
-            && let (Some(h), Some(l)) = (hex(bytes[i + 1]), hex(bytes[i + 2]))
-        {
-            out.push((h * 16 + l) as u8);
-            i += 3;
-            continue;
+fn read_uri(
+    path: &Path,
+    index: usize,
+    uri: &str,
+    declared: usize,
+    base_dir: &Path,
+) -> Result<Vec<u8>, LoadError> {
+    let unsafe_uri =
+        |reason: String| LoadError::UnsafeUri { path: path.to_owned(), index, uri: uri.to_owned(), reason };
+    let file = match uri::resolve(uri, base_dir).map_err(unsafe_uri)? {
+        UriTarget::Data(bytes) => return Ok(bytes),
+        UriTarget::File(file) => file,
+    };
+    uri::read_prefix(&file, declared as u64).map_err(|e| match e {
+        FileReadError::Io(source) => {
+            LoadError::MissingBuffer { path: path.to_owned(), index, uri: file.display().to_string(), source }
         }
-        out.push(bytes[i]);
-        i += 1;
-    }
-    String::from_utf8_lossy(&out).into_owned()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::percent_decode;
-
-    #[test]
-    fn decodes_percent_escapes() {
-        assert_eq!(percent_decode("my%20level.bin"), "my level.bin");
-        assert_eq!(percent_decode("plain.bin"), "plain.bin");
-        assert_eq!(percent_decode("bad%2"), "bad%2");
-        assert_eq!(percent_decode("end%41"), "endA");
-    }
+        FileReadError::NotAFile => unsafe_uri("it names something other than a regular file".into()),
+        FileReadError::TooShort { len } => LoadError::BadBuffer {
+            path: path.to_owned(),
+            index,
+            reason: format!("byteLength is {declared} but only {len} bytes are there (truncated?)"),
+        },
+    })
 }

@@ -1,0 +1,30 @@
+//! Finding the levels in a folder (`.glb` and `.gltf`, one folder level down too), for
+//! tools and tests that open every level of a collection such as `../shared/scenes/`.
+
+use std::path::{Path, PathBuf};
+
+/// Every `.glb` and `.gltf` file in `dir` and its direct subfolders, sorted by path.
+/// An unreadable folder gives no files.
+pub fn level_files(dir: &Path) -> Vec<PathBuf> {
+    let is_level = |p: &Path| {
+        p.is_file()
+            && p.extension()
+                .and_then(|e| e.to_str())
+                .is_some_and(|e| e.eq_ignore_ascii_case("glb") || e.eq_ignore_ascii_case("gltf"))
+    };
+    let entries = |d: &Path| -> Vec<PathBuf> {
+        std::fs::read_dir(d)
+            .map(|rd| rd.filter_map(|e| e.ok().map(|e| e.path())).collect())
+            .unwrap_or_default()
+    };
+    let mut out = Vec::new();
+    for entry in entries(dir) {
+        if entry.is_dir() {
+            out.extend(entries(&entry).into_iter().filter(|p| is_level(p)));
+        } else if is_level(&entry) {
+            out.push(entry);
+        }
+    }
+    out.sort();
+    out
+}

@@ -1,0 +1,4 @@
+//! `ppr-level`'s integration tests: every shared scene, and malformed files built in code.
+
+mod malformed;
+mod scenes;
