@@ -1,5 +1,6 @@
 // Reflection pass: decode the intermediate buffer, fill holes from the neighbour with the
-// smallest offset, take filtered and unfiltered colour samples and reduce bleeding in
+// smallest offset (a second ring, two pixels away and the pixel above, where the first has
+// no data), take filtered and unfiltered colour samples and reduce bleeding in
 // YCoCg (shading.wgsl). Output: reflected colour, alpha its confidence (shading.wgsl's
 // ppr_confidence: 1 inside the screen, fading towards the borders; 0 where no reflection
 // was found). Seed: PPR_ReflectionPass.
@@ -127,7 +128,15 @@ fn main(
     for (var k = 0u; k < 4u; k++) {
         v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-    let chosen = ppr_choose_value(v, (frame.flags & PPR_FLAG_HOLES) != 0u, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
+    let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
+    var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
+    if (holes && chosen.value == PPR_CLEAR_VALUE) {
+        var w: array<u32, 4>;
+        for (var k = 0u; k < 4u; k++) {
+            w[k] = read_value(vpos + PPR_HOLE_OFFSETS_WIDE[k]);
+        }
+        chosen = ppr_choose_wide(w);
+    }
     var colour = ppr_reflected_colour(vpos, chosen);
     if (NORMAL_MAPS && colour.a > 0.0) {
         colour = normal_mapped(vpos, chosen, colour);

@@ -7,6 +7,11 @@
 // Neighbours read for hole filling, in the seed's order.
 const PPR_HOLE_OFFSETS = array<vec2<i32>, 4>(vec2<i32>(1, 0), vec2<i32>(0, 1), vec2<i32>(1, 1), vec2<i32>(-1, 0));
 
+// Read when the first ring has no data either: the pixel above (the seed reads none) and
+// the pixels two away, so that gaps of two pixels close too (a mirror seen at a steep angle
+// in another mirror spreads one source pixel over several targets).
+const PPR_HOLE_OFFSETS_WIDE = array<vec2<i32>, 4>(vec2<i32>(0, -1), vec2<i32>(2, 0), vec2<i32>(0, 2), vec2<i32>(-2, 0));
+
 // The value a pixel's reflection is computed from, and the neighbour it came from.
 struct PprChosen {
     value: u32,
@@ -45,6 +50,22 @@ fn ppr_choose_value(v: array<u32, 5>, holes: bool, replace_far: bool) -> PprChos
             }
         }
         chosen.value = minv;
+    }
+    return chosen;
+}
+
+// Hole filling's second ring: the neighbour of `w` (at PPR_HOLE_OFFSETS_WIDE) with the
+// smallest offset, the last of equal ones as in the first ring; no data when none has any.
+fn ppr_choose_wide(w: array<u32, 4>) -> PprChosen {
+    var chosen: PprChosen;
+    chosen.value = min(min(w[0], w[1]), min(w[2], w[3]));
+    chosen.holes_offset = vec2<i32>(0);
+    if (chosen.value != PPR_CLEAR_VALUE) {
+        for (var k = 0u; k < 4u; k++) {
+            if (chosen.value == w[k]) {
+                chosen.holes_offset = PPR_HOLE_OFFSETS_WIDE[k];
+            }
+        }
     }
     return chosen;
 }
