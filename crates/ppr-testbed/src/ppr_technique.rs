@@ -152,7 +152,9 @@ impl PprTechnique {
                         sample_count: 1,
                         dimension: wgpu::TextureDimension::D2,
                         format: ppr_runtime::OUTPUT_FORMAT,
-                        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+                        usage: wgpu::TextureUsages::STORAGE_BINDING
+                            | wgpu::TextureUsages::TEXTURE_BINDING
+                            | wgpu::TextureUsages::RENDER_ATTACHMENT,
                         view_formats: &[],
                     })
                     .create_view(&Default::default())
@@ -204,6 +206,24 @@ impl ReflectionTechnique for PprTechnique {
         }
         self.layer_targets(size);
         let targets = self.layer_targets.as_ref().expect("created above");
+        // The runtime writes the layer output only over this frame's layer rectangle (and the
+        // main output only in active tiles with indirect dispatch): cleared every frame, or an
+        // earlier frame's layer reflections would be merged over this one's.
+        for view in [&targets.main, &targets.layer] {
+            encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("testbed ppr target clear"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                ..Default::default()
+            });
+        }
         let frame = FrameInputs {
             normals: inputs.normal,
             layer_output: Some(&targets.layer),
