@@ -33,11 +33,12 @@ fn wall_and_mirror() -> (AnalyticScene, Camera) {
     (s, camera)
 }
 
-/// Whether pixel `i` and its hole-filling neighbours hold no intermediate value.
+/// Whether pixel `i` and its hole-filling neighbours (the seed's four, then the second
+/// ring: the pixel above and those two away) hold no intermediate value.
 fn no_data(frame: &Frame, intermediate: &[u32], i: usize) -> bool {
     let [w, h] = frame.size.map(|v| v as i32);
     let (x, y) = (i as i32 % w, i as i32 / w);
-    [(0, 0), (1, 0), (0, 1), (1, 1), (-1, 0)].iter().all(|(dx, dy)| {
+    [(0, 0), (1, 0), (0, 1), (1, 1), (-1, 0), (0, -1), (2, 0), (0, 2), (-2, 0)].iter().all(|(dx, dy)| {
         let (nx, ny) = (x + dx, y + dy);
         nx < 0
             || ny < 0
