@@ -26,6 +26,7 @@
 //! assert_eq!(set, back);
 //! ```
 
+pub mod edits;
 mod error;
 mod io;
 pub use io::write_atomically;
