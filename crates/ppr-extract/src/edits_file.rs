@@ -29,7 +29,7 @@ pub enum EditsError {
         /// The set it belongs to.
         set: PathBuf,
         /// Why the set cannot be read.
-        source: FormatError,
+        source: Box<FormatError>,
     },
     /// The fresh set with the edits applied breaks an invariant of the format.
     #[error("{}: the fresh set with these manual edits applied is invalid: {source}", edits.display())]
@@ -37,7 +37,7 @@ pub enum EditsError {
         /// The edits file.
         edits: PathBuf,
         /// The format's complaint.
-        source: FormatError,
+        source: Box<FormatError>,
     },
 }
 
@@ -142,13 +142,13 @@ pub fn reapply_edits(
     let current = ReflectorSet::load(set_path).map_err(|source| EditsError::SetUnreadable {
         edits: edits_file.clone(),
         set: set_path.to_owned(),
-        source,
+        source: Box::new(source),
     })?;
     let Some(edits) = load_edits(set_path, &current)? else {
         return Ok((fresh, None));
     };
     let (carried, report) = carry_edits(&current, &Default::default(), &edits, fresh)
-        .map_err(|source| EditsError::Refused { edits: edits_file, source })?;
+        .map_err(|source| EditsError::Refused { edits: edits_file, source: Box::new(source) })?;
     Ok((carried, Some(report)))
 }
 
