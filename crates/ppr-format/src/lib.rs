@@ -32,6 +32,8 @@ mod io;
 pub use io::write_atomically;
 mod reflector;
 mod set;
+mod source_check;
+pub use source_check::SourceMismatch;
 mod validate;
 
 pub use error::{FormatError, InvalidField, ReflectorRef};
