@@ -51,6 +51,7 @@
 pub mod budget;
 pub mod cluster;
 mod connectivity;
+pub mod edits_file;
 mod extract;
 mod extraction;
 pub mod fit;
@@ -58,6 +59,7 @@ pub mod generated_levels;
 pub mod hull;
 mod int_hash;
 mod level;
+pub mod manual_edits;
 pub mod near_planar;
 mod occluder_geometry;
 pub mod occluders;

@@ -9,7 +9,10 @@ use std::time::{Duration, Instant};
 use anyhow::Context as _;
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use ppr_extract::edits_file::{keep_previous, reapply_edits, save_edits};
+use ppr_extract::manual_edits::{EditedSet, ManualEdits};
 use ppr_extract::{CandidateRule, ExtractParams, Stage, extract, load_level, summary::summary_table};
+use ppr_format::edits::edits_path;
 
 /// Exit status: success.
 const EXIT_OK: u8 = 0;
@@ -54,11 +57,21 @@ UNITS:
   at most 128 rectangles in any 10 m cube (the density budget: what a view that sees a
   few rooms can afford; see --max-per-cube).
 
+MANUAL EDITS:
+  When the output set has manual edits beside it (level.ppr.edits.json, written by
+  ppr-inspector), they are re-applied to the fresh extraction, matched by the reflectors'
+  stable ids, and the edits file is rewritten for the new set. Each edit re-applied and each
+  that no longer matches is listed by name; when one no longer matches, the previous set and
+  its edits are kept as level.ppr.previous.json and level.ppr.previous.edits.json. With
+  --ignore-edits the fresh extraction is written as it is, the edits file is removed and
+  the previous set and its edits are kept the same way.
+
 EXIT CODES:
   0  success (the set was written; it may be empty: see the notes)
   1  usage error (bad arguments)
   2  the input cannot be read: missing file, not glTF, truncated .glb, missing external
      buffer, accessor out of range, NaN positions, a required extension it cannot read
+     or the manual edits beside the output (<set>.edits.json) cannot be read or applied
   3  the output cannot be written (nothing partial is left behind)
   4  internal error: the extracted set failed validation (please report it)";
 
@@ -124,6 +137,11 @@ struct Cli {
     /// Most rectangles per region.
     #[arg(long, value_name = "N", default_value_t = ExtractParams::default().max_shapes_per_region)]
     max_shapes_per_region: usize,
+    /// Write the fresh extraction without re-applying the manual edits found beside the
+    /// output (`<set>.edits.json`); the previous set and its edits are kept as
+    /// `<set stem>.previous.json` and `.previous.edits.json`.
+    #[arg(long)]
+    ignore_edits: bool,
     /// No progress bar and no summary (errors still go to stderr).
     #[arg(short, long)]
     quiet: bool,
@@ -207,14 +225,13 @@ fn run(cli: &Cli) -> Result<(), Failure> {
     bar.finish_and_clear();
 
     let started = Instant::now();
-    let text = extraction
-        .set
-        .to_json_string()
-        .context("the extracted set is invalid")
-        .map_err(fail(EXIT_INTERNAL))?;
+    let edited = with_manual_edits(cli, &output, EditedSet::from_extraction(&extraction))?;
+    let text =
+        edited.set.to_json_string().context("the extracted set is invalid").map_err(fail(EXIT_INTERNAL))?;
     ppr_format::write_atomically(&output, text.as_bytes())
         .with_context(|| format!("{}: cannot write", output.display()))
         .map_err(fail(EXIT_OUTPUT))?;
+    save_edits(&output, &edited.edits).map_err(|e| fail(EXIT_OUTPUT)(e.into()))?;
     let write_time = started.elapsed();
 
     if !cli.quiet {
@@ -225,6 +242,48 @@ fn run(cli: &Cli) -> Result<(), Failure> {
         print!("{}", summary_table(&extraction, &timings));
     }
     Ok(())
+}
+
+/// `fresh` with the manual edits beside `output` re-applied (or, with `--ignore-edits`,
+/// unchanged, the previous set kept aside); says on stderr what was and was not applied.
+fn with_manual_edits(cli: &Cli, output: &Path, fresh: EditedSet) -> Result<EditedSet, Failure> {
+    let edits = edits_path(output);
+    if cli.ignore_edits {
+        if edits.exists() {
+            let previous = keep_previous(output).map_err(|e| fail(EXIT_OUTPUT)(e.into()))?;
+            save_edits(output, &ManualEdits::default()).map_err(|e| fail(EXIT_OUTPUT)(e.into()))?;
+            eprintln!(
+                "ppr-extract: --ignore-edits: the manual edits in {} were not applied; the previous set \
+                 and its edits are kept as {}",
+                edits.display(),
+                previous.display()
+            );
+        }
+        return Ok(fresh);
+    }
+    let (carried, report) = reapply_edits(output, fresh)
+        .context("pass --ignore-edits to write the fresh extraction without them")
+        .map_err(fail(EXIT_INPUT))?;
+    let Some(report) = report else {
+        return Ok(carried);
+    };
+    eprintln!("ppr-extract: re-applied {} of the manual edits in {}", report.kept.len(), edits.display());
+    for kept in &report.kept {
+        eprintln!("  re-applied: {kept}");
+    }
+    if !report.not_applicable.is_empty() {
+        let previous = keep_previous(output).map_err(|e| fail(EXIT_OUTPUT)(e.into()))?;
+        for lost in &report.not_applicable {
+            eprintln!("ppr-extract: warning: {lost}");
+        }
+        eprintln!(
+            "ppr-extract: warning: {} manual edit(s) no longer match the level; the previous set and its \
+             edits are kept as {}",
+            report.not_applicable.len(),
+            previous.display()
+        );
+    }
+    Ok(carried)
 }
 
 /// Draws `bar` on stderr from now on.

@@ -26,11 +26,14 @@
 //! assert_eq!(set, back);
 //! ```
 
+pub mod edits;
 mod error;
 mod io;
 pub use io::write_atomically;
 mod reflector;
 mod set;
+mod source_check;
+pub use source_check::SourceMismatch;
 mod validate;
 
 pub use error::{FormatError, InvalidField, ReflectorRef};

@@ -1,27 +1,15 @@
 //! The document the inspector edits: a reflector set, the regions its reflectors were
 //! fitted to, and the record of manual edits; each state carries a revision number.
 
-use std::collections::BTreeMap;
-use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use glam::DVec3;
 use ppr_extract::Extraction;
+use ppr_extract::manual_edits::EditedSet;
 use ppr_format::ReflectorSet;
 
 use crate::manual_edits::ManualEdits;
 
-/// The reflective region a reflector encloses, as the extractor found it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ReflectorRegion {
-    /// World-space vertices of the region's polygons (their outline is not kept).
-    pub points: Vec<DVec3>,
-    /// Reflective area, square metres (coverage × rectangle area at extraction).
-    pub reflective_area: f64,
-}
-
-/// Regions by reflector id; cheap to clone (shared values).
-pub type RegionTable = BTreeMap<u32, Arc<ReflectorRegion>>;
+pub use ppr_extract::manual_edits::{ReflectorRegion, RegionTable};
 
 /// One state of the edited set. States are values: the edit history keeps them whole.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,18 +39,8 @@ impl Document {
 
     /// A document for a fresh extraction: the set and each reflector's region.
     pub fn from_extraction(x: &Extraction) -> Self {
-        let regions = x
-            .set
-            .reflectors
-            .iter()
-            .zip(&x.regions)
-            .map(|(r, points)| {
-                let region =
-                    ReflectorRegion { points: points.clone(), reflective_area: r.coverage * r.area() };
-                (r.id, Arc::new(region))
-            })
-            .collect();
-        Self { set: x.set.clone(), regions, edits: ManualEdits::default(), revision: next_revision() }
+        let fresh = EditedSet::from_extraction(x);
+        Self { set: fresh.set, regions: fresh.regions, edits: fresh.edits, revision: next_revision() }
     }
 
     /// The same content under a new revision number (after a change).

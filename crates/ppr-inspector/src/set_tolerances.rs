@@ -61,16 +61,4 @@ impl SetTolerances {
     }
 }
 
-/// `count` ids unused in `set`, above the largest one in use (31-bit like the extractor's).
-pub fn fresh_ids(set: &ReflectorSet, count: usize) -> Vec<u32> {
-    let used: std::collections::BTreeSet<u32> = set.reflectors.iter().map(|r| r.id).collect();
-    let mut next = set.next_id() & 0x7FFF_FFFF;
-    let mut out = Vec::with_capacity(count);
-    while out.len() < count {
-        if !used.contains(&next) && !out.contains(&next) {
-            out.push(next);
-        }
-        next = (next + 1) & 0x7FFF_FFFF;
-    }
-    out
-}
+pub use ppr_extract::manual_edits::fresh_ids;

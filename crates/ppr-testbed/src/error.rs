@@ -39,6 +39,9 @@ pub enum TestbedError {
     /// The reflector set could not be loaded.
     #[error("reflector set: {0}")]
     ReflectorSet(Box<ppr_format::FormatError>),
+    /// The set was extracted from other bytes than the level's (`source.hash`).
+    #[error("{0}; to render with it anyway, accept the mismatch (ppr-render --accept-level-mismatch)")]
+    SourceMismatch(#[from] ppr_format::SourceMismatch),
     /// A camera description could not be parsed.
     #[error("camera {text:?}: {reason}")]
     CameraSpec { text: String, reason: String },

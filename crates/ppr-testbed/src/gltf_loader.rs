@@ -30,6 +30,7 @@ impl Level {
     /// [`TestbedError::InvalidGltf`] when the scene breaks the level's index invariants.
     pub fn from_scene(scene: &Scene) -> Result<Self, TestbedError> {
         let mut level = Level::new();
+        level.source_hash = scene.hash.clone();
         for t in &scene.textures {
             level.add_texture(LevelTexture {
                 name: t.name.clone(),

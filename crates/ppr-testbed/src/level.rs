@@ -205,6 +205,9 @@ pub struct Level {
     pub cameras: Vec<LevelCamera>,
     /// Things that were skipped while loading (unsupported primitive modes, ...).
     pub warnings: Vec<String>,
+    /// `blake3:<hex>` of the file's bytes (empty for levels built in code), compared with
+    /// a set's `source.hash` ([`ppr_format::ReflectorSet::check_source`]).
+    pub source_hash: String,
 }
 
 impl Level {

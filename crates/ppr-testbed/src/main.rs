@@ -59,6 +59,10 @@ struct Args {
     /// only reflective materials (use with sets extracted with `--all-planar`).
     #[arg(long)]
     mask_any_surface: bool,
+    /// Render even when the set was extracted from other bytes than the level's (its
+    /// `source.hash` differs): a warning instead of an error.
+    #[arg(long)]
+    accept_level_mismatch: bool,
     /// Output frame (PNG); the other files are named after it (frame.reflection.png, ...).
     #[arg(short = 'o', long = "output")]
     output: PathBuf,
@@ -92,6 +96,7 @@ fn main() -> anyhow::Result<()> {
         composite: CompositeParams { reflectivity: args.reflectivity },
         tone_map: if args.reinhard { ToneMap::Reinhard } else { ToneMap::Clamp },
         render: RenderSettings::default(),
+        accept_level_mismatch: args.accept_level_mismatch,
     };
     job.render.mask.require_reflective_material = !args.mask_any_surface;
     let gpu = GpuContext::new_headless().context("creating the GPU context")?;

@@ -43,6 +43,9 @@ pub struct RenderJob {
     pub tone_map: ToneMap,
     /// Lighting, reflector mask and reference tolerances.
     pub render: RenderSettings,
+    /// Render even when the set's `source.hash` is not the level file's (the set was
+    /// extracted from other bytes): a warning in the report instead of an error.
+    pub accept_level_mismatch: bool,
 }
 
 /// The files a job writes, named after its output path `frame.png`.
@@ -108,10 +111,15 @@ pub struct RenderReport {
     pub files: Vec<PathBuf>,
     /// Wall-clock seconds of the whole job (loading included).
     pub seconds: f64,
+    /// What the job accepted but the user should know (a set extracted from other bytes).
+    pub warnings: Vec<String>,
 }
 
 impl std::fmt::Display for RenderReport {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        for w in &self.warnings {
+            writeln!(f, "warning: {w}")?;
+        }
         writeln!(f, "adapter: {}", self.adapter)?;
         writeln!(
             f,
@@ -147,7 +155,9 @@ impl std::fmt::Display for RenderReport {
 /// Runs `job` on `gpu`, with `technique` producing the reflection under test (or none).
 ///
 /// # Errors
-/// Loading the level, the set or the camera, reading back, or writing an image.
+/// Loading the level, the set or the camera, a set extracted from other bytes than the
+/// level's ([`TestbedError::SourceMismatch`], unless `job.accept_level_mismatch`), reading
+/// back, or writing an image.
 pub fn run(
     job: &RenderJob,
     gpu: &GpuContext,
@@ -156,8 +166,15 @@ pub fn run(
     let start = Instant::now();
     let level = Level::load_gltf(&job.level)?;
     let reflectors = ReflectorSet::load(&job.reflectors)?;
+    let mut warnings = Vec::new();
+    match reflectors.check_source(&job.reflectors, &job.level, &level.source_hash) {
+        Ok(()) => {}
+        Err(mismatch) if job.accept_level_mismatch => warnings.push(format!("{mismatch} (accepted)")),
+        Err(mismatch) => return Err(mismatch.into()),
+    }
     let camera = pick_camera(&level, job.camera.as_deref(), job.projection)?;
     let mut report = run_level(job, &level, &reflectors, &camera, gpu, technique)?;
+    report.warnings = warnings;
     report.seconds = start.elapsed().as_secs_f64();
     Ok(report)
 }
@@ -247,6 +264,7 @@ pub fn run_level(
         reflector_pixels,
         files: Vec::new(),
         seconds: 0.0,
+        warnings: Vec::new(),
     };
     if technique.is_some() {
         write(&files.reflection_png, write_png(&files.reflection_png, &raw, job.tone_map))?;

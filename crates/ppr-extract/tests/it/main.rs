@@ -5,6 +5,7 @@ mod cli;
 mod demo_level;
 mod level_size;
 mod loading;
+mod manual_edits;
 mod near_planar;
 mod scaling;
 mod scenes;

@@ -31,6 +31,7 @@ fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
             composite: CompositeParams::default(),
             tone_map: ToneMap::Clamp,
             render: RenderSettings::default(),
+            accept_level_mismatch: false,
         };
         let g = gpu();
         let _guard = g.lock();
@@ -57,4 +58,53 @@ fn ppr_render_job_runs_the_runtime_and_writes_every_file() {
         let holes = report.on_screen_holes.expect("PPR ran");
         assert!(holes < 0.05, "{:.1}% of the on-screen pixels have no reflection", holes * 100.0);
     });
+}
+
+/// A set whose `source.hash` is not the level file's is refused with both names, unless
+/// the job accepts the mismatch (then it is a warning of the report).
+#[test]
+fn a_set_from_other_level_bytes_is_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let level = dir.path().join("demo_room.glb");
+    let assets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets");
+    let mut bytes = std::fs::read(assets.join("demo_room.glb")).expect("demo level");
+    let set_path = dir.path().join("demo_room.ppr.json");
+    let mut set = ppr_format::ReflectorSet::new("demo_room.glb");
+    set.reflectors.push(ppr_format::Reflector::new(
+        0,
+        "floor",
+        ppr_format::ReflectorKind::Opaque,
+        glam::DVec3::ZERO,
+        glam::DVec3::X,
+        glam::DVec3::NEG_Z,
+        glam::DVec2::new(2.0, 2.0),
+    ));
+    // A hash other than the level file's: the set predates a change of the level.
+    set.source.hash = format!("blake3:{}", "0".repeat(64));
+    set.save(&set_path).expect("save");
+    bytes.push(0); // the level changed since
+    std::fs::write(&level, &bytes).expect("write level");
+    let mut job = RenderJob {
+        level: level.clone(),
+        reflectors: set_path.clone(),
+        camera: None,
+        size: [64, 48],
+        projection: ProjectionChoice::default(),
+        output: dir.path().join("frame.png"),
+        composite: CompositeParams::default(),
+        tone_map: ToneMap::Clamp,
+        render: RenderSettings::default(),
+        accept_level_mismatch: false,
+    };
+    let g = gpu();
+    let _guard = g.lock();
+    let err = ppr_testbed::render_job::run(&job, &g.ctx, None).expect_err("refused").to_string();
+    for needle in ["demo_room.ppr.json", "demo_room.glb", "--accept-level-mismatch"] {
+        assert!(err.contains(needle), "{needle} missing from: {err}");
+    }
+    assert!(!job.output.exists(), "nothing rendered");
+    job.accept_level_mismatch = true;
+    let report = ppr_testbed::render_job::run(&job, &g.ctx, None).expect("accepted");
+    assert_eq!(report.warnings.len(), 1, "{:?}", report.warnings);
+    assert!(report.to_string().contains("warning: "));
 }
