@@ -3,7 +3,7 @@
 # shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
 # `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
 # `.gpu/scenes/`) carried; results go to $OUT/results.tar.gz (only 8 files come back from
-# the device, so everything travels as one archive). About 280 s of device time.
+# the device, so everything travels as one archive). About 540 s of device time in all; split it into two calls (profile, scaling and compare; then rooms and collision), as each call may run at most 600 s.
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -20,7 +20,10 @@ step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
   echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"; }
 step profile 70 $B runtime $C --projection-profile --frames 20 --out $R/profile
 step scaling 150 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64 --coverages 0.1,0.2,0.3,0.4,0.5
-T="--technique ppr-raw --technique ppr-holes --technique ppr --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique sspr"
-step compare 130 $B compare $C --out $R/compare --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
-step collision 60 $B compare $C --out $R/collision --scene collision-world --resolution 4k --frames 10 --technique ppr --technique ppr-raw --technique ssr-low --technique exact
+T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique sspr"
+step compare 300 $B compare $C --out $R/compare --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
+# The device answers a command after at most 600 s: the rooms and the real level were a
+# second call of the same script's steps.
+step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
+step collision 150 $B compare $C --out $R/collision --scene collision-world --resolution 4k --frames 10 --technique ppr --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
 tar czf "$OUT/results.tar.gz" -C /tmp results
