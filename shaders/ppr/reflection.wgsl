@@ -5,9 +5,6 @@
 // ppr_confidence: 1 inside the screen, fading towards the borders; 0 where no reflection
 // was found). Seed: PPR_ReflectionPass.
 //
-// Each workgroup first loads its tile's intermediate values with the hole-filling apron into
-// workgroup memory (one barrier).
-//
 // Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
 // empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
 // project, fetch; a 4-tap march toward the reflecting pixel rejects disoccluded samples;
@@ -106,57 +103,37 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
     return flat;
 }
 
-// The tile's intermediate values and the apron the hole filling reads (x from -2 to +17,
-// y from -1 to +17 around the 16x16 tile: both rings of PPR_HOLE_OFFSETS and
-// PPR_HOLE_OFFSETS_WIDE), loaded once per workgroup: each pixel's nine neighbour reads
-// come from workgroup memory instead of nine loads of the buffer.
-const CACHE_W: u32 = 20u;
-const CACHE_H: u32 = 19u;
-var<workgroup> cache: array<u32, 380>;
-
-fn cached(l: vec2<u32>, offset: vec2<i32>) -> u32 {
-    let c = vec2<i32>(l) + vec2<i32>(2, 1) + offset;
-    return cache[u32(c.x) + u32(c.y) * CACHE_W];
-}
-
 @compute @workgroup_size(16, 16)
 fn main(
+    @builtin(global_invocation_id) global_id: vec3<u32>,
     @builtin(local_invocation_id) lid: vec3<u32>,
-    @builtin(local_invocation_index) lindex: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
-    // No early return before the barrier: a workgroup past the active tiles still takes
-    // part in it and writes nothing.
-    var origin = wid.xy * 16u;
-    var in_list = true;
+    var gid = global_id.xy;
     if (INDIRECT) {
         let slot = ppr_active_slot(wid);
-        in_list = slot < active_tiles.count;
+        if (slot >= active_tiles.count) {
+            return;
+        }
         let tiles_x = (frame.size.x + 15u) / 16u;
-        let tile = active_tiles.tiles[min(slot, arrayLength(&active_tiles.tiles) - 1u)];
-        origin = vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u;
+        let tile = active_tiles.tiles[slot];
+        gid = vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy;
     }
-    for (var i = lindex; i < CACHE_W * CACHE_H; i += 256u) {
-        let p = vec2<i32>(origin) + vec2<i32>(i32(i % CACHE_W) - 2, i32(i / CACHE_W) - 1);
-        cache[i] = select(PPR_CLEAR_VALUE, read_value(p), in_list);
-    }
-    workgroupBarrier();
-    let gid = origin + lid.xy;
-    if (!in_list || any(gid >= frame.size)) {
+    if (any(gid >= frame.size)) {
         return;
     }
     let vpos = vec2<i32>(gid);
     var v: array<u32, 5>;
-    v[0] = cached(lid.xy, vec2<i32>(0));
+    v[0] = read_value(vpos);
     for (var k = 0u; k < 4u; k++) {
-        v[k + 1u] = cached(lid.xy, PPR_HOLE_OFFSETS[k]);
+        v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
     let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
     var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     if (holes && chosen.value == PPR_CLEAR_VALUE) {
         var w: array<u32, 4>;
         for (var k = 0u; k < 4u; k++) {
-            w[k] = cached(lid.xy, PPR_HOLE_OFFSETS_WIDE[k]);
+            w[k] = read_value(vpos + PPR_HOLE_OFFSETS_WIDE[k]);
         }
         chosen = ppr_choose_wide(w);
     }

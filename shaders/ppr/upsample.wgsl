@@ -5,9 +5,6 @@
 // between surfaces does not blend their reflections. With none close, the closest sample
 // within 10 % is taken, else the pixel has no reflection (alpha 0).
 //
-// The workgroup's reduced samples and their distances are loaded once into workgroup
-// memory (one barrier).
-//
 // Variants: INDIRECT (reduced tiles not cleared this frame read as empty), LAYERS (the
 // glass and water output: plain bilinear over the layer rectangle, the reflection lies on
 // the panel, not on the depth buffer's surface).
@@ -39,52 +36,19 @@ fn reduced_sample(q: vec2<i32>) -> vec4<f32> {
     return textureLoad(reduced_output, q, 0);
 }
 
-// The reduced samples the workgroup's 16x16 output pixels blend (at half resolution a
-// 9x9 square, at quarter 5x5; 12x12 leaves room for odd sizes), each with its surface's
-// camera distance (negative: no valid depth), loaded once per workgroup instead of four
-// times per output pixel.
-const CACHE_EDGE: i32 = 12;
-var<workgroup> cache_sample: array<vec4<f32>, 144>;
-var<workgroup> cache_distance: array<f32, 144>;
-
 @compute @workgroup_size(16, 16)
-fn main(
-    @builtin(local_invocation_id) lid: vec3<u32>,
-    @builtin(local_invocation_index) lindex: u32,
-    @builtin(workgroup_id) wid: vec3<u32>,
-) {
+fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     let full = vec2<f32>(textureDimensions(output));
     let scale = frame.resolution.xy / full;
     var lo = vec2<i32>(0);
     var hi = vec2<i32>(frame.size) - 1;
-    var origin = vec2<i32>(wid.xy * 16u);
+    var p = vec2<i32>(gid.xy);
     if (LAYERS) {
         // The layer rectangle in reduced pixels, and the output pixels it covers.
         lo = vec2<i32>(frame.layer_origin);
         hi = lo + vec2<i32>(frame.layer_extent) - 1;
-        origin += vec2<i32>(floor(vec2<f32>(lo) / scale));
+        p += vec2<i32>(floor(vec2<f32>(lo) / scale));
     }
-    // The first reduced sample of the workgroup's first output pixel.
-    let cache_origin = vec2<i32>(floor((vec2<f32>(origin) + 0.5) * scale - 0.5));
-    for (var i = i32(lindex); i < CACHE_EDGE * CACHE_EDGE; i += 256) {
-        let q = clamp(cache_origin + vec2<i32>(i % CACHE_EDGE, i / CACHE_EDGE), lo, max(hi, lo));
-        var s = vec4<f32>(0.0);
-        var distance = -1.0;
-        if (all(hi >= lo)) {
-            s = reduced_sample(q);
-            if (!LAYERS && s.a > 0.0) {
-                let dq = textureLoad(reduced_depth, q, 0).r;
-                if (ppr_is_valid_depth(dq)) {
-                    distance = distance_at(vec2<f32>(q) + 0.5, dq, frame.resolution.xy);
-                }
-            }
-        }
-        cache_sample[i] = s;
-        cache_distance[i] = distance;
-    }
-    workgroupBarrier();
-
-    let p = origin + vec2<i32>(lid.xy);
     if (any(vec2<f32>(p) >= full) || any(hi < lo)) {
         return;
     }
@@ -111,20 +75,19 @@ fn main(
     var best_rel = 0.1;
     for (var k = 0; k < 4; k++) {
         let o = vec2<i32>(k & 1, k >> 1);
-        let c = base + o - cache_origin;
-        let at = c.x + c.y * CACHE_EDGE;
-        let s = cache_sample[at];
+        let q = clamp(base + o, lo, hi);
+        let s = reduced_sample(q);
         if (!(s.a > 0.0)) {
             continue;
         }
         let w_bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
         var w = w_bilinear + 1.0e-6;
         if (!LAYERS) {
-            let dq = cache_distance[at];
-            if (!(dq >= 0.0)) {
+            let dq = textureLoad(reduced_depth, q, 0).r;
+            if (!ppr_is_valid_depth(dq)) {
                 continue;
             }
-            let rel = abs(dq - own) / own;
+            let rel = abs(distance_at(vec2<f32>(q) + 0.5, dq, frame.resolution.xy) - own) / own;
             // Full weight within 1 % of the pixel's distance, none beyond 2 %.
             w *= saturate(2.0 - rel * 100.0);
             if (rel < best_rel) {
