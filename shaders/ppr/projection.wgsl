@@ -285,6 +285,10 @@ fn quad_plane(q: Quad, pl: vec4<f32>) -> vec4<f32> {
 // rectangle (in front of the plane by more than the tolerance, inside the pyramid), else -1.
 fn quad_test(q: Quad, t: ShapeTest) -> vec4<f32> {
     let dist = quad_plane(q, t.plane);
+    // The pyramid's sides only for a thread with some pixel in front of the plane.
+    if (!any(q.tolerance > vec4<f32>(0.0) & dist > q.tolerance)) {
+        return vec4<f32>(-1.0);
+    }
     let inside = min(
         min(quad_plane(q, t.side0), quad_plane(q, t.side1)),
         min(quad_plane(q, t.side2), quad_plane(q, t.side3)),
