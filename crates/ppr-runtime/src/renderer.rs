@@ -635,7 +635,7 @@ impl ReflectionRenderer {
     }
 
     /// The super-tile counts and lists of the last frame that built them (layout in
-    /// `shaders/ppr/super_tile_lists.wgsl`), for debug views and tests.
+    /// `crates/ppr-runtime/shaders/super_tile_lists.wgsl`), for debug views and tests.
     pub fn super_tile_lists_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().map(|b| &b.super_lists)
     }

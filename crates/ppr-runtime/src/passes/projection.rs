@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/projection.wgsl");
 
 /// Edge of the pixel block one workgroup projects (`BLOCK_SIZE` of `tile_test.wgsl`):
 /// 16 × 16 threads, four pixels each.
