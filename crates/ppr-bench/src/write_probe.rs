@@ -30,17 +30,28 @@ enum Writer {
 }
 
 const VARIANTS: [(&str, Writer); 12] = [
-    ("compute 16x16, rgba16float", Writer::Compute { wg: [16, 16], per: 1, format: F16, render_usage: false }),
+    (
+        "compute 16x16, rgba16float",
+        Writer::Compute { wg: [16, 16], per: 1, format: F16, render_usage: false },
+    ),
     ("compute 8x8, rgba16float", Writer::Compute { wg: [8, 8], per: 1, format: F16, render_usage: false }),
     ("compute 32x8, rgba16float", Writer::Compute { wg: [32, 8], per: 1, format: F16, render_usage: false }),
-    ("compute 16x16, 2x2 px/thread", Writer::Compute { wg: [16, 16], per: 2, format: F16, render_usage: false }),
+    (
+        "compute 16x16, 2x2 px/thread",
+        Writer::Compute { wg: [16, 16], per: 2, format: F16, render_usage: false },
+    ),
     (
         "compute 16x16, rgba16float + render usage",
         Writer::Compute { wg: [16, 16], per: 1, format: F16, render_usage: true },
     ),
     (
         "compute 16x16, rgba8unorm",
-        Writer::Compute { wg: [16, 16], per: 1, format: wgpu::TextureFormat::Rgba8Unorm, render_usage: false },
+        Writer::Compute {
+            wg: [16, 16],
+            per: 1,
+            format: wgpu::TextureFormat::Rgba8Unorm,
+            render_usage: false,
+        },
     ),
     (
         "compute 16x16, r32uint",
@@ -58,7 +69,9 @@ const F16: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 fn compute_wgsl(wg: [u32; 2], per: u32, format: wgpu::TextureFormat) -> String {
     let (fmt, value) = match format {
         wgpu::TextureFormat::R32Uint => ("r32uint", "vec4<u32>(p.x ^ p.y, 0u, 0u, 0u)"),
-        wgpu::TextureFormat::Rgba8Unorm => ("rgba8unorm", "vec4<f32>(vec2<f32>(p & vec2<u32>(255u)) / 255.0, 0.5, 1.0)"),
+        wgpu::TextureFormat::Rgba8Unorm => {
+            ("rgba8unorm", "vec4<f32>(vec2<f32>(p & vec2<u32>(255u)) / 255.0, 0.5, 1.0)")
+        }
         _ => ("rgba16float", "vec4<f32>(vec2<f32>(p) * 1e-3, 0.5, 1.0)"),
     };
     format!(
@@ -146,10 +159,17 @@ pub fn run_write_probe(
         count: 2,
     });
     let buffer = |label: &str, size: u64, usage| {
-        device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size, usage, mapped_at_creation: false })
+        device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some(label),
+            size,
+            usage,
+            mapped_at_creation: false,
+        })
     };
-    let resolve = buffer("write probe resolve", 16, wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC);
-    let readback = buffer("write probe readback", 16, wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
+    let resolve =
+        buffer("write probe resolve", 16, wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC);
+    let readback =
+        buffer("write probe readback", 16, wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST);
     let period = f64::from(queue.get_timestamp_period());
     let pixels = u64::from(size[0]) * u64::from(size[1]);
     let texture = |format: wgpu::TextureFormat, usage| {
@@ -184,7 +204,10 @@ pub fn run_write_probe(
                 let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                     label: Some(variant),
                     layout: &pipeline.get_bind_group_layout(0),
-                    entries: &[wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) }],
+                    entries: &[wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: wgpu::BindingResource::TextureView(&view),
+                    }],
                 });
                 let groups = [size[0].div_ceil(wg[0] * per), size[1].div_ceil(wg[1] * per)];
                 record = Box::new(move |encoder, writes| {
@@ -200,7 +223,8 @@ pub fn run_write_probe(
             Writer::Buffer => {
                 bytes = pixels * 8;
                 let out = buffer("write probe buffer", bytes, wgpu::BufferUsages::STORAGE);
-                let uniform = buffer("write probe size", 8, wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST);
+                let uniform =
+                    buffer("write probe size", 8, wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST);
                 queue.write_buffer(&uniform, 0, bytemuck::cast_slice(&size));
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(variant),
@@ -229,10 +253,16 @@ pub fn run_write_probe(
             }
             Writer::ReadWrite { per, reads } => {
                 bytes = pixels * (8 + 4);
-                let view = texture(F16, wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING)
-                    .create_view(&Default::default());
-                let values = buffer("write probe values", pixels * 4, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST);
-                let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(variant) });
+                let view =
+                    texture(F16, wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING)
+                        .create_view(&Default::default());
+                let values = buffer(
+                    "write probe values",
+                    pixels * 4,
+                    wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                );
+                let mut encoder =
+                    device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some(variant) });
                 encoder.clear_buffer(&values, 0, None);
                 queue.submit([encoder.finish()]);
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
@@ -244,7 +274,10 @@ pub fn run_write_probe(
                     label: Some(variant),
                     layout: &pipeline.get_bind_group_layout(0),
                     entries: &[
-                        wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&view) },
+                        wgpu::BindGroupEntry {
+                            binding: 0,
+                            resource: wgpu::BindingResource::TextureView(&view),
+                        },
                         wgpu::BindGroupEntry { binding: 1, resource: values.as_entire_binding() },
                     ],
                 });
@@ -261,8 +294,11 @@ pub fn run_write_probe(
             }
             Writer::Fragment => {
                 bytes = pixels * 8;
-                let view = texture(F16, wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING)
-                    .create_view(&Default::default());
+                let view = texture(
+                    F16,
+                    wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING,
+                )
+                .create_view(&Default::default());
                 let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(variant),
                     source: wgpu::ShaderSource::Wgsl(FRAGMENT_WGSL.into()),
@@ -338,7 +374,11 @@ pub fn run_write_probe(
     rows
 }
 
-fn compute_pipeline(device: &wgpu::Device, module: &wgpu::ShaderModule, label: &str) -> wgpu::ComputePipeline {
+fn compute_pipeline(
+    device: &wgpu::Device,
+    module: &wgpu::ShaderModule,
+    label: &str,
+) -> wgpu::ComputePipeline {
     device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
         label: Some(label),
         layout: None,

@@ -287,9 +287,7 @@ impl FramePlan {
         plan.super_tiles = plan.tile_culling
             && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
         plan.parallel_rule = params.parallel_rule.decide(false);
-        plan.uniform_tests = params
-            .uniform_tests
-            .decide(true)
+        plan.uniform_tests = params.uniform_tests.decide(true)
             && plan.visible.len() + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         if params.source_boxes.decide(true) {

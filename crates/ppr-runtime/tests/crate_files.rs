@@ -38,9 +38,9 @@ fn every_included_file_lies_inside_its_crate() {
             let text = std::fs::read_to_string(&file).expect("readable source");
             for rel in included(&text) {
                 let target = file.parent().expect("file in a directory").join(&rel);
-                let resolved = target
-                    .canonicalize()
-                    .unwrap_or_else(|e| panic!("{}: include_str!(\"{rel}\") does not resolve: {e}", file.display()));
+                let resolved = target.canonicalize().unwrap_or_else(|e| {
+                    panic!("{}: include_str!(\"{rel}\") does not resolve: {e}", file.display())
+                });
                 assert!(
                     resolved.starts_with(&root),
                     "{}: include_str!(\"{rel}\") reads {} outside {}",
