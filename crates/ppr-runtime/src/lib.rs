@@ -40,7 +40,7 @@ pub mod source_box;
 #[doc(hidden)]
 pub mod timestamps;
 
-pub use camera::{Camera, DepthMode, Projection};
+pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
 pub use passes::projection::Ablation;
 pub use passes::reflection::OUTPUT_FORMAT;
