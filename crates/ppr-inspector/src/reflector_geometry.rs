@@ -123,7 +123,7 @@ pub fn split(
     let hull = region.map(|g| {
         let flat = convex_hull(&g.points.iter().map(|&p| local2(r, p)).collect::<Vec<_>>());
         let spatial = flat.iter().map(|&q| lift2(r, q)).collect();
-        Polygon { flat, spatial }
+        Polygon { flat, spatial, roughness: r.roughness }
     });
     let mut parts = Vec::with_capacity(2);
     for (k, (lo, hi)) in sides.into_iter().enumerate() {
