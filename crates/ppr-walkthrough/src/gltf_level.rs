@@ -133,6 +133,8 @@ pub struct LevelData {
     pub textures: Vec<Texture>,
     pub instances: Vec<Instance>,
     pub cameras: Vec<LevelCamera>,
+    /// `blake3:<hex>` of the file's bytes (what a reflector set's `source.hash` records).
+    pub source_hash: String,
     /// Things skipped while loading (non-triangle primitives, unsupported images).
     pub warnings: Vec<String>,
 }
@@ -151,6 +153,7 @@ impl LevelData {
                 .map(|t| Texture { width: t.width, height: t.height, rgba8: t.rgba8 })
                 .collect(),
             warnings: scene.notes,
+            source_hash: scene.hash,
             ..LevelData::default()
         };
         level.materials = scene.materials.iter().map(material).collect();

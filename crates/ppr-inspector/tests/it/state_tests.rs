@@ -397,3 +397,39 @@ fn manual_edits_survive_save_reopen_and_reextraction() {
         broken.messages.entries().iter().find(|m| m.severity == Severity::Warning).expect("a warning");
     assert!(warning.text.contains("room.ppr.edits.json"), "{}", warning.text);
 }
+
+#[test]
+fn a_set_of_another_level_opens_with_a_warning_naming_both_files() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("other.ppr.json");
+    let mut doc = demo_document(&ExtractParams::no_split());
+    doc.set.source.hash = format!("blake3:{}", "0".repeat(64));
+    doc.set.save(&path).expect("saved");
+    let mismatch_warnings = |state: &InspectorState| {
+        let warnings = state.messages.entries().iter().filter(|m| m.severity == Severity::Warning);
+        warnings.filter(|m| m.text.contains("other.ppr.json") && m.text.contains("demo_room.glb")).count()
+    };
+
+    // The set first, the level loading in the background: the warning comes once it is loaded.
+    let mut state = InspectorState::default();
+    state.open_level(&demo_level_path(), Some(&path));
+    assert!(state.wait_for_job(Duration::from_secs(120)));
+    assert_eq!(mismatch_warnings(&state), 1, "{:?}", state.messages.entries());
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "the artist may go on");
+
+    // The level loaded, then the set opened: warned at once.
+    state.open_set(&path);
+    assert_eq!(mismatch_warnings(&state), 2, "{:?}", state.messages.entries());
+
+    // The set of this very level: no warning.
+    let matching = dir.path().join("room.ppr.json");
+    demo_document(&ExtractParams::no_split()).set.save(&matching).expect("saved");
+    let mut state = InspectorState::default();
+    state.open_level(&demo_level_path(), Some(&matching));
+    assert!(state.wait_for_job(Duration::from_secs(120)));
+    assert!(
+        state.messages.entries().iter().all(|m| !m.text.contains("differs")),
+        "{:?}",
+        state.messages.entries()
+    );
+}
