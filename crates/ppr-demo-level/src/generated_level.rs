@@ -1,11 +1,11 @@
-//! The generator's output in memory: the `.glb` bytes and the ground-truth JSON text.
+//! The generator's output in memory: the `.glb` bytes (packed by `gltf::binary::Glb`) and
+//! the ground-truth JSON text.
 
 use std::path::Path;
 
 use anyhow::{Context, Result};
 
 use crate::demo_room::build_demo_room;
-use crate::glb_container::pack_glb;
 use crate::ground_truth::expected_level;
 use crate::json_layout::inline_number_arrays;
 
@@ -28,7 +28,13 @@ impl GeneratedLevel {
         let json = serde_json::to_vec(&document).context("serialising the glTF document")?;
         let expected = expected_level(&room.builder, LEVEL_FILE, &room.reflectors, &room.non_reflectors)?;
         let pretty = serde_json::to_string_pretty(&expected).context("serialising the ground truth")?;
-        Ok(Self { glb: pack_glb(&json, &bin), expected_json: inline_number_arrays(&pretty) })
+        let glb = gltf::binary::Glb {
+            header: gltf::binary::Header { magic: *b"glTF", version: 2, length: 0 },
+            json: json.into(),
+            bin: Some(bin.into()),
+        };
+        let glb = glb.to_vec().context("packing the GLB container")?;
+        Ok(Self { glb, expected_json: inline_number_arrays(&pretty) })
     }
 
     /// Writes `demo_room.glb` and `demo_room.expected.json` into `directory`.

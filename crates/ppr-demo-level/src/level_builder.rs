@@ -5,7 +5,7 @@ use glam::{DMat4, DQuat, DVec3};
 use crate::exact_trig::look_at_rotation;
 use crate::gltf_document as gltf;
 use crate::mesh_data::MeshData;
-use crate::png_encoder::RgbImage;
+use crate::png_encoder::{RgbImage, png_bytes};
 
 /// Index of a texture of the level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -168,7 +168,7 @@ impl LevelBuilder {
     /// Embeds `image` as a PNG in the buffer and returns a texture (linear, mipmapped,
     /// repeating) that samples it.
     pub fn add_texture(&mut self, name: &'static str, image: &RgbImage) -> TextureId {
-        let view = self.push_view(&image.to_png(), None);
+        let view = self.push_view(&png_bytes(image), None);
         self.images.push(gltf::Image { name: name.to_owned(), buffer_view: view, mime_type: "image/png" });
         self.textures.push(gltf::Texture {
             name: name.to_owned(),

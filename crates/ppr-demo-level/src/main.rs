@@ -45,7 +45,6 @@ mod demo_materials;
 mod demo_room;
 mod exact_trig;
 mod generated_level;
-mod glb_container;
 mod gltf_document;
 mod ground_truth;
 mod json_layout;

@@ -1,6 +1,6 @@
 //! The level's two procedurally generated base-colour textures: floor tiles and bricks.
 
-use crate::png_encoder::RgbImage;
+use image::{Rgb, RgbImage};
 
 /// Side of both textures, pixels.
 pub const TEXTURE_SIZE: u32 = 128;
@@ -12,11 +12,11 @@ pub fn floor_tiles() -> RgbImage {
     RgbImage::from_fn(TEXTURE_SIZE, TEXTURE_SIZE, |x, y| {
         let (tx, ty) = (x % tile, y % tile);
         if tx < 2 || ty < 2 {
-            return [70, 70, 72];
+            return Rgb([70, 70, 72]);
         }
         let light = (x / tile + y / tile).is_multiple_of(2);
         let base: [u8; 3] = if light { [206, 204, 198] } else { [128, 130, 134] };
-        shade(base, speckle(x, y, 1), 6)
+        Rgb(shade(base, speckle(x, y, 1), 6))
     })
 }
 
@@ -29,11 +29,11 @@ pub fn bricks() -> RgbImage {
         let row = y / course;
         let shifted_x = (x + (row % 2) * brick / 2) % TEXTURE_SIZE;
         if y % course < 2 || shifted_x % brick < 2 {
-            return shade([196, 190, 178], speckle(x, y, 2), 4);
+            return Rgb(shade([196, 190, 178], speckle(x, y, 2), 4));
         }
         let brick_id = row * 2 + shifted_x / brick;
         let per_brick = speckle(brick_id, 97, 3);
-        shade(shade([150, 68, 48], per_brick, 18), speckle(x, y, 4), 5)
+        Rgb(shade(shade([150, 68, 48], per_brick, 18), speckle(x, y, 4), 5))
     })
 }
 

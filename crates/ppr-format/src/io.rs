@@ -1,9 +1,12 @@
 //! Reading and writing reflector sets as JSON text and files (writes are atomic).
 
-use std::io::Write;
 use std::path::Path;
 
+<<<<<<< HEAD
 use crate::{FORMAT_NAME, FormatError, ReflectorSet};
+=======
+use crate::{FORMAT_NAME, FORMAT_VERSION, FormatError, ReflectorSet, write_atomically};
+>>>>>>> tools
 
 impl ReflectorSet {
     /// Parses and validates a set from JSON text.
@@ -45,9 +48,10 @@ impl ReflectorSet {
         Self::from_json_str(&text).map_err(|e| e.in_file(path))
     }
 
-    /// Validates the set and writes it to `path` atomically: the text goes to a temporary
-    /// file in the same directory, which is then renamed over `path`. On failure `path` is
-    /// left as it was and no temporary file remains.
+    /// Validates the set and writes it to `path` atomically ([`write_atomically`]): the
+    /// text goes to a temporary file beside the file (beside a symlink's target, so the link
+    /// stays), which gets the old file's permissions and is renamed over it. On failure
+    /// `path` is left as it was and no temporary file remains.
     ///
     /// # Errors
     /// Validation errors (nothing is written) or [`FormatError::Write`].
@@ -57,22 +61,6 @@ impl ReflectorSet {
         write_atomically(path, text.as_bytes())
             .map_err(|source| FormatError::Write { path: path.to_owned(), source })
     }
-}
-
-/// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
-///
-/// # Errors
-/// Any I/O error; the temporary file is removed and `path` is untouched.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    let mut tmp = tempfile::Builder::new().prefix(".ppr-").suffix(".tmp").tempfile_in(dir)?;
-    tmp.write_all(bytes)?;
-    tmp.as_file().sync_all()?;
-    tmp.persist(path).map_err(|e| e.error)?;
-    Ok(())
 }
 
 fn check_header(value: &serde_json::Value) -> Result<(), FormatError> {

@@ -31,10 +31,11 @@
 //! assert_eq!(set, back);
 //! ```
 
+mod atomic_write;
+pub use atomic_write::write_atomically;
 pub mod edits;
 mod error;
 mod io;
-pub use io::write_atomically;
 mod reflector;
 mod set;
 mod source_check;

@@ -239,11 +239,26 @@ impl InspectorState {
                 self.set_path = Some(path.to_owned());
                 self.selection = None;
                 self.history.clear();
+                self.warn_if_other_level();
             }
             Err(e) => {
                 let field = e.field_path().map(|f| format!(" (field `{f}`)")).unwrap_or_default();
                 self.messages.error(format!("cannot open the set: {e}{field}"));
             }
+        }
+    }
+
+    /// Warns when the opened set was extracted from other bytes than the loaded level's
+    /// (`source.hash`); the artist may go on editing. Checked once both are there.
+    fn warn_if_other_level(&mut self) {
+        let (Some(doc), Some(set_path), Some(level)) = (&self.doc, &self.set_path, &self.level) else {
+            return;
+        };
+        let Some(extract) = &level.extract else { return };
+        if let Err(mismatch) = doc.set.check_source(set_path, &level.path, &extract.hash) {
+            self.messages.warning(format!(
+                "{mismatch}. You may go on editing; re-extracting keeps your manual edits that still apply"
+            ));
         }
     }
 
@@ -339,6 +354,9 @@ impl InspectorState {
                 self.view_from(first);
             }
             self.level_generation += 1;
+        }
+        if self.job_purpose == JobPurpose::Open {
+            self.warn_if_other_level();
         }
     }
 

@@ -12,7 +12,7 @@ use ppr_testbed::metrics::{ImageComparison, compare};
 use ppr_testbed::readback::read_rgba_f32;
 use ppr_testbed::render_job::hole_share;
 use ppr_testbed::technique::{REFLECTION_FORMAT, ReflectionInputs, ReflectionTechnique};
-use ppr_testbed::{FrameImages, Level, LevelRenderer, PprTechnique};
+use ppr_testbed::{FrameImages, Level, LevelRenderer, PprTechnique, clear_target};
 
 use crate::error::InspectorError;
 use crate::preview::{PreviewMode, PreviewSettings};
@@ -148,7 +148,7 @@ impl ViewportRenderer {
 
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("inspector frame") });
-        clear(&mut encoder, &targets.reflection.view);
+        clear_target(&mut encoder, &targets.reflection.view, "inspector reflection clear");
         self.level.encode_gbuffer(&mut encoder);
         {
             let inputs = ReflectionInputs::from_gbuffer(self.level.gbuffer(), &targets.reflection.view);
@@ -200,26 +200,6 @@ impl ViewportRenderer {
         let image = ColorImage::from_rgb([size[0] as usize, size[1] as usize], rgb.as_raw());
         Ok(PreviewFrame { image, plan, timings, passes_recorded, timestamps, quality })
     }
-}
-
-/// Clears the reflection target (PPR writes only where the plan's passes run).
-fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
-    let _pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("inspector reflection clear"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations {
-                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                store: wgpu::StoreOp::Store,
-            },
-        })],
-        depth_stencil_attachment: None,
-        timestamp_writes: None,
-        occlusion_query_set: None,
-        multiview_mask: None,
-    });
 }
 
 /// Runs `work` with the device's validation and out-of-memory errors caught: they become

@@ -83,6 +83,31 @@ impl Material {
             ppr: ReflectorOverride::default(),
         }
     }
+
+    /// A lit, single-sided, rough dielectric of the given linear colour (for levels built
+    /// in code: tests, generated benchmark levels).
+    pub fn matte(name: impl Into<String>, color: [f32; 3]) -> Self {
+        Self {
+            name: name.into(),
+            base_color: [color[0], color[1], color[2], 1.0],
+            metallic: 0.0,
+            roughness: 0.9,
+            ..Self::gltf_default()
+        }
+    }
+
+    /// A polished (roughness 0.05), single-sided dielectric of the given linear colour: a
+    /// mirror-like surface for levels built in code.
+    pub fn polished(name: impl Into<String>, color: [f32; 3]) -> Self {
+        Self { roughness: 0.05, ..Self::matte(name, color) }
+    }
+}
+
+impl Default for Material {
+    /// [`Material::gltf_default`].
+    fn default() -> Self {
+        Self::gltf_default()
+    }
 }
 
 /// Reads every material of the document and appends the glTF default material last.

@@ -7,13 +7,12 @@ use std::path::Path;
 use ppr_level::{CameraProjection, LoadParams, Scene};
 
 use crate::TestbedError;
-use crate::level::{Level, LevelCamera, LevelTexture, Material, Mesh, MeshInstance, MeshPrimitive};
+use crate::level::{Level, LevelCamera, LevelTexture, Mesh, MeshInstance, MeshPrimitive};
 
 impl Level {
     /// Loads the default scene (or the first) of a glTF file through `ppr-level`.
     ///
-    /// Materials keep base colour factor and texture, roughness, metallic, transmission,
-    /// unlit, double-sidedness and `extras.ppr.reflector`; what the loader skipped (point
+    /// Materials are `ppr-level`'s, whole; what the loader skipped (point
     /// and line primitives, textures that do not decode, orthographic cameras) is in
     /// [`Level::warnings`].
     ///
@@ -40,18 +39,7 @@ impl Level {
             });
         }
         for m in &scene.materials {
-            level.add_material(Material {
-                name: m.name.clone(),
-                base_color: m.base_color,
-                base_color_texture: m.base_color_texture,
-                emissive: m.emissive,
-                roughness: m.roughness,
-                metallic: m.metallic,
-                transmission: m.transmission,
-                unlit: m.unlit,
-                double_sided: m.double_sided,
-                reflector_hint: m.ppr.reflector,
-            });
+            level.add_material(m.clone());
         }
         for mesh in &scene.meshes {
             level.add_mesh(Mesh {

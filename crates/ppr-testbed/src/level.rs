@@ -8,6 +8,9 @@
 use glam::{DMat4, DVec3, Quat, Vec3};
 use ppr_runtime::{Camera, Projection};
 
+/// A material as `ppr-level` reads it (the G-buffer pass uses its base colour and texture,
+/// emissive, roughness, metallic, transmission, unlit, double-sidedness and `extras.ppr`).
+pub use ppr_level::Material;
 /// One vertex as the G-buffer pass reads it (32 bytes, interleaved): `ppr-level`'s.
 pub use ppr_level::Vertex;
 
@@ -31,76 +34,16 @@ pub struct Mesh {
     pub primitives: Vec<MeshPrimitive>,
 }
 
-/// How a material is shaded in the G-buffer pass (a subset of glTF's metallic-roughness).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Material {
-    /// Name from the file (or `#index`).
-    pub name: String,
-    /// Linear base colour factor (RGBA).
-    pub base_color: [f32; 4],
-    /// Index into [`Level::textures`] of the sRGB base colour texture (UV set 0).
-    pub base_color_texture: Option<usize>,
-    /// Linear emissive colour, added after lighting.
-    pub emissive: [f32; 3],
-    /// Perceptual roughness in `[0, 1]`.
-    pub roughness: f32,
-    /// Metalness in `[0, 1]`.
-    pub metallic: f32,
-    /// `KHR_materials_transmission` factor in `[0, 1]` (0 when absent).
-    pub transmission: f32,
-    /// `KHR_materials_unlit`: the base colour is written as is.
-    pub unlit: bool,
-    /// Both faces are drawn (no back-face culling).
-    pub double_sided: bool,
-    /// `extras.ppr.reflector` of the material, if set: overrides [`Material::is_reflective`].
-    pub reflector_hint: Option<bool>,
-}
-
-impl Default for Material {
-    /// glTF's default material: white, fully metallic, fully rough.
-    fn default() -> Self {
-        Self {
-            name: "default".into(),
-            base_color: [1.0; 4],
-            base_color_texture: None,
-            emissive: [0.0; 3],
-            roughness: 1.0,
-            metallic: 1.0,
-            transmission: 0.0,
-            unlit: false,
-            double_sided: false,
-            reflector_hint: None,
-        }
-    }
-}
-
 /// Roughness below which a material counts as a mirror-like reflector.
 pub const REFLECTIVE_ROUGHNESS: f32 = 0.5;
 
-impl Material {
-    /// A lit, single-sided, rough dielectric of the given linear colour.
-    pub fn matte(name: impl Into<String>, color: [f32; 3]) -> Self {
-        Self {
-            name: name.into(),
-            base_color: [color[0], color[1], color[2], 1.0],
-            metallic: 0.0,
-            roughness: 0.9,
-            ..Self::default()
-        }
-    }
-
-    /// A polished, single-sided material of the given linear colour (a reflector).
-    pub fn polished(name: impl Into<String>, color: [f32; 3]) -> Self {
-        Self { roughness: 0.05, ..Self::matte(name, color) }
-    }
-
-    /// Whether surfaces of this material reflect: the hint if set, otherwise
-    /// roughness below [`REFLECTIVE_ROUGHNESS`], metallic ≥ 0.5 or any transmission.
-    pub fn is_reflective(&self) -> bool {
-        self.reflector_hint.unwrap_or(
-            self.roughness < REFLECTIVE_ROUGHNESS || self.metallic >= 0.5 || self.transmission > 0.0,
-        )
-    }
+/// Whether surfaces of `material` reflect in the testbed (its G-buffer's reflector mask):
+/// `extras.ppr.reflector` if set, otherwise roughness below [`REFLECTIVE_ROUGHNESS`],
+/// metallic ≥ 0.5 or any transmission.
+pub fn is_reflective(material: &Material) -> bool {
+    material.ppr.reflector.unwrap_or(
+        material.roughness < REFLECTIVE_ROUGHNESS || material.metallic >= 0.5 || material.transmission > 0.0,
+    )
 }
 
 /// An RGBA8 texture whose colour channels are sRGB encoded (a glTF base colour texture).

@@ -33,6 +33,7 @@ pub mod renderer;
 pub mod scene_layouts;
 pub mod shape_meshes;
 pub mod synthetic;
+pub mod target_clear;
 pub mod technique;
 pub mod view;
 
@@ -54,5 +55,6 @@ pub use render_job::{RenderJob, RenderReport};
 pub use renderer::{FrameSummary, LevelRenderer, RenderSettings};
 pub use scene_layouts::SceneLayouts;
 pub use synthetic::{FloorMirrorParams, SyntheticScene};
+pub use target_clear::clear_target;
 pub use technique::{ReflectionInputs, ReflectionTechnique, format_timings};
 pub use view::{Lighting, ReflectorMaskParams, ViewBindings};

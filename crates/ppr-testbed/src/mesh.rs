@@ -6,7 +6,7 @@ use std::ops::Range;
 use glam::{DMat3, DMat4, DVec3, Mat4};
 use wgpu::util::DeviceExt;
 
-use crate::level::{Level, LevelTexture, Vertex};
+use crate::level::{Level, LevelTexture, Vertex, is_reflective};
 use crate::scene_layouts::{SceneLayouts, uniform_stride};
 
 /// Per-draw uniform (group 2): camera-relative model matrix, normal matrix and flags.
@@ -125,7 +125,7 @@ impl LevelMeshes {
                     (false, false) => FaceCulling::BackCcw,
                     (false, true) => FaceCulling::BackCw,
                 };
-                let reflective = inst.reflector_hint.unwrap_or_else(|| m.is_reflective());
+                let reflective = inst.reflector_hint.unwrap_or_else(|| is_reflective(m));
                 let slot = u32::try_from(draws.len()).expect("fewer than 2^32 draws");
                 draws.push(MeshDraw { indices: range.clone(), material: *material, slot, culling });
                 draw_worlds.push(inst.world);

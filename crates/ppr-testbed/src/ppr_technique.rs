@@ -3,6 +3,7 @@
 use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
 
+use crate::target_clear::clear_target;
 use crate::technique::{ReflectionInputs, ReflectionTechnique};
 
 /// The runtime's [`ReflectionRenderer`] driven by the testbed. Glass and water
@@ -208,19 +209,7 @@ impl ReflectionTechnique for PprTechnique {
         // main output only in active tiles with indirect dispatch): cleared every frame, or an
         // earlier frame's layer reflections would be merged over this one's.
         for view in [&targets.main, &targets.layer] {
-            encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("testbed ppr target clear"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
-                ..Default::default()
-            });
+            clear_target(encoder, view, "testbed ppr target clear");
         }
         let frame = FrameInputs {
             normals: inputs.normal,

@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use clap::Parser;
 
 use crate::camera_spec::ProjectionChoice;
+use crate::level_match::LevelMatch;
 use crate::view_mode::ViewMode;
 
 /// Walk through a glTF level with pixel-projected reflections (ppr-runtime).
@@ -60,6 +61,10 @@ pub struct Args {
     /// is upsampled to the window, edge-aware. Half costs about a quarter of the pixels.
     #[arg(long, default_value = "full", value_parser = parse_tier)]
     pub tier: ppr_runtime::ResolutionTier,
+    /// Use the set even when it was extracted from other bytes than the level's (its
+    /// `source.hash` differs): a warning instead of a refusal.
+    #[arg(long)]
+    pub accept_level_mismatch: bool,
     /// Lose the device on purpose after this frame (tests the recovery).
     #[arg(long)]
     pub lose_device_at: Option<u32>,
@@ -73,6 +78,16 @@ impl Args {
                 self.level.file_stem().map_or_else(|| "level".into(), |s| s.to_string_lossy().into_owned());
             self.level.with_file_name(format!("{stem}.ppr.json"))
         })
+    }
+
+    /// What a set must match: this level's hash, unless `--accept-level-mismatch`.
+    pub fn level_match(&self, level_hash: &str) -> LevelMatch {
+        LevelMatch {
+            set_path: self.set_path(),
+            level_path: self.level.clone(),
+            level_hash: level_hash.to_owned(),
+            accept_mismatch: self.accept_level_mismatch,
+        }
     }
 
     /// Depth convention and far plane.

@@ -26,7 +26,12 @@ pub struct Primitive {
     pub material: usize,
 }
 
-/// How a glTF material blends.
+/// A material as `ppr-level` reads it: the forward pass uses its base colour and
+/// texture, emissive, roughness, metallic, transmission, unlit, double-sidedness, alpha mode
+/// ([`AlphaBlend::of`]) and `extras.ppr`.
+pub use ppr_level::Material;
+
+/// How the forward pass draws a material.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum AlphaBlend {
     /// Opaque (`OPAQUE` and `MASK` are both drawn opaque here).
@@ -36,43 +41,12 @@ pub enum AlphaBlend {
     Blend,
 }
 
-/// The material numbers the forward pass uses.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Material {
-    pub name: String,
-    /// Linear base colour factor (RGBA).
-    pub base_color: [f32; 4],
-    /// Index into [`LevelData::textures`] of the sRGB base colour texture.
-    pub base_color_texture: Option<usize>,
-    /// Linear emissive colour.
-    pub emissive: [f32; 3],
-    pub roughness: f32,
-    pub metallic: f32,
-    /// `KHR_materials_transmission` factor (0 when absent).
-    pub transmission: f32,
-    /// `KHR_materials_unlit`.
-    pub unlit: bool,
-    pub double_sided: bool,
-    pub blend: AlphaBlend,
-    /// `extras.ppr.reflector` of the material.
-    pub reflector_hint: Option<bool>,
-}
-
-impl Default for Material {
-    /// glTF's default material: white, metallic, fully rough.
-    fn default() -> Self {
-        Self {
-            name: "default".into(),
-            base_color: [1.0; 4],
-            base_color_texture: None,
-            emissive: [0.0; 3],
-            roughness: 1.0,
-            metallic: 1.0,
-            transmission: 0.0,
-            unlit: false,
-            double_sided: false,
-            blend: AlphaBlend::Opaque,
-            reflector_hint: None,
+impl AlphaBlend {
+    /// How `material` is drawn, from its glTF alpha mode.
+    pub fn of(material: &Material) -> Self {
+        match material.alpha_mode {
+            AlphaMode::Blend => Self::Blend,
+            AlphaMode::Opaque | AlphaMode::Mask { .. } => Self::Opaque,
         }
     }
 }
@@ -133,6 +107,8 @@ pub struct LevelData {
     pub textures: Vec<Texture>,
     pub instances: Vec<Instance>,
     pub cameras: Vec<LevelCamera>,
+    /// `blake3:<hex>` of the file's bytes (what a reflector set's `source.hash` records).
+    pub source_hash: String,
     /// Things skipped while loading (non-triangle primitives, unsupported images).
     pub warnings: Vec<String>,
 }
@@ -151,9 +127,10 @@ impl LevelData {
                 .map(|t| Texture { width: t.width, height: t.height, rgba8: t.rgba8 })
                 .collect(),
             warnings: scene.notes,
+            source_hash: scene.hash,
+            materials: scene.materials,
             ..LevelData::default()
         };
-        level.materials = scene.materials.iter().map(material).collect();
         level.instances = scene
             .instances
             .iter()
@@ -213,25 +190,6 @@ impl LevelData {
     }
 }
 
-fn material(m: &ppr_level::Material) -> Material {
-    Material {
-        name: m.name.clone(),
-        base_color: m.base_color,
-        base_color_texture: m.base_color_texture,
-        emissive: m.emissive,
-        roughness: m.roughness,
-        metallic: m.metallic,
-        transmission: m.transmission,
-        unlit: m.unlit,
-        double_sided: m.double_sided,
-        blend: match m.alpha_mode {
-            AlphaMode::Blend => AlphaBlend::Blend,
-            AlphaMode::Opaque | AlphaMode::Mask { .. } => AlphaBlend::Opaque,
-        },
-        reflector_hint: m.ppr.reflector,
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,9 +203,19 @@ mod tests {
         let table = level.instances.iter().find(|i| i.node_name == "table_top").expect("table_top");
         assert_eq!(table.reflector_hint, Some(false));
         let glass = level.materials.iter().find(|m| m.name == "glass").expect("glass");
-        assert_eq!(glass.blend, AlphaBlend::Blend);
+        assert_eq!(AlphaBlend::of(glass), AlphaBlend::Blend);
         assert!(glass.transmission > 0.5);
         let (lo, hi) = level.bounds().expect("bounds");
         assert!(lo.x < -7.9 && hi.x > 7.9, "{lo} {hi}");
+    }
+
+    /// The walkthrough draws `ppr-level`'s materials themselves: nothing the loader read
+    /// (alpha cutoff, clearcoat, normal map, `extras.ppr`) is dropped on the way.
+    #[test]
+    fn the_levels_materials_are_the_loaders_whole() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/demo_room.glb");
+        let scene = ppr_level::load_scene(&path, &LoadParams::render()).expect("demo scene");
+        let level = LevelData::load(&path).expect("demo level");
+        assert_eq!(level.materials, scene.materials);
     }
 }

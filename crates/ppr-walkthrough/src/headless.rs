@@ -1,7 +1,9 @@
 //! Headless mode: the same frame loop without a window, into an offscreen target, for
 //! tests and CI (`--headless --frames N --screenshot out.png --camera ...`). The reflector
 //! set comes through the same hot-reload watcher as in the window, and `--lose-device-at`
-//! exercises the device-loss recovery.
+//! exercises the device-loss recovery. Unlike the window, it does not wait for a missing
+//! set: a level or set it cannot use (missing, invalid, or extracted from another level
+//! without `--accept-level-mismatch`) is a [`BadInput`] naming the file.
 
 use std::time::{Duration, Instant};
 
@@ -9,6 +11,7 @@ use anyhow::{Context, Result};
 use image::{GrayImage, Rgba32FImage, RgbaImage};
 use ppr_runtime::{Camera, FramePlan, PassTimings};
 
+use crate::bad_input::BadInput;
 use crate::camera_spec::pick_camera;
 use crate::cli::Args;
 use crate::gltf_level::LevelData;
@@ -75,14 +78,25 @@ impl HeadlessSession {
 /// writes it to `args.screenshot` when given.
 ///
 /// # Errors
-/// Loading the level or the camera, no adapter, a readback or the PNG failing.
+/// [`BadInput`] when the level does not load or the set is missing, invalid or refused
+/// (another level's); otherwise the camera, no adapter, a readback or the PNG failing.
 pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
-    let level = LevelData::load(&args.level)?;
+    let level = LevelData::load(&args.level).map_err(|e| BadInput(format!("{e:#}")))?;
     let camera = pick_camera(&level, args.camera.as_deref(), args.projection())?;
     let set_path = args.set_path();
     let watcher = ReflectorSetWatcher::start(&set_path);
-    let mut sets = ReflectorSetState::new("not read yet");
+    let mut sets =
+        ReflectorSetState::new("not read yet").with_level_match(args.level_match(&level.source_hash));
     apply_first_event(&watcher, &mut sets, FIRST_SET_TIMEOUT);
+    match sets.status() {
+        SetStatus::Current { .. } => {}
+        SetStatus::Waiting(why) | SetStatus::Refused { message: why, .. } => {
+            return Err(BadInput(format!("no usable reflector set {}: {why}", set_path.display())).into());
+        }
+    }
+    if let Some(warning) = sets.take_warning() {
+        eprintln!("ppr-walkthrough: warning: {warning}");
+    }
 
     let instance = new_instance(None);
     let mut session = HeadlessSession::new(&instance, &level, &sets, args)?;
@@ -100,6 +114,9 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
                 && let Err(e) = session.renderer.set_reflectors(set)
             {
                 eprintln!("ppr-walkthrough: the runtime refused {set_file}: {e}");
+            }
+            if let Some(warning) = sets.take_warning() {
+                eprintln!("ppr-walkthrough: warning: {warning}");
             }
         }
         if let Some(reason) = session.ctx.lost() {

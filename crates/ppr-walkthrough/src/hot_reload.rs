@@ -18,7 +18,9 @@
 //!
 //! **Errors:** a file that does not parse or validate is reported ([`SetStatus::Refused`],
 //! with the message naming the field) and the last good set stays in use. A missing file is
-//! waited for, so the walkthrough can start before `ppr-extract` has run.
+//! waited for, so the walkthrough can start before `ppr-extract` has run (in a window; a
+//! headless run refuses to start without a set). A set extracted from other bytes than the
+//! level's is refused the same way ([`LevelMatch`]), unless the mismatch is accepted.
 
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
@@ -26,6 +28,8 @@ use std::thread::JoinHandle;
 use std::time::{Duration, SystemTime};
 
 use ppr_format::ReflectorSet;
+
+use crate::level_match::{LevelMatch, MatchOutcome};
 
 /// How often the watcher looks at the file.
 pub const POLL_INTERVAL: Duration = Duration::from_millis(250);
@@ -147,12 +151,27 @@ pub struct ReflectorSetState {
     set: Option<ReflectorSet>,
     status: SetStatus,
     reloads: u32,
+    level: Option<LevelMatch>,
+    warning: Option<String>,
 }
 
 impl ReflectorSetState {
     /// No set yet: `waiting_for` says what for.
     pub fn new(waiting_for: impl Into<String>) -> Self {
-        Self { set: None, status: SetStatus::Waiting(waiting_for.into()), reloads: 0 }
+        Self {
+            set: None,
+            status: SetStatus::Waiting(waiting_for.into()),
+            reloads: 0,
+            level: None,
+            warning: None,
+        }
+    }
+
+    /// Checks every loaded set against this level's hash: a mismatch is refused like an
+    /// invalid file, or, when accepted, taken with a warning ([`Self::take_warning`]).
+    pub fn with_level_match(mut self, level: LevelMatch) -> Self {
+        self.level = Some(level);
+        self
     }
 
     /// Applies one event; returns the new set when the renderer must take it.
@@ -160,6 +179,14 @@ impl ReflectorSetState {
         let keeping = self.set.as_ref().map(|s| s.reflectors.len());
         match event {
             ReloadEvent::Loaded(set) => {
+                match self.level.as_ref().map_or(MatchOutcome::Matches, |level| level.check(&set)) {
+                    MatchOutcome::Matches => {}
+                    MatchOutcome::Accepted(warning) => self.warning = Some(warning),
+                    MatchOutcome::Refused(message) => {
+                        self.status = SetStatus::Refused { message, keeping };
+                        return None;
+                    }
+                }
                 self.reloads += 1;
                 self.status = SetStatus::Current {
                     reflectors: set.reflectors.len(),
@@ -187,6 +214,11 @@ impl ReflectorSetState {
 
     pub fn status(&self) -> &SetStatus {
         &self.status
+    }
+
+    /// The warning of the last accepted level mismatch, once.
+    pub fn take_warning(&mut self) -> Option<String> {
+        self.warning.take()
     }
 }
 

@@ -101,7 +101,7 @@ impl LevelMeshes {
                         (false, false) => Culling::BackCcw,
                         (false, true) => Culling::BackCw,
                     },
-                    blend: m.blend,
+                    blend: AlphaBlend::of(m),
                     world: inst.world,
                     reflectivity: reflectivity(m, inst.reflector_hint),
                 });
@@ -212,7 +212,7 @@ fn material_groups(
             let uniform = MaterialUniform {
                 base_color: m.base_color,
                 emissive: [m.emissive[0], m.emissive[1], m.emissive[2], f32::from(u8::from(m.unlit))],
-                params: [m.metallic, f32::from(u8::from(m.blend == AlphaBlend::Blend)), 0.0, 0.0],
+                params: [m.metallic, f32::from(u8::from(AlphaBlend::of(m) == AlphaBlend::Blend)), 0.0, 0.0],
             };
             let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("walkthrough material"),

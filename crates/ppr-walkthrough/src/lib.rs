@@ -10,13 +10,15 @@
 //!   debug view of PPR's intermediate buffer, and the status text ([`status_line`],
 //!   [`overlay_text`], [`bitmap_font`]);
 //! - [`hot_reload`]: the `*.ppr.json` watched on a thread, refused files reported, the last
-//!   good set kept;
+//!   good set kept, a set of another level refused ([`level_match`]);
 //! - [`window_app`] (winit) with [`surface_state`] (resize, minimise, surface loss) and
-//!   [`gpu_context`] (device-lost callback, recovery); [`headless`] for tests and CI.
+//!   [`gpu_context`] (device-lost callback, recovery); [`headless`] for tests and CI, which
+//!   refuses a missing or refused set with [`bad_input::EXIT_BAD_INPUT`].
 //!
 //! Architecture invariant: from this workspace it uses only `ppr-runtime` and
 //! `ppr-format`, like a game.
 
+pub mod bad_input;
 pub mod bitmap_font;
 pub mod camera_spec;
 pub mod cli;
@@ -32,6 +34,7 @@ pub mod gpu_context;
 pub mod headless;
 pub mod hot_reload;
 pub mod intermediate_view;
+pub mod level_match;
 pub mod level_meshes;
 pub mod offscreen_target;
 pub mod overlay_pass;
@@ -59,7 +62,7 @@ pub fn run(args: Args) -> anyhow::Result<()> {
         return run_window(args);
     }
     if args.frames.is_none() {
-        anyhow::bail!("--headless needs --frames N");
+        return Err(bad_input::BadInput("--headless needs --frames N".into()).into());
     }
     let frame = run_headless(&args)?;
     println!("adapter: {}", frame.adapter);

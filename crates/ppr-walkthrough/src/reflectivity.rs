@@ -17,7 +17,7 @@ pub const REFLECTIVE_ROUGHNESS: f32 = 0.1;
 pub fn reflectivity(material: &Material, instance_hint: Option<bool>) -> f32 {
     let by_material =
         material.roughness < REFLECTIVE_ROUGHNESS || material.metallic >= 0.5 || material.transmission > 0.0;
-    if !instance_hint.or(material.reflector_hint).unwrap_or(by_material) {
+    if !instance_hint.or(material.ppr.reflector).unwrap_or(by_material) {
         return 0.0;
     }
     let smoothness = (1.0 - material.roughness).clamp(0.0, 1.0);

@@ -14,6 +14,7 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::PhysicalKey;
 use winit::window::{Window, WindowId};
 
+use crate::bad_input::BadInput;
 use crate::camera_spec::{level_camera, pick_camera};
 use crate::cli::Args;
 use crate::controls::{Action, action, update_move_keys};
@@ -42,8 +43,9 @@ pub const START_SPEED: f64 = 2.0;
 /// # Errors
 /// Loading the level or the camera, no event loop, or a fatal GPU error at start-up.
 pub fn run_window(args: Args) -> Result<()> {
-    let level = LevelData::load(&args.level)?;
+    let level = LevelData::load(&args.level).map_err(|e| BadInput(format!("{e:#}")))?;
     let camera = pick_camera(&level, args.camera.as_deref(), args.projection())?;
+    let sets = ReflectorSetState::new("not read yet").with_level_match(args.level_match(&level.source_hash));
     let event_loop = EventLoop::new().context("cannot open a window (no display?); try --headless")?;
     let instance = new_instance(Some(Box::new(event_loop.owned_display_handle())));
     let watcher = ReflectorSetWatcher::start(args.set_path());
@@ -56,7 +58,7 @@ pub fn run_window(args: Args) -> Result<()> {
         level,
         instance,
         watcher,
-        sets: ReflectorSetState::new("not read yet"),
+        sets,
         keys: MoveKeys::default(),
         looking: false,
         occluded: false,
@@ -158,6 +160,9 @@ impl WalkthroughApp {
                 && let Err(e) = session.renderer.set_reflectors(set)
             {
                 eprintln!("ppr-walkthrough: the runtime refused the reflector set: {e}");
+            }
+            if let Some(warning) = self.sets.take_warning() {
+                eprintln!("ppr-walkthrough: warning: {warning}");
             }
         }
     }
@@ -333,6 +338,9 @@ impl ApplicationHandler for WalkthroughApp {
         // Let the first frame start with the set already read (or the reason it is not).
         if let Some(event) = self.watcher.wait(Duration::from_secs(2)) {
             self.sets.apply(event);
+            if let Some(warning) = self.sets.take_warning() {
+                eprintln!("ppr-walkthrough: warning: {warning}");
+            }
         }
         self.ensure_session();
         if self.fatal.is_some() {

@@ -8,7 +8,7 @@ use ppr_runtime::PlanParams;
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::readback::read_rgba_f32;
 use ppr_testbed::technique::REFLECTION_FORMAT;
-use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs};
+use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs, clear_target};
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
@@ -273,23 +273,6 @@ fn output_target(device: &wgpu::Device, size: [u32; 2]) -> Target {
 fn clear_output(device: &wgpu::Device, queue: &wgpu::Queue, output: &Target) {
     let mut encoder =
         device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench clear output") });
-    {
-        let _pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("bench clear output"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: &output.view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                    store: wgpu::StoreOp::Store,
-                },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-    }
+    clear_target(&mut encoder, &output.view, "bench clear output");
     queue.submit([encoder.finish()]);
 }

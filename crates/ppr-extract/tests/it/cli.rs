@@ -147,3 +147,27 @@ fn exit_codes_and_errors() {
     assert_eq!(code, 0, "{err}");
     assert!(out.contains("density budget (1 rectangles per 10 m cube"), "{out}");
 }
+
+/// Re-extracting over a symlinked set writes the link's target, keeps the link and the
+/// file's mode (the atomic save used to leave a plain 0600 file in the link's place).
+#[cfg(unix)]
+#[test]
+fn writing_over_a_symlinked_set_keeps_the_link_and_the_mode() {
+    use std::os::unix::fs::{PermissionsExt, symlink};
+    let dir = tempfile::tempdir().unwrap();
+    let input = dir.path().join("small.glb");
+    std::fs::copy(scenes_dir().join("small.glb"), &input).unwrap();
+    let shared = dir.path().join("shared");
+    std::fs::create_dir(&shared).unwrap();
+    let target = shared.join("small.ppr.json");
+    std::fs::write(&target, "old").unwrap();
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o664)).unwrap();
+    let link = dir.path().join("small.ppr.json");
+    symlink(&target, &link).unwrap();
+
+    let (code, _, err) = run(&[os(&input), "--quiet".as_ref()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::symlink_metadata(&link).unwrap().file_type().is_symlink(), "still a link");
+    assert!(ppr_format::ReflectorSet::load(&target).is_ok(), "the target holds the new set");
+    assert_eq!(std::fs::metadata(&target).unwrap().permissions().mode() & 0o777, 0o664);
+}

@@ -425,3 +425,73 @@ fn manual_edits_survive_save_reopen_and_reextraction() {
         broken.messages.entries().iter().find(|m| m.severity == Severity::Warning).expect("a warning");
     assert!(warning.text.contains("room.ppr.edits.json"), "{}", warning.text);
 }
+
+#[test]
+fn a_set_of_another_level_opens_with_a_warning_naming_both_files() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("other.ppr.json");
+    let mut doc = demo_document(&ExtractParams::no_split());
+    doc.set.source.hash = format!("blake3:{}", "0".repeat(64));
+    doc.set.save(&path).expect("saved");
+    let mismatch_warnings = |state: &InspectorState| {
+        let warnings = state.messages.entries().iter().filter(|m| m.severity == Severity::Warning);
+        warnings.filter(|m| m.text.contains("other.ppr.json") && m.text.contains("demo_room.glb")).count()
+    };
+
+    // The set first, the level loading in the background: the warning comes once it is loaded.
+    let mut state = InspectorState::default();
+    state.open_level(&demo_level_path(), Some(&path));
+    assert!(state.wait_for_job(Duration::from_secs(120)));
+    assert_eq!(mismatch_warnings(&state), 1, "{:?}", state.messages.entries());
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "the artist may go on");
+
+    // The level loaded, then the set opened: warned at once.
+    state.open_set(&path);
+    assert_eq!(mismatch_warnings(&state), 2, "{:?}", state.messages.entries());
+
+    // The set of this very level: no warning.
+    let matching = dir.path().join("room.ppr.json");
+    demo_document(&ExtractParams::no_split()).set.save(&matching).expect("saved");
+    let mut state = InspectorState::default();
+    state.open_level(&demo_level_path(), Some(&matching));
+    assert!(state.wait_for_job(Duration::from_secs(120)));
+    assert!(
+        state.messages.entries().iter().all(|m| !m.text.contains("differs")),
+        "{:?}",
+        state.messages.entries()
+    );
+}
+
+/// Saving keeps a symlinked set a link (its target is written) and keeps the modes of the
+/// set and of its edits file (the atomic save used to leave plain 0600 files).
+#[cfg(unix)]
+#[test]
+fn saving_keeps_symlinks_and_file_modes() {
+    use std::os::unix::fs::{PermissionsExt, symlink};
+    let mode = |p: &std::path::Path| std::fs::metadata(p).expect("metadata").permissions().mode() & 0o777;
+    let dir = tempfile::tempdir().expect("tempdir");
+    let shared = dir.path().join("shared");
+    std::fs::create_dir(&shared).expect("folder");
+    let target = shared.join("room.ppr.json");
+    let doc = demo_document(&ExtractParams::default());
+    doc.set.save(&target).expect("saved");
+    std::fs::set_permissions(&target, std::fs::Permissions::from_mode(0o664)).expect("chmod");
+    let link = dir.path().join("room.ppr.json");
+    symlink("shared/room.ppr.json", &link).expect("link");
+
+    let mirror = id_named(&doc, "mirror on mirror_wall");
+    let mut state = state_with(doc);
+    assert!(state.apply(EditCommand::Rename { id: mirror, name: "hero mirror".into() }));
+    state.save_as(&link).expect("saved");
+    assert!(std::fs::symlink_metadata(&link).expect("lstat").file_type().is_symlink(), "still a link");
+    assert_eq!(mode(&target), 0o664);
+    let saved = ReflectorSet::load(&target).expect("the target holds the set");
+    assert_eq!(saved.by_id(mirror).map(|r| r.name.as_str()), Some("hero mirror"));
+
+    let edits = ppr_inspector::edits_file::edits_path(&link);
+    std::fs::set_permissions(&edits, std::fs::Permissions::from_mode(0o640)).expect("chmod");
+    assert!(state.apply(EditCommand::Rename { id: mirror, name: "villain mirror".into() }));
+    state.save().expect("saved again");
+    assert_eq!(mode(&edits), 0o640, "the edits file keeps its mode");
+    assert_eq!(mode(&target), 0o664);
+}

@@ -6,6 +6,7 @@ use std::path::Path;
 use glam::{DVec3, Vec3};
 use ppr_runtime::DepthMode;
 use ppr_testbed::camera_spec::{ProjectionChoice, parse_camera, pick_camera};
+use ppr_testbed::level::is_reflective;
 use ppr_testbed::shape_meshes::{cuboid, floor_quad};
 use ppr_testbed::{Level, TestbedError};
 use serde_json::json;
@@ -163,9 +164,9 @@ fn check_level(level: &Level) {
     assert!(!a.flips_winding());
     assert!(by_name("box_mirrored").flips_winding());
     let polished = &level.materials[0];
-    assert!(polished.is_reflective() && (polished.roughness - 0.05).abs() < 1e-6);
+    assert!(is_reflective(polished) && (polished.roughness - 0.05).abs() < 1e-6);
     let textured = &level.materials[1];
-    assert!(!textured.is_reflective());
+    assert!(!is_reflective(textured));
     let tex = &level.textures[textured.base_color_texture.expect("texture")];
     assert_eq!((tex.width, tex.height, &tex.rgba8[..4]), (2, 2, &[0u8, 200, 0, 255][..]));
     assert_eq!(level.cameras.len(), 1);
@@ -265,4 +266,16 @@ fn every_shared_scene_opens() {
         let extracted = ppr_level::load_level(&path).expect("the extractor's view");
         assert_eq!(level.triangle_count(), extracted.triangles.len(), "{}", path.display());
     }
+}
+
+/// The testbed draws `ppr-level`'s materials themselves: nothing of a material the loader
+/// read (alpha mode and cutoff, clearcoat, normal map, `extras.ppr`) is dropped on the way.
+#[test]
+fn the_levels_materials_are_the_loaders_whole() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../assets/demo_room.glb");
+    let scene = ppr_level::load_scene(&path, &ppr_level::LoadParams::render()).expect("demo scene");
+    let level = Level::from_scene(&scene).expect("demo level");
+    assert_eq!(level.materials, scene.materials);
+    let glass = level.materials.iter().find(|m| m.name == "glass").expect("glass");
+    assert_eq!(glass.alpha_mode, ppr_level::AlphaMode::Blend);
 }

@@ -9,3 +9,4 @@ mod image_tests;
 mod ppr_tests;
 mod reference_tests;
 mod render_tests;
+mod target_clear_tests;
