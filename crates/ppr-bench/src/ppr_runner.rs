@@ -28,6 +28,13 @@ impl PprRunner {
         Ok(Self { label: label.into(), technique })
     }
 
+    /// Frames of the same camera per bench frame, each fed the previous one's composite
+    /// ([`PprTechnique::set_bounces`]); the timings are the last frame's passes and the
+    /// copy that feeds it, what a game pays per frame.
+    pub fn set_bounces(&mut self, bounces: u32) {
+        self.technique.set_bounces(bounces);
+    }
+
     /// The runtime renderer (plan, intermediate buffer, active tiles).
     pub fn renderer(&mut self) -> &mut ReflectionRenderer {
         self.technique.renderer()
@@ -41,6 +48,10 @@ impl BenchTechnique for PprRunner {
 
     fn family(&self) -> Family {
         Family::Ppr
+    }
+
+    fn reference_bounces(&self) -> u32 {
+        self.technique.bounces()
     }
 
     fn prepare(

@@ -60,8 +60,14 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
     "sspr-stretch",
 ];
 
-/// PPR settings accept `culling=on|off|auto` and `indirect=on|off|auto`.
-const PPR_KEYS: [&str; 5] = ["culling", "indirect", "fade", "replace-far", "tier"];
+/// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `fade=`, `replace-far=`,
+/// `tier=` and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// composited image as its colour input; scored against the N-bounce reference).
+const PPR_KEYS: [&str; 6] = ["culling", "indirect", "fade", "replace-far", "tier", "bounces"];
+
+/// Largest `bounces=` (each bounce is a frame of PPR and, in the reference, a level of
+/// mirrored views).
+pub const MAX_BOUNCES: u32 = 4;
 
 /// Settings each baseline accepts.
 fn keys_of(name: &str) -> &'static [&'static str] {
@@ -154,6 +160,9 @@ impl TechniqueSpec {
                 "tier" => {
                     parse_tier(v).map_err(bad)?;
                 }
+                "bounces" => {
+                    parse_bounces(v).map_err(bad)?;
+                }
                 "fade" => {
                     let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
                     if !(0.0..=0.5).contains(&f) {
@@ -172,6 +181,22 @@ impl TechniqueSpec {
         }
         Ok(())
     }
+}
+
+fn parse_bounces(v: &str) -> Result<u32, String> {
+    match v.parse::<u32>() {
+        Ok(n) if (1..=MAX_BOUNCES).contains(&n) => Ok(n),
+        Ok(n) => Err(format!("bounces: {n} is outside [1, {MAX_BOUNCES}]")),
+        Err(e) => Err(format!("bounces: {e}")),
+    }
+}
+
+/// The frames a PPR spec feeds back (`bounces=N`, 1 without the key; 1 for other techniques).
+///
+/// # Errors
+/// [`BenchError::Spec`] when the value does not parse.
+pub fn ppr_bounces(spec: &TechniqueSpec) -> Result<u32, BenchError> {
+    spec.param("bounces").map_or(Ok(1), |v| parse_bounces(v).map_err(BenchError::Spec))
 }
 
 fn parse_tier(v: &str) -> Result<ResolutionTier, String> {
@@ -250,14 +275,10 @@ pub fn build_technique(
     ctx: &TechniqueContext<'_>,
 ) -> Result<Box<dyn BenchTechnique>, BenchError> {
     if let Some((settings, params)) = ppr_settings(spec, ctx.plan_params)? {
-        return Ok(Box::new(PprRunner::new(
-            ctx.device,
-            ctx.queue,
-            ctx.reflectors,
-            spec.label(),
-            settings,
-            params,
-        )?));
+        let mut runner =
+            PprRunner::new(ctx.device, ctx.queue, ctx.reflectors, spec.label(), settings, params)?;
+        runner.set_bounces(ppr_bounces(spec)?);
+        return Ok(Box::new(runner));
     }
     let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
     let num = |key: &str| spec.param(key).and_then(|v| v.parse::<f32>().ok());
@@ -328,6 +349,12 @@ mod tests {
         );
         assert_eq!(TechniqueSpec::defaults().len(), DEFAULT_TECHNIQUES.len());
         assert!("ppr:culling".parse::<TechniqueSpec>().is_err());
+        let fed: TechniqueSpec = "ppr:bounces=2".parse().expect("bounces");
+        assert_eq!((fed.label().as_str(), ppr_bounces(&fed).ok()), ("ppr bounces=2", Some(2)));
+        assert_eq!(ppr_bounces(&TechniqueSpec::named("ppr")).ok(), Some(1));
+        assert!("ppr:bounces=0".parse::<TechniqueSpec>().is_err());
+        assert!("ppr:bounces=9".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:bounces=2".parse::<TechniqueSpec>().is_err());
         for (name, _) in KNOWN_TECHNIQUES {
             assert_eq!(name.parse::<TechniqueSpec>().expect("known").label(), name);
         }
