@@ -63,7 +63,10 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `fade=`, `replace-far=`,
 /// `tier=` and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
-const PPR_KEYS: [&str; 6] = ["culling", "indirect", "fade", "replace-far", "tier", "bounces"];
+/// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
+/// against the N-bounce reference (default: its `bounces`, else 1).
+const PPR_KEYS: [&str; 7] =
+    ["culling", "indirect", "fade", "replace-far", "tier", "bounces", "reference-bounces"];
 
 /// Largest `bounces=` (each bounce is a frame of PPR and, in the reference, a level of
 /// mirrored views).
@@ -73,9 +76,10 @@ pub const MAX_BOUNCES: u32 = 4;
 fn keys_of(name: &str) -> &'static [&'static str] {
     match name {
         n if n.starts_with("ppr") => &PPR_KEYS,
-        "ssr-brute" => &["thickness"],
-        "ssr-low" => &["stride", "refine", "thickness"],
-        "ssr-hiz" => &["iterations", "thickness"],
+        "ssr-brute" => &["thickness", "reference-bounces"],
+        "ssr-low" => &["stride", "refine", "thickness", "reference-bounces"],
+        "ssr-hiz" => &["iterations", "thickness", "reference-bounces"],
+        "sspr" | "sspr-stretch" => &["reference-bounces"],
         _ => &[],
     }
 }
@@ -160,7 +164,7 @@ impl TechniqueSpec {
                 "tier" => {
                     parse_tier(v).map_err(bad)?;
                 }
-                "bounces" => {
+                "bounces" | "reference-bounces" => {
                     parse_bounces(v).map_err(bad)?;
                 }
                 "fade" => {
@@ -197,6 +201,18 @@ fn parse_bounces(v: &str) -> Result<u32, String> {
 /// [`BenchError::Spec`] when the value does not parse.
 pub fn ppr_bounces(spec: &TechniqueSpec) -> Result<u32, BenchError> {
     spec.param("bounces").map_or(Ok(1), |v| parse_bounces(v).map_err(BenchError::Spec))
+}
+
+/// The bounces of the reference `spec` is scored against: `reference-bounces=N`, else its
+/// `bounces=N`, else 1.
+///
+/// # Errors
+/// [`BenchError::Spec`] when a value does not parse.
+pub fn reference_bounces(spec: &TechniqueSpec) -> Result<u32, BenchError> {
+    match spec.param("reference-bounces") {
+        Some(v) => parse_bounces(v).map_err(BenchError::Spec),
+        None => ppr_bounces(spec),
+    }
 }
 
 fn parse_tier(v: &str) -> Result<ResolutionTier, String> {
@@ -278,6 +294,7 @@ pub fn build_technique(
         let mut runner =
             PprRunner::new(ctx.device, ctx.queue, ctx.reflectors, spec.label(), settings, params)?;
         runner.set_bounces(ppr_bounces(spec)?);
+        runner.set_reference_bounces(reference_bounces(spec)?);
         return Ok(Box::new(runner));
     }
     let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
@@ -285,7 +302,8 @@ pub fn build_technique(
     let int = |key: &str| spec.param(key).and_then(|v| v.parse::<u32>().ok());
     let runner =
         |family, inner: Box<dyn ReflectionTechnique>| -> Result<Box<dyn BenchTechnique>, BenchError> {
-            Ok(Box::new(TraitRunner::new(spec.label(), family, inner)))
+            let runner = TraitRunner::new(spec.label(), family, inner);
+            Ok(Box::new(runner.with_reference_bounces(reference_bounces(spec)?)))
         };
     match spec.name.as_str() {
         "exact" => Ok(Box::new(ExactReference::new(device, queue))),
@@ -355,6 +373,10 @@ mod tests {
         assert!("ppr:bounces=0".parse::<TechniqueSpec>().is_err());
         assert!("ppr:bounces=9".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:bounces=2".parse::<TechniqueSpec>().is_err());
+        let rescored: TechniqueSpec = "ssr-brute:reference-bounces=2".parse().expect("rescored");
+        assert_eq!(reference_bounces(&rescored).ok(), Some(2));
+        assert_eq!(reference_bounces(&fed).ok(), Some(2));
+        assert!("exact:reference-bounces=2".parse::<TechniqueSpec>().is_err());
         for (name, _) in KNOWN_TECHNIQUES {
             assert_eq!(name.parse::<TechniqueSpec>().expect("known").label(), name);
         }

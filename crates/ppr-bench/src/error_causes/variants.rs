@@ -58,7 +58,7 @@ impl CauseRunner {
     ) -> Result<Option<Self>, BenchError> {
         // Fed-back frames (`bounces=`) are scored against a deeper reference than the
         // breakdown's variants, which run one frame: no breakdown for them.
-        if spec.name != "ppr" || crate::technique_spec::ppr_bounces(spec)? > 1 {
+        if spec.name != "ppr" || crate::technique_spec::reference_bounces(spec)? > 1 {
             return Ok(None);
         }
         let Some((settings, params)) = ppr_settings(spec, base)? else { return Ok(None) };

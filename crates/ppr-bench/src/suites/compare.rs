@@ -132,6 +132,19 @@ pub fn run_compare(
         // Rows that feed PPR its previous frame are scored against the reference of as many
         // bounces; every other row against the one-bounce reference.
         let depths: BTreeSet<u32> = techniques.iter().map(|t| t.reference_bounces()).collect();
+        let deeper_rows: Vec<String> = techniques
+            .iter()
+            .filter(|t| t.reference_bounces() > 1)
+            .map(|t| format!("`{}` against the {}-bounce reference", t.label(), t.reference_bounces()))
+            .collect();
+        if !deeper_rows.is_empty() {
+            outcome.notes.push(format!(
+                "{}: {}; every other row against the one-bounce reference (mirrors in a reflection \
+                 show their own colour); scores against different references are not comparable",
+                scene.name,
+                deeper_rows.join(", ")
+            ));
+        }
         for (cam_index, cam) in scene.cameras.iter().enumerate() {
             for &res in &cc.resolutions {
                 let size = res.size();
