@@ -20,7 +20,8 @@ pub struct DeeperReferences {
 impl DeeperReferences {
     /// Renders the reference at each of `depths` (those above 1) for `camera` at `size` and
     /// reads it back, then leaves `level` prepared and rendered at one bounce again (the
-    /// `exact` row times the one-bounce reference). Notes name views the cost cap skipped.
+    /// `exact` row times the one-bounce reference). Notes name views the cost cap skipped
+    /// (`what` names the frame: scene, camera, size).
     ///
     /// # Errors
     /// A readback fails.
@@ -30,6 +31,7 @@ impl DeeperReferences {
         camera: &Camera,
         size: [u32; 2],
         depths: &BTreeSet<u32>,
+        what: &str,
         notes: &mut Vec<String>,
     ) -> Result<Self, BenchError> {
         let (device, queue) = gpu;
@@ -43,7 +45,9 @@ impl DeeperReferences {
             let summary = level.render(device, queue, camera, size);
             if summary.bounce_views_skipped > 0 {
                 notes.push(format!(
-                    "{d}-bounce reference: {} views rendered, {} over the cap of {} skipped",
+                    "{what}: {d}-bounce reference not exact: {} views beyond the first bounce \
+                     rendered, {} more over the cap of {} skipped (those mirrors show their own \
+                     colour at that bounce)",
                     summary.bounce_views, summary.bounce_views_skipped, level.settings.max_bounce_views
                 ));
             }

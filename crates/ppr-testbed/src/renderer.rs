@@ -46,7 +46,7 @@ pub struct RenderSettings {
 
 /// [`RenderSettings::max_bounce_views`] by default: every second-bounce view of the
 /// bench's generated mirror rooms (at most 185, `mirror-room-6`; the corridor 36–77), so
-/// their 2-bounce references are exact; a third bounce in the corridor would need ~560.
+/// their 2-bounce references are exact; a third bounce in the corridor would need ~580.
 pub const DEFAULT_MAX_BOUNCE_VIEWS: usize = 256;
 
 impl Default for RenderSettings {

@@ -175,6 +175,7 @@ pub fn run_compare(
                         &cam.camera,
                         size,
                         &depths,
+                        &format!("{} {} {res}", scene.name, cam.name),
                         &mut outcome.notes,
                     )?,
                     None => DeeperReferences::default(),
