@@ -2,7 +2,7 @@
 //! pixels, and each artefact of the talk reproduced with its step off and fixed with it on.
 
 use glam::{DVec3, Vec3};
-use ppr_runtime::{Camera, Projection, ReflectionSettings, WriteMode};
+use ppr_runtime::{CLEAR_VALUE, Camera, Projection, ReflectionSettings, WriteMode};
 
 use ppr_tests::harness::{GpuFrame, compare, renderer, run};
 use ppr_tests::masks::{interior, reference_edges};
@@ -138,6 +138,53 @@ fn hole_filling_fills_the_stretched_reflection() {
     eprintln!("holes: raw {} empty of {} -> filled {} empty", raw.empty, raw.pixels, filled.empty);
     assert!(raw.empty * 100 > raw.pixels, "the raw reflection must have holes (> 1%): {raw:?}");
     assert!(filled.empty * 10 < raw.empty, "filling must remove at least 90% of them: {raw:?} -> {filled:?}");
+}
+
+/// Whether the hole filling finds a value for pixel (x, y) of `intermediate`: its own, else
+/// the first ring's (PPR_HOLE_OFFSETS of shading.wgsl), else the second's; outside the
+/// viewport reads as no data. Also whether the value came from a ring.
+fn cpu_hole_choice(intermediate: &[u32], [w, h]: [u32; 2], x: i32, y: i32) -> (bool, bool) {
+    let get = |dx: i32, dy: i32| {
+        let (px, py) = (x + dx, y + dy);
+        if px < 0 || py < 0 || px >= w as i32 || py >= h as i32 {
+            CLEAR_VALUE
+        } else {
+            intermediate[(px + py * w as i32) as usize]
+        }
+    };
+    if get(0, 0) != CLEAR_VALUE {
+        return (true, false);
+    }
+    let ring1 = [(1, 0), (0, 1), (1, 1), (-1, 0)];
+    let ring2 = [(0, -1), (2, 0), (0, 2), (-2, 0)];
+    let found = ring1.iter().chain(&ring2).any(|&(dx, dy)| get(dx, dy) != CLEAR_VALUE);
+    (found, found)
+}
+
+#[test]
+fn hole_filling_reads_neighbours_across_tile_borders() {
+    // The reflection pass reads each 16x16 tile's values with a two-pixel apron into
+    // workgroup memory: a pixel at a tile border must see its neighbours in the next tile
+    // exactly as the buffer holds them.
+    let case = room_case();
+    let out = render(&case, HOLES_ONLY, WriteMode::AtomicMin);
+    let [w, h] = SIZE;
+    let (mut mismatches, mut filled, mut filled_at_borders) = (0, 0, 0);
+    for y in 0..h as i32 {
+        for x in 0..w as i32 {
+            let (found, from_ring) = cpu_hole_choice(&out.intermediate, SIZE, x, y);
+            let shown = out.pixels[(x + y * w as i32) as usize].w > 0.0;
+            mismatches += usize::from(found != shown);
+            if from_ring && shown {
+                filled += 1;
+                let border = |c: i32| c % 16 <= 1 || c % 16 >= 14;
+                filled_at_borders += usize::from(border(x) || border(y));
+            }
+        }
+    }
+    eprintln!("hole filling: {filled} filled pixels, {filled_at_borders} of them at tile borders");
+    assert_eq!(mismatches, 0, "pixels where the GPU's hole filling disagrees with the CPU model");
+    assert!(filled_at_borders > 20, "the case must fill holes at tile borders: {filled_at_borders}");
 }
 
 #[test]

@@ -222,6 +222,37 @@ fn without_parallel_shapes_culling_changes_no_pixel() {
 }
 
 #[test]
+fn uniform_and_storage_shape_tests_write_the_same_buffer() {
+    // The plan reads the shape tests from a uniform copy when they fit; the storage path
+    // (over 128 shapes and layers) must give the same frame, bit for bit, with and without
+    // the parallel rule and tile culling.
+    let mut rng = Rng(0x5eed_0007);
+    let mut written = 0usize;
+    for case in 0..4 {
+        let parallel = case % 2 == 0;
+        let scene = random_scene(&mut rng, parallel);
+        let camera = random_camera(&mut rng);
+        let frame = scene.render(&camera, SIZE);
+        let gpu = GpuFrame::upload(&frame);
+        let set = grouped_set(&scene);
+        let culling = if case < 2 { Culling::Plain } else { Culling::Tiles };
+        let rule = if parallel { Choice::On } else { Choice::Off };
+        let mut uniform = configured(culling, rule);
+        uniform.set_reflectors(&set).expect("a valid set");
+        let a = run(&mut uniform, &gpu, &camera);
+        let mut storage = configured(culling, rule);
+        storage.plan_params.uniform_tests = Choice::Off;
+        storage.set_reflectors(&set).expect("a valid set");
+        let b = run(&mut storage, &gpu, &camera);
+        assert!(a.plan.uniform_tests && !b.plan.uniform_tests, "{} / {}", a.plan, b.plan);
+        assert_eq!(a.intermediate, b.intermediate, "intermediate buffers differ in case {case}");
+        assert_eq!(debug_masks(&uniform), debug_masks(&storage), "writes differ in case {case}");
+        written += a.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+    }
+    assert!(written > 1_000, "the random scenes must produce writes: {written}");
+}
+
+#[test]
 fn active_tiles_cover_every_reflector_pixel() {
     let mut rng = Rng(0x5eed_0003);
     for case in 0..4 {

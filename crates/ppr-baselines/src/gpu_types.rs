@@ -1,4 +1,4 @@
-//! `#[repr(C)]` mirrors of the WGSL structs in `shaders/baselines/common.wgsl`, sizes asserted.
+//! `#[repr(C)]` mirrors of the WGSL structs in `crates/ppr-baselines/shaders/common.wgsl`, sizes asserted.
 
 use glam::{DMat4, DVec4};
 use ppr_runtime::Camera;

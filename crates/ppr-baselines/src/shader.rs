@@ -2,25 +2,25 @@
 
 /// The shared declarations of the baseline passes: frame uniform, reflector planes,
 /// position reconstruction, projection and the screen-space ray.
-pub const COMMON: &str = include_str!("../../../shaders/baselines/common.wgsl");
+pub const COMMON: &str = include_str!("../shaders/common.wgsl");
 
 /// The layout of the Hi-Z pyramid's atlas, shared by the two Hi-Z passes (after [`COMMON`]).
-pub const HIZ_LAYOUT: &str = include_str!("../../../shaders/baselines/hiz_layout.wgsl");
+pub const HIZ_LAYOUT: &str = include_str!("../shaders/hiz_layout.wgsl");
 
 /// Source of the ray-march pass (brute-force and low-quality SSR).
-pub const SSR_MARCH: &str = include_str!("../../../shaders/baselines/ssr_march.wgsl");
+pub const SSR_MARCH: &str = include_str!("../shaders/ssr_march.wgsl");
 /// Source of the Hi-Z pyramid build.
-pub const HIZ_BUILD: &str = include_str!("../../../shaders/baselines/hiz_build.wgsl");
+pub const HIZ_BUILD: &str = include_str!("../shaders/hiz_build.wgsl");
 /// Source of the Hi-Z trace.
-pub const HIZ_TRACE: &str = include_str!("../../../shaders/baselines/hiz_trace.wgsl");
+pub const HIZ_TRACE: &str = include_str!("../shaders/hiz_trace.wgsl");
 /// Source of the SSPR hash clear (stands alone).
-pub const SSPR_CLEAR: &str = include_str!("../../../shaders/baselines/sspr_clear.wgsl");
+pub const SSPR_CLEAR: &str = include_str!("../shaders/sspr_clear.wgsl");
 /// Source of the SSPR projection.
-pub const SSPR_PROJECT: &str = include_str!("../../../shaders/baselines/sspr_project.wgsl");
+pub const SSPR_PROJECT: &str = include_str!("../shaders/sspr_project.wgsl");
 /// Source of the SSPR resolve.
-pub const SSPR_RESOLVE: &str = include_str!("../../../shaders/baselines/sspr_resolve.wgsl");
+pub const SSPR_RESOLVE: &str = include_str!("../shaders/sspr_resolve.wgsl");
 /// Source of the texture copy (stands alone).
-pub const TEXTURE_COPY: &str = include_str!("../../../shaders/baselines/texture_copy.wgsl");
+pub const TEXTURE_COPY: &str = include_str!("../shaders/texture_copy.wgsl");
 
 /// The complete source of a pass: the shared `modules` in order, then the pass.
 pub fn assemble(modules: &[&str], pass: &str) -> String {

@@ -96,6 +96,11 @@ pub struct RuntimeArgs {
     /// `<scene> [<tuning>]`): where the projection pass's time goes, part by part.
     #[arg(long)]
     pub projection_profile: bool,
+    /// Also time full-screen `Rgba16Float` writes (compute storage texture in several
+    /// layouts, storage buffer, fragment pass) at each resolution: the floor of the
+    /// reflection and upsample passes' output write.
+    #[arg(long)]
+    pub write_probe: bool,
 }
 
 /// Options of `scaling`.
@@ -307,6 +312,7 @@ where
                 copy_bytes: if cfg.quick { 1 << 20 } else { a.copy_mib << 20 },
                 features_off: a.features_off,
                 projection_profile: a.projection_profile,
+                write_probe: a.write_probe,
             };
             let outcome = run_runtime(&gpu, &cfg, &rc)?;
             write_runtime_report(&cfg.out_dir, &outcome, &command_line)

@@ -35,6 +35,7 @@ pub mod technique;
 pub mod technique_spec;
 pub mod timing;
 pub mod trait_runner;
+pub mod write_probe;
 
 pub use config::{BenchConfig, Resolution};
 pub use error::BenchError;

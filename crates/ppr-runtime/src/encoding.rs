@@ -1,6 +1,6 @@
 //! The intermediate-buffer encoding: four packing bases, mirrored fractions, `atomicMin` order.
 //!
-//! This is the CPU reference of `shaders/ppr/encoding.wgsl`; a GPU test holds the two
+//! This is the CPU reference of `crates/ppr-runtime/shaders/encoding.wgsl`; a GPU test holds the two
 //! bit-for-bit equal. It follows the seed (Cichocki, "Optimized pixel-projected
 //! reflections", `PPR_EncodeIntermediateBufferValue`):
 //!

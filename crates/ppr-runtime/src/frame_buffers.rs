@@ -7,7 +7,7 @@ use crate::passes::block_lists::block_lists_size;
 use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
 use crate::plan::FramePlan;
-use crate::plan::MAX_LAYERS;
+use crate::plan::{MAX_LAYERS, UNIFORM_TESTS_CAPACITY};
 use crate::shapes::ShapeTable;
 
 /// Buffers reallocated only when the viewport or the set changes.
@@ -20,6 +20,8 @@ pub(crate) struct FrameBuffers {
     pub source_rects: wgpu::Buffer,
     /// Per visible shape, its test planes.
     pub tests: wgpu::Buffer,
+    /// The first [`UNIFORM_TESTS_CAPACITY`] of `tests`, as a uniform buffer.
+    pub uniform_tests: wgpu::Buffer,
     pub occluders: wgpu::Buffer,
     pub intermediate: wgpu::Buffer,
     pub active_tiles: wgpu::Buffer,
@@ -66,6 +68,11 @@ impl FrameBuffers {
             screen_rects: buffer("ppr screen rects", 16 * n, storage),
             source_rects: buffer("ppr source rects", 16 * n, storage),
             tests: buffer("ppr shape tests", n * std::mem::size_of::<GpuShapeTest>() as u64, storage),
+            uniform_tests: buffer(
+                "ppr shape tests (uniform)",
+                (UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>()) as u64,
+                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            ),
             occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ppr occluder lists"),
                 contents: bytemuck::cast_slice(&occluders),

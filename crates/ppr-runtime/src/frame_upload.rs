@@ -21,6 +21,7 @@ pub(crate) enum UploadTarget {
     ScreenRects,
     Layers,
     Tests,
+    UniformTests,
     SourceRects,
 }
 
@@ -33,6 +34,7 @@ impl UploadTarget {
             Self::ScreenRects => &b.screen_rects,
             Self::Layers => &b.layers,
             Self::Tests => &b.tests,
+            Self::UniformTests => &b.uniform_tests,
             Self::SourceRects => &b.source_rects,
         }
     }

@@ -1,4 +1,4 @@
-//! `#[repr(C)]` mirrors of the WGSL structs in `shaders/ppr/common.wgsl`, sizes asserted.
+//! `#[repr(C)]` mirrors of the WGSL structs in `crates/ppr-runtime/shaders/common.wgsl`, sizes asserted.
 
 use crate::encoding::EncodingParams;
 

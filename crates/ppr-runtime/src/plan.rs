@@ -103,7 +103,16 @@ pub struct PlanParams {
     /// shape. `Auto`: on (on the H200 at 3840×2160 it takes 0.03–0.08 ms off the demo
     /// room's projection, docs/perf/runtime.md).
     pub source_boxes: Choice,
+    /// Give the projection pass the shape tests in a uniform buffer (at most
+    /// [`UNIFORM_TESTS_CAPACITY`] visible shapes and layers) instead of a storage buffer:
+    /// the per-shape loads of every pixel go through the constant cache. `Auto`: on
+    /// whenever they fit.
+    pub uniform_tests: Choice,
 }
+
+/// Most shape tests (visible shapes plus layers) the projection's uniform copy holds: 128 ×
+/// 96 B = 12 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
+pub const UNIFORM_TESTS_CAPACITY: usize = 128;
 
 impl Default for PlanParams {
     fn default() -> Self {
@@ -121,6 +130,7 @@ impl Default for PlanParams {
             source_boxes: Choice::Auto,
             depth_occlusion: Choice::Auto,
             occluder_lists: Choice::Auto,
+            uniform_tests: Choice::Auto,
         }
     }
 }
@@ -175,6 +185,9 @@ pub struct FramePlan {
     pub super_tiles: bool,
     /// Whether only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
+    /// Whether the projection reads the shape tests from the uniform copy
+    /// ([`PlanParams::uniform_tests`]).
+    pub uniform_tests: bool,
     /// Whether tiles are classified and the clear and reflection passes run indirectly.
     pub indirect: bool,
     /// Share of the screen the visible shapes' screen rectangles cover (summed, at most 1).
@@ -214,6 +227,7 @@ impl FramePlan {
             tile_culling: false,
             super_tiles: false,
             parallel_rule: false,
+            uniform_tests: false,
             indirect: false,
             coverage: 0.0,
             layers: Vec::new(),
@@ -273,6 +287,8 @@ impl FramePlan {
         plan.super_tiles = plan.tile_culling
             && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
         plan.parallel_rule = params.parallel_rule.decide(false);
+        plan.uniform_tests = params.uniform_tests.decide(true)
+            && plan.visible.len() + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         if params.source_boxes.decide(true) {
             let layers = plan.layers.iter().map(|l| l.shape);

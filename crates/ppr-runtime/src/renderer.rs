@@ -248,6 +248,7 @@ impl ReflectionRenderer {
             debug_writes: self.debug_writes,
             debug_tile_lists: self.debug_writes && self.debug_tile_lists,
             source_boxes: !plan.source_rects.is_empty(),
+            uniform_tests: plan.uniform_tests,
             ablation: self.projection_ablation,
         }
     }
@@ -322,6 +323,10 @@ impl ReflectionRenderer {
                 (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
                 (UploadTarget::Tests, bytemuck::cast_slice(&tests)),
+                (
+                    UploadTarget::UniformTests,
+                    if plan.uniform_tests { bytemuck::cast_slice(&tests) } else { &[] },
+                ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
             ],
         ));
@@ -450,6 +455,7 @@ impl ReflectionRenderer {
                     super_lists: &b.super_lists,
                     source_boxes: &b.source_rects,
                     block_lists: &b.block_lists,
+                    uniform_tests: &b.uniform_tests,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -629,7 +635,7 @@ impl ReflectionRenderer {
     }
 
     /// The super-tile counts and lists of the last frame that built them (layout in
-    /// `shaders/ppr/super_tile_lists.wgsl`), for debug views and tests.
+    /// `crates/ppr-runtime/shaders/super_tile_lists.wgsl`), for debug views and tests.
     pub fn super_tile_lists_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().map(|b| &b.super_lists)
     }

@@ -5,23 +5,19 @@
 //! reflection passes [`SHADING`].
 
 /// The shared declarations every pass sees: encoding, then frame and shape types.
-const SHARED: &str = concat!(
-    include_str!("../../../shaders/ppr/encoding.wgsl"),
-    "\n",
-    include_str!("../../../shaders/ppr/common.wgsl"),
-    "\n"
-);
+const SHARED: &str =
+    concat!(include_str!("../shaders/encoding.wgsl"), "\n", include_str!("../shaders/common.wgsl"), "\n");
 
 /// Pixel ↔ camera-relative position and depth validity (needs `frame`).
-pub const VIEW: &str = include_str!("../../../shaders/ppr/view.wgsl");
+pub const VIEW: &str = include_str!("../shaders/view.wgsl");
 
 /// Tile culling: the box test, the tile box, ordered compaction, the super-tile grid
 /// (needs `frame`, `depth_tex` and [`VIEW`]).
-pub const TILE_TEST: &str = include_str!("../../../shaders/ppr/tile_test.wgsl");
+pub const TILE_TEST: &str = include_str!("../shaders/tile_test.wgsl");
 
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
-pub const SHADING: &str = include_str!("../../../shaders/ppr/shading.wgsl");
+pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
 
 /// The source of a pass: the shared modules, then `modules`, then the pass itself.
 pub fn source_with(modules: &[&str], pass: &str) -> String {

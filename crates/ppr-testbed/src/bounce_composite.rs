@@ -30,9 +30,7 @@ impl BounceCompositePass {
     pub fn new(device: &wgpu::Device) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("bounce composite shader"),
-            source: wgpu::ShaderSource::Wgsl(
-                include_str!("../../../shaders/testbed/bounce_composite.wgsl").into(),
-            ),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/bounce_composite.wgsl").into()),
         });
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {

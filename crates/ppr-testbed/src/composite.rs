@@ -49,7 +49,7 @@ impl CompositePass {
     pub fn new(device: &wgpu::Device) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("composite shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/testbed/composite.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/composite.wgsl").into()),
         });
         let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {
             binding,

@@ -17,7 +17,7 @@ impl DepthCopyPass {
     pub fn new(device: &wgpu::Device) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("depth copy shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/testbed/depth_copy.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/depth_copy.wgsl").into()),
         });
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth copy layout"),

@@ -63,7 +63,7 @@ impl GBufferPass {
     pub fn new(device: &wgpu::Device, layouts: &SceneLayouts) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("gbuffer shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/testbed/gbuffer.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/gbuffer.wgsl").into()),
         });
         let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("gbuffer pipeline layout"),

@@ -70,9 +70,7 @@ impl LayerMerge {
         });
         let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("testbed layer merge"),
-            source: wgpu::ShaderSource::Wgsl(
-                include_str!("../../../shaders/testbed/layer_merge.wgsl").into(),
-            ),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/layer_merge.wgsl").into()),
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("testbed layer merge"),

@@ -174,7 +174,7 @@ impl MirrorReference {
     pub fn new(device: &wgpu::Device) -> Self {
         let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
             label: Some("reference resolve shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../../../shaders/testbed/reference.wgsl").into()),
+            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/reference.wgsl").into()),
         });
         let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {
             binding,

@@ -7,7 +7,7 @@ use crate::forward_pass::BACKGROUND;
 use crate::frame_targets::FrameTargets;
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
-const WGSL: &str = include_str!("../../../shaders/walkthrough/composite_pass.wgsl");
+const WGSL: &str = include_str!("../shaders/composite_pass.wgsl");
 
 /// What the composite shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -9,7 +9,7 @@ use crate::frame_targets::{COLOR_FORMAT, DEPTH_FORMAT, FrameTargets, WEIGHT_FORM
 use crate::gltf_level::{AlphaBlend, Vertex};
 use crate::level_meshes::{Culling, LevelMeshes};
 
-const WGSL: &str = include_str!("../../../shaders/walkthrough/forward_pass.wgsl");
+const WGSL: &str = include_str!("../shaders/forward_pass.wgsl");
 
 /// Linear colour where nothing is drawn (the testbed's, so frames compare).
 pub const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.05, g: 0.07, b: 0.11, a: 1.0 };

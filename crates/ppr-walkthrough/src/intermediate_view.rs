@@ -7,7 +7,7 @@ use ppr_runtime::EncodingLayout;
 
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
-const WGSL: &str = include_str!("../../../shaders/walkthrough/intermediate_view.wgsl");
+const WGSL: &str = include_str!("../shaders/intermediate_view.wgsl");
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]

@@ -4,7 +4,7 @@
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 use crate::overlay_text::TextImage;
 
-const WGSL: &str = include_str!("../../../shaders/walkthrough/overlay_pass.wgsl");
+const WGSL: &str = include_str!("../shaders/overlay_pass.wgsl");
 
 /// Pixels between the window's corner and the text box.
 pub const MARGIN: u32 = 8;

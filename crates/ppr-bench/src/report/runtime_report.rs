@@ -148,6 +148,22 @@ pub fn write_runtime_report(
         let _ = writeln!(md, "- {n}");
     }
     let _ = writeln!(md);
+    for (res, probe) in &outcome.write_probe {
+        let _ = writeln!(md, "Full-screen image writes at {res} (`--write-probe`), medians:\n");
+        let _ = writeln!(md, "| variant | MB written | median ms | × floor |\n| --- | ---: | ---: | ---: |");
+        for p in probe {
+            let floor = bw.map_or(f64::NAN, |bw| bw.floor_ms(p.bytes));
+            let _ = writeln!(
+                md,
+                "| {} | {:.1} | {} | {:.1} |",
+                p.variant,
+                p.bytes as f64 / 1e6,
+                ms(p.median_ms),
+                p.median_ms / floor
+            );
+        }
+        let _ = writeln!(md);
+    }
     md.push_str(&table.render());
     let _ = writeln!(md, "\nPlans:\n");
     for r in &outcome.rows {

@@ -16,6 +16,7 @@ use crate::ppr_runner::PprRunner;
 use crate::scene::{BenchScene, SceneOptions, SceneSpec};
 use crate::technique::BenchFrame;
 use crate::timing::{TimingSeries, TimingSource};
+use crate::write_probe::{WriteProbeRow, run_write_probe};
 
 /// What the runtime suite runs.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +30,8 @@ pub struct RuntimeConfig {
     pub features_off: bool,
     /// Also run every scene with each projection tuning and ablation.
     pub projection_profile: bool,
+    /// Also time full-screen image writes (`write_probe.rs`) at each resolution.
+    pub write_probe: bool,
 }
 
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation).
@@ -48,6 +51,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
         ("occluder lists", Choice::Auto, Ablation::None),
+        ("storage tests", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -72,6 +76,8 @@ pub struct RuntimeOutcome {
     pub bandwidth: Option<CopyBandwidth>,
     pub rows: Vec<RuntimeRow>,
     pub notes: Vec<String>,
+    /// Full-screen write probes, per resolution (with `write_probe`).
+    pub write_probe: Vec<(Resolution, Vec<WriteProbeRow>)>,
 }
 
 /// Runs the suite.
@@ -93,6 +99,12 @@ pub fn run_runtime(
             b.bytes >> 20,
             b.median_ms
         );
+    }
+    let mut write_probe = Vec::new();
+    if rc.write_probe {
+        for &res in &rc.resolutions {
+            write_probe.push((res, run_write_probe(device, queue, res.size(), reps)));
+        }
     }
     let frames = FrameLoop::new(device, cfg);
     let mut rows = Vec::new();
@@ -129,6 +141,8 @@ pub fn run_runtime(
                     params.tile_culling = Choice::Off;
                 } else if name == "occlusion off" {
                     params.depth_occlusion = Choice::Off;
+                } else if name == "storage tests" {
+                    params.uniform_tests = Choice::Off;
                 } else if name == "occluder lists" {
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
@@ -174,7 +188,7 @@ pub fn run_runtime(
             }
         }
     }
-    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes })
+    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe })
 }
 
 /// Reads the last frame's active tiles and intermediate buffer back and counts what the

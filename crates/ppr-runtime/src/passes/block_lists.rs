@@ -4,7 +4,7 @@
 use super::projection::block_groups;
 use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/block_lists.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/block_lists.wgsl");
 
 /// Entries of one block's list (`BLOCK_LIST_CAPACITY` of `tile_test.wgsl`); a block with
 /// more candidates lists none and its pixels test its super-tile's list or every visible

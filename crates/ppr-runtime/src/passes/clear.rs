@@ -3,7 +3,7 @@
 
 use super::{compute_pipeline, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/clear.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/clear.wgsl");
 /// Threads per workgroup of `clear_all`, as in `clear.wgsl`.
 const GROUP: u32 = 256;
 

@@ -1,9 +1,9 @@
 //! Downsample pass of the reduced-resolution tiers: full-resolution depth to the reduced
-//! size the rest of the passes run at (`shaders/ppr/downsample.wgsl`).
+//! size the rest of the passes run at (`crates/ppr-runtime/shaders/downsample.wgsl`).
 
 use super::{compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/downsample.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/downsample.wgsl");
 
 /// Format of the reduced depth (read by the passes as an unfilterable float texture).
 pub const REDUCED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Float;

@@ -3,7 +3,7 @@
 
 use super::{TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/layer_reflection.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/layer_reflection.wgsl");
 
 /// Buffers and views the layer pass reads and writes.
 pub struct LayerBindings<'a> {

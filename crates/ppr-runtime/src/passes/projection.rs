@@ -6,7 +6,7 @@ use std::collections::HashMap;
 
 use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/projection.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/projection.wgsl");
 
 /// Edge of the pixel block one workgroup projects (`BLOCK_SIZE` of `tile_test.wgsl`):
 /// 16 × 16 threads, four pixels each.
@@ -39,6 +39,8 @@ pub struct ProjectionVariant {
     pub debug_tile_lists: bool,
     /// Blocks skip shapes whose source box ([`crate::FramePlan::source_rects`]) they miss.
     pub source_boxes: bool,
+    /// The shape tests come from the uniform copy (binding 12), not the storage buffer.
+    pub uniform_tests: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -94,6 +96,8 @@ pub struct ProjectionBindings<'a> {
     pub source_boxes: &'a wgpu::Buffer,
     /// Block counts and lists (read with `tile_culling`; any buffer otherwise).
     pub block_lists: &'a wgpu::Buffer,
+    /// The first shape tests as a uniform buffer (read with `uniform_tests`).
+    pub uniform_tests: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
@@ -120,6 +124,7 @@ impl ProjectionPass {
                 storage_entry(9, true),
                 storage_entry(10, true),
                 storage_entry(11, true),
+                uniform_entry(12),
             ],
         });
         let module = crate::shader::module_with(
@@ -148,6 +153,7 @@ impl ProjectionPass {
             ("DEBUG_WRITES", flag(v.debug_writes)),
             ("DEBUG_TILE_LISTS", flag(v.debug_tile_lists)),
             ("SOURCE_BOXES", flag(v.source_boxes)),
+            ("UNIFORM_TESTS", flag(v.uniform_tests)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
@@ -173,6 +179,7 @@ impl ProjectionPass {
                 entry(9, b.super_lists),
                 entry(10, b.source_boxes),
                 entry(11, b.block_lists),
+                entry(12, b.uniform_tests),
             ],
         })
     }

@@ -2,7 +2,7 @@
 
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/reflection.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/reflection.wgsl");
 
 /// Format of the reflection output (colour + confidence alpha).
 pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;

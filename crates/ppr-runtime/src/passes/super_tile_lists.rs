@@ -3,7 +3,7 @@
 
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/super_tile_lists.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/super_tile_lists.wgsl");
 
 /// Edge of a super-tile in pixels (`SUPER_TILE_SIZE` of `tile_test.wgsl`).
 pub const SUPER_TILE: u32 = 64;

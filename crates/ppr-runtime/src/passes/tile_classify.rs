@@ -3,7 +3,7 @@
 
 use super::{compute_pipeline, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/tile_classify.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
 
 /// Bytes before the tile indices in the active-tile buffer (count + padding).
 pub const ACTIVE_TILES_HEADER: u64 = 16;

@@ -1,12 +1,12 @@
 //! Upsample pass of the reduced-resolution tiers: the reduced reflection (and layer
-//! reflection) to the full-resolution outputs, edge-aware (`shaders/ppr/upsample.wgsl`).
+//! reflection) to the full-resolution outputs, edge-aware (`crates/ppr-runtime/shaders/upsample.wgsl`).
 
 use super::reflection::OUTPUT_FORMAT;
 use super::{
     TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry, write_texture_entry,
 };
 
-pub const WGSL: &str = include_str!("../../../../shaders/ppr/upsample.wgsl");
+pub const WGSL: &str = include_str!("../../shaders/upsample.wgsl");
 
 /// What the upsample pass reads and writes.
 pub struct UpsampleBindings<'a> {

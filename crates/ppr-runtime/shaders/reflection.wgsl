@@ -125,11 +125,19 @@ fn main(
     let vpos = vec2<i32>(gid);
     var v: array<u32, 5>;
     v[0] = read_value(vpos);
-    for (var k = 0u; k < 4u; k++) {
-        v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
-    }
     let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
-    var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
+    let replace_far = (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u;
+    // The neighbours only matter to a pixel without data (or with the seed's replacement
+    // of far reflections): most reflector pixels read one value.
+    for (var k = 0u; k < 4u; k++) {
+        v[k + 1u] = PPR_CLEAR_VALUE;
+    }
+    if (holes && (v[0] == PPR_CLEAR_VALUE || replace_far)) {
+        for (var k = 0u; k < 4u; k++) {
+            v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
+        }
+    }
+    var chosen = ppr_choose_value(v, holes, replace_far);
     if (holes && chosen.value == PPR_CLEAR_VALUE) {
         var w: array<u32, 4>;
         for (var k = 0u; k < 4u; k++) {

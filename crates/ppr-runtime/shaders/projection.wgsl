@@ -30,6 +30,8 @@
 // - LAYERS: glass panels and water planes with atlas regions exist this frame (without
 //   them the layer loop is compiled out).
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
+// - UNIFORM_TESTS: the shape tests are read from a uniform copy (constant cache) instead
+//   of the storage buffer.
 // - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
 //   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
 //   without writing.
@@ -44,6 +46,7 @@ override DEBUG_WRITES: bool = false;
 // Debug: record, per pixel, its block's candidate-list length instead of write bits.
 override DEBUG_TILE_LISTS: bool = false;
 override SOURCE_BOXES: bool = false;
+override UNIFORM_TESTS: bool = false;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;
@@ -66,6 +69,16 @@ const NO_SHAPE: u32 = 0xffffffffu;
 @group(0) @binding(10) var<storage, read> source_boxes: array<vec4<u32>>;
 // Block counts and lists (block_lists.wgsl), read with TILE_CULLING.
 @group(0) @binding(11) var<storage, read> block_lists: array<u32>;
+// The first entries of `tests` again, read with UNIFORM_TESTS (the plan sets it when every
+// visible shape and layer fits): uniform loads go through the constant cache.
+@group(0) @binding(12) var<uniform> uniform_tests: array<ShapeTest, 128>;
+
+fn shape_test(k: u32) -> ShapeTest {
+    if (UNIFORM_TESTS) {
+        return uniform_tests[k];
+    }
+    return tests[k];
+}
 
 // Whether the ray from the camera to `hit` crosses occluder `o` before reaching it
 // (strictly between, so that a point on a coplanar neighbour is not occluded), without a
@@ -204,16 +217,20 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
-// Occluder tests and the write, for a shape that passed its test.
-fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, s: Shape) -> bool {
-    let mirrored = p - 2.0 * dist * s.normal;
+// Occluder tests and the write, for a shape (index `shape`) that passed its test. `plane`
+// is its test's plane (`ShapeTest.plane`: the shape's normal and minus its plane distance,
+// bit for bit what `shapes` holds), so that the write needs no load of the shape.
+fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
+    let n = plane.xyz;
+    let mirrored = p - 2.0 * dist * n;
     if (OCCLUDER_TESTS) {
+        let s = shapes[shape];
         let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
         if (is_occluded(hit, s)) {
             return false;
         }
     }
-    return write_projection(pixel, mirrored, s.normal, s.plane_dist);
+    return write_projection(pixel, mirrored, n, -plane.w);
 }
 
 // The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
@@ -268,6 +285,10 @@ fn quad_plane(q: Quad, pl: vec4<f32>) -> vec4<f32> {
 // rectangle (in front of the plane by more than the tolerance, inside the pyramid), else -1.
 fn quad_test(q: Quad, t: ShapeTest) -> vec4<f32> {
     let dist = quad_plane(q, t.plane);
+    // The pyramid's sides only for a thread with some pixel in front of the plane.
+    if (!any(q.tolerance > vec4<f32>(0.0) & dist > q.tolerance)) {
+        return vec4<f32>(-1.0);
+    }
     let inside = min(
         min(quad_plane(q, t.side0), quad_plane(q, t.side1)),
         min(quad_plane(q, t.side2), quad_plane(q, t.side3)),
@@ -375,6 +396,10 @@ fn main(
     // at the next step; with it, a group's best when the next group (or the end) comes.
     var pending_k = vec4<u32>(NO_SHAPE);
     var pending_d = vec4<f32>(0.0);
+    // Without the parallel rule every lane's pending shape is the same one: its plane and
+    // index, kept from its step.
+    var pending_plane = vec4<f32>(0.0);
+    var pending_shape = 0u;
     var best_k = vec4<u32>(NO_SHAPE);
     var best_d = vec4<f32>(0.0);
     var written = vec4<u32>(0u);
@@ -393,7 +418,7 @@ fn main(
         }
         // Loaded unconditionally (the sentinel step reads entry 0): a conditional load
         // into a variable may cost a trip through local memory.
-        let t = tests[select(k, 0u, k == NO_SHAPE)];
+        let t = shape_test(select(k, 0u, k == NO_SHAPE));
         if (PARALLEL_RULE && (i == count || (k != NO_SHAPE && t.group != group))) {
             pending_k = best_k;
             pending_d = best_d;
@@ -404,8 +429,14 @@ fn main(
             for (var j = 0u; j < 4u; j++) {
                 let pk = lane_u32(pending_k, j);
                 if (pk != NO_SHAPE) {
-                    let s = shapes[tests[pk].shape];
-                    if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), lane_f32(pending_d, j), s)) {
+                    var plane = pending_plane;
+                    var shape = pending_shape;
+                    if (PARALLEL_RULE) {
+                        let pt = shape_test(pk);
+                        plane = pt.plane;
+                        shape = pt.shape;
+                    }
+                    if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), lane_f32(pending_d, j), plane, shape)) {
                         written = select(written, written | vec4<u32>(1u << (pk & 31u)), lane_mask(j));
                     }
                 }
@@ -426,6 +457,8 @@ fn main(
         } else {
             pending_k = select(vec4<u32>(NO_SHAPE), vec4<u32>(k), passes);
             pending_d = dist;
+            pending_plane = t.plane;
+            pending_shape = t.shape;
         }
     }
     if (ABLATION == 3u && dot(tested, vec4<f32>(1.0)) == 1234.5) {
@@ -437,7 +470,7 @@ fn main(
         if (!block_meets_source_box(k, lo, hi)) {
             continue;
         }
-        let dist = quad_test(q, tests[k]);
+        let dist = quad_test(q, shape_test(k));
         for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
             let d = lane_f32(dist, j);
             if (d >= 0.0) {
