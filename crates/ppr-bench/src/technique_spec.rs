@@ -33,7 +33,10 @@ pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
     ("ppr-holes", "PPR with hole filling"),
     ("ppr-filter", "PPR with hole filling and bilinear filtering"),
     ("ppr", "PPR with hole filling, filtering and anti-bleeding (the seed's final image)"),
-    ("exact", "the exact planar reflection (the testbed's reference: mirrored re-render per plane)"),
+    (
+        "exact",
+        "the exact planar reflection (the testbed's reference: mirrored re-render per plane); bounces=",
+    ),
     ("ssr-brute", "brute-force SSR, one-pixel steps [McGuire14]; thickness=metres"),
     ("ssr-low", "low-quality SSR, 64-pixel steps + bisection; stride=, refine=, thickness="),
     ("ssr-hiz", "Hi-Z SSR with its pyramid build [Uludag14]; iterations=, thickness= (none: seed)"),
@@ -80,6 +83,7 @@ fn keys_of(name: &str) -> &'static [&'static str] {
         "ssr-low" => &["stride", "refine", "thickness", "reference-bounces"],
         "ssr-hiz" => &["iterations", "thickness", "reference-bounces"],
         "sspr" | "sspr-stretch" => &["reference-bounces"],
+        "exact" => &["bounces"],
         _ => &[],
     }
 }
@@ -306,7 +310,13 @@ pub fn build_technique(
             Ok(Box::new(runner.with_reference_bounces(reference_bounces(spec)?)))
         };
     match spec.name.as_str() {
-        "exact" => Ok(Box::new(ExactReference::new(device, queue))),
+        "exact" => Ok(Box::new(ExactReference::with_bounces(
+            device,
+            queue,
+            (ctx.level, set),
+            ctx.render,
+            spec.param("bounces").and_then(|v| v.parse().ok()).unwrap_or(1),
+        ))),
         "ssr-brute" | "ssr-low" => {
             let mut s = if spec.name == "ssr-brute" {
                 SsrSettings::brute_force()
@@ -377,6 +387,7 @@ mod tests {
         assert_eq!(reference_bounces(&rescored).ok(), Some(2));
         assert_eq!(reference_bounces(&fed).ok(), Some(2));
         assert!("exact:reference-bounces=2".parse::<TechniqueSpec>().is_err());
+        assert!("exact:bounces=2".parse::<TechniqueSpec>().is_ok());
         for (name, _) in KNOWN_TECHNIQUES {
             assert_eq!(name.parse::<TechniqueSpec>().expect("known").label(), name);
         }
