@@ -192,3 +192,37 @@ fn set_reflectors_refuses_a_set_that_breaks_an_invariant() {
     r.set_reflectors(&s.reflector_set()).expect("valid");
     assert_eq!(r.prepare(&cam, SIZE).visible.len(), 1);
 }
+
+#[test]
+fn a_camera_from_the_games_matrices_renders_as_the_camera_it_describes() {
+    // A game hands its view and projection matrices; without jitter the frame is the
+    // fov-built camera's, bit for bit; a TAA jitter of half a pixel moves the reflection.
+    let s = scene();
+    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let set = s.reflector_set();
+    let view = glam::DMat4::from_rotation_translation(cam.rotation.as_dquat(), cam.position).inverse();
+    let aspect = SIZE[0] as f32 / SIZE[1] as f32;
+    let clip = cam.projection.clip_from_view(aspect);
+    let from = Camera::from_matrices(view, clip, cam.projection.depth).expect("a rigid view");
+    // f64 round trip of the rotation: the same camera to within rounding.
+    let mut exact = from;
+    exact.rotation = cam.rotation;
+    exact.position = cam.position;
+
+    let mut r = renderer();
+    r.set_reflectors(&set).expect("a valid set");
+    let a = run(&mut r, &gpu, &cam);
+    let b = run(&mut r, &gpu, &exact);
+    let written = a.pixels.iter().filter(|p| p.w > 0.0).count();
+    assert!(written > 500, "the mirror must show a reflection: {written}");
+    assert_eq!(bits(&a.pixels), bits(&b.pixels), "matrix camera differs from the fov camera");
+
+    let jitter = glam::Mat4::from_translation(Vec3::new(1.0 / SIZE[0] as f32, 0.0, 0.0));
+    let mut jittered = exact;
+    jittered.projection.matrix = Some(jitter * clip);
+    let c = run(&mut r, &gpu, &jittered);
+    let changed = a.intermediate.iter().zip(&c.intermediate).filter(|(x, y)| x != y).count();
+    assert!(changed * 10 > written, "a half-pixel jitter must move the projection: {changed} of {written}");
+}

@@ -73,7 +73,7 @@ fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tes
     r.plan_params.indirect = ppr_runtime::Choice::Off;
     r.set_reflectors(&case.set).expect("a valid set");
     r.settings = settings;
-    r.write_mode = mode;
+    r.debug.write_mode = mode;
     run(&mut r, &case.gpu, &case.camera)
 }
 

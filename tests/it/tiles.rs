@@ -141,7 +141,7 @@ fn configured(culling: Culling, parallel_rule: Choice) -> ReflectionRenderer {
     r.plan_params.super_tiles = if culling == Culling::SuperTiles { Choice::On } else { Choice::Off };
     r.plan_params.parallel_rule = parallel_rule;
     r.plan_params.indirect = Choice::Off;
-    r.debug_writes = true;
+    r.debug.writes = true;
     r
 }
 
@@ -362,7 +362,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     let frame = scene.render(&camera, LIST_SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = configured(Culling::Tiles, Choice::On);
-    r.debug_tile_lists = true;
+    r.debug.tile_lists = true;
     r.set_reflectors(&grouped_set(&scene)).expect("a valid set");
     let out = run(&mut r, &gpu, &camera);
     let lengths = debug_masks(&r);
@@ -381,7 +381,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     // holds every shape any of its tiles would list (the box test is monotone), and the
     // super-tile lists themselves are shorter than the visible list.
     let mut s = configured(Culling::SuperTiles, Choice::On);
-    s.debug_tile_lists = true;
+    s.debug.tile_lists = true;
     s.set_reflectors(&grouped_set(&scene)).expect("a valid set");
     let out = run(&mut s, &gpu, &camera);
     assert!(out.plan.super_tiles, "{}", out.plan);
@@ -451,7 +451,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     assert!(written > 500, "the puddles must reflect something: {written}");
     for culling in CULLED {
         let mut r = configured(culling, Choice::On);
-        r.debug_tile_lists = true;
+        r.debug.tile_lists = true;
         r.set_reflectors(&set).expect("a valid set");
         let b = run(&mut r, &gpu, &camera);
         let lengths = debug_masks(&r);
@@ -522,7 +522,7 @@ fn the_default_plan_never_drops_a_reflection_the_plain_loop_shows() {
     let a = debug_masks(&plain);
     let mut default = renderer();
     default.plan_params.indirect = Choice::Off;
-    default.debug_writes = true;
+    default.debug.writes = true;
     default.set_reflectors(&set).expect("a valid set");
     let out = run(&mut default, &gpu, &camera);
     let b = debug_masks(&default);

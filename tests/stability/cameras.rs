@@ -188,7 +188,7 @@ fn infinite_far_plane_and_reversed_z_match_the_standard_projection() {
         ("infinite", None, DepthMode::Standard),
         ("infinite reversed", None, DepthMode::Reversed),
     ] {
-        let camera = look(eye, target, Projection { fov_y: 1.0, near: 0.1, far, depth });
+        let camera = look(eye, target, Projection { fov_y: 1.0, near: 0.1, far, depth, matrix: None });
         let c = check(name, &scene, &camera, SIZE, bounds(0.95, 22.0));
         results.push((name, c.reflected, c.accuracy.psnr));
     }
@@ -258,7 +258,7 @@ fn an_8k_frame_stores_every_offset_the_cpu_reference_stores() {
         DVec3::new(0.0, 3.5, 3.0),
         DVec3::new(0.0, 0.0, -4.0),
         Vec3::new(1.0, 1.0, 0.0).normalize(),
-        Projection { fov_y: 1.6, near: 0.1, far: None, depth: DepthMode::Reversed },
+        Projection { fov_y: 1.6, near: 0.1, far: None, depth: DepthMode::Reversed, matrix: None },
     );
     let size = [7680, 4320];
     let (frame, out) = run_case(&scene, &camera, size);

@@ -39,7 +39,7 @@ fn frame_to_frame(mirror_fractions: bool) -> (f32, f64, usize) {
         };
         r.set_reflectors(&set).expect("a valid set");
         let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
-        r.encoding_override = Some(ppr_runtime::EncodingLayout { mirror_fractions, ..layout });
+        r.debug.encoding = Some(ppr_runtime::EncodingLayout { mirror_fractions, ..layout });
         let out = run(&mut r, &gpu, &camera);
         // Away from silhouettes, where a different surface legitimately takes over.
         let edges = ppr_tests::masks::reference_edges(&frame, 0.15);

@@ -64,6 +64,9 @@ const VARIANTS: [(&str, Writer); 12] = [
     ("compute 16x16, 2x2 px/thread, 5 reads + store", Writer::ReadWrite { per: 2, reads: 5 }),
 ];
 
+/// Records one timed pass of a variant.
+type RecordPass = dyn Fn(&mut wgpu::CommandEncoder, wgpu::ComputePassTimestampWrites);
+
 const F16: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 fn compute_wgsl(wg: [u32; 2], per: u32, format: wgpu::TextureFormat) -> String {
@@ -186,7 +189,7 @@ pub fn run_write_probe(
     };
     let mut rows = Vec::new();
     for (variant, writer) in VARIANTS {
-        let record: Box<dyn Fn(&mut wgpu::CommandEncoder, wgpu::ComputePassTimestampWrites)>;
+        let record: Box<RecordPass>;
         let bytes;
         match writer {
             Writer::Compute { wg, per, format, render_usage } => {

@@ -13,6 +13,7 @@ use crate::near_planar::{MergeReport, NearPlanarRule, merge_near_planar};
 use crate::occluders::{OccluderRule, ranked_occluder_lists_threaded};
 use crate::parallel::extraction_groups;
 use crate::parallel_map::thread_count;
+use crate::roughness::area_weighted_roughness;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
 use crate::{ExtractParams, Level, SceneScale};
@@ -181,6 +182,7 @@ fn build_set(
             let mut r = Reflector::new(0, name, s.kind, center, axis_u, axis_v, half);
             r.normal = normal;
             r.coverage = (s.area / rect_area).clamp(0.0, 1.0);
+            r.roughness = area_weighted_roughness(&s.polygons);
             r.normal_map =
                 s.materials.iter().any(|m| level.materials.iter().any(|l| l.normal_map && &l.name == m));
             r.source = ReflectorSource { nodes: s.nodes, materials: s.materials };

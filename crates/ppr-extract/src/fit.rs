@@ -16,6 +16,7 @@ use crate::parallel_map::{map_ranges, map_slice_mut};
 use crate::plane::Plane;
 use crate::polygon::Polygon;
 use crate::rect_fit::Rect2;
+use crate::roughness::triangle_roughness;
 use crate::select::Candidate;
 use crate::split::{Piece, SplitSettings, SplitStep, split_region_steps};
 use crate::{ExtractParams, SceneScale};
@@ -126,6 +127,7 @@ pub fn prepare_regions(
             polygons.push(Polygon {
                 flat: c.positions.iter().map(|&p| plane.project(p)).collect(),
                 spatial: c.positions.to_vec(),
+                roughness: triangle_roughness(level, c.triangle as usize),
             });
         }
         if last_source.0 != u32::MAX {

@@ -122,6 +122,7 @@ pub fn copies(level: &Level, count: usize, spacing: f64) -> Level {
             })
         })
         .collect();
+    out.uvs = (0..count).flat_map(|_| level.uvs.iter().copied()).collect();
     out
 }
 

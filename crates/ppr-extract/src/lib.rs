@@ -14,7 +14,8 @@
 //!   each reflector's region vertices, warnings and stage timings. Candidate selection is
 //!   documented in [`select`]; near-planar merging in [`near_planar`]; splitting in
 //!   [`split`]; the density budget in [`budget`]; the occluder rule and its cap in
-//!   [`occluders`].
+//!   [`occluders`]; each reflector's roughness (the area-weighted mean of its surface's
+//!   glTF roughness, texture included) in [`roughness`].
 //!
 //! Defaults ([`ExtractParams::default`], measured on the shared scenes and generated
 //! levels in `docs/perf/extract.md`): vertices within 5 mm of their plane, gaps up to
@@ -43,6 +44,7 @@
 //! assert_eq!(out.set.reflectors.len(), 1);
 //! let r = &out.set.reflectors[0];
 //! assert!((r.area() - 8.0).abs() < 1e-9 && r.normal.y > 0.999);
+//! assert_eq!(r.roughness, 0.05);
 //! ```
 
 // `!(x > 0.0)` is deliberate throughout: unlike `x <= 0.0` it also rejects NaN.
@@ -70,6 +72,7 @@ pub mod plane;
 mod point_hierarchy;
 pub mod polygon;
 pub mod rect_fit;
+pub mod roughness;
 mod scale;
 pub mod select;
 pub mod split;

@@ -11,6 +11,9 @@ pub struct Polygon {
     pub flat: Vec<DVec2>,
     /// The same vertices in 3-D.
     pub spatial: Vec<DVec3>,
+    /// Perceptual roughness of the triangle it came from (kept by clips; see
+    /// `roughness.rs`).
+    pub roughness: f64,
 }
 
 impl Polygon {
@@ -38,7 +41,11 @@ impl Polygon {
         if self.keeps_all(dir, limit, keep_below) {
             return Some(self.clone());
         }
-        let mut out = Polygon { flat: Vec::with_capacity(n + 1), spatial: Vec::with_capacity(n + 1) };
+        let mut out = Polygon {
+            flat: Vec::with_capacity(n + 1),
+            spatial: Vec::with_capacity(n + 1),
+            roughness: self.roughness,
+        };
         for i in 0..n {
             let j = (i + 1) % n;
             let (si, sj) = (side(self.flat[i]), side(self.flat[j]));
@@ -63,7 +70,7 @@ mod tests {
     fn square() -> Polygon {
         let flat = vec![DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y];
         let spatial = flat.iter().map(|p| DVec3::new(p.x, 5.0, p.y)).collect();
-        Polygon { flat, spatial }
+        Polygon { flat, spatial, roughness: 0.5 }
     }
 
     #[test]

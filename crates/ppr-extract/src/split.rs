@@ -391,6 +391,7 @@ mod tests {
                 polys.push(Polygon {
                     flat: tri.to_vec(),
                     spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect(),
+                    roughness: 0.0,
                 });
             }
         }
@@ -467,8 +468,11 @@ mod tests {
         // Each further split of a triangle saves a quarter of the last one: with the gain
         // measured against the region (not the piece) it stops after two or three shapes.
         let tri = [DVec2::ZERO, DVec2::new(10.0, 0.0), DVec2::new(0.0, 10.0)];
-        let poly =
-            Polygon { flat: tri.to_vec(), spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect() };
+        let poly = Polygon {
+            flat: tri.to_vec(),
+            spatial: tri.iter().map(|p| DVec3::new(p.x, 0.0, p.y)).collect(),
+            roughness: 0.0,
+        };
         let piece = Piece::new(vec![poly]).unwrap();
         let (pieces, steps) = split_region_steps(piece.clone(), &settings(), usize::MAX);
         assert!((2..=3).contains(&pieces.len()), "{} pieces: a staircase", pieces.len());

@@ -3,7 +3,7 @@
 use std::fmt;
 use std::path::PathBuf;
 
-use crate::FORMAT_VERSION;
+use crate::{FORMAT_VERSION, OLDEST_READABLE_VERSION};
 
 /// Which reflector an error is about.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -62,7 +62,9 @@ pub enum FormatError {
     #[error("not a reflector set: field `format` is {found}, expected \"ppr-reflector-set\"")]
     WrongFormat { found: String },
     /// The document's `version` is not one this build reads.
-    #[error("unsupported reflector-set version {found} (this build reads version {FORMAT_VERSION})")]
+    #[error(
+        "unsupported reflector-set version {found} (this build reads versions {OLDEST_READABLE_VERSION} to {FORMAT_VERSION})"
+    )]
     UnknownVersion { found: String },
     /// A field breaks an invariant.
     #[error("{0}")]

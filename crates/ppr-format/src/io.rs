@@ -3,7 +3,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::{FORMAT_NAME, FORMAT_VERSION, FormatError, ReflectorSet};
+use crate::{FORMAT_NAME, FormatError, ReflectorSet};
 
 impl ReflectorSet {
     /// Parses and validates a set from JSON text.
@@ -80,7 +80,7 @@ fn check_header(value: &serde_json::Value) -> Result<(), FormatError> {
     if value.get("format").and_then(|v| v.as_str()) != Some(FORMAT_NAME) {
         return Err(FormatError::WrongFormat { found: found("format") });
     }
-    if value.get("version").and_then(|v| v.as_u64()) != Some(u64::from(FORMAT_VERSION)) {
+    if !value.get("version").and_then(|v| v.as_u64()).is_some_and(crate::set::reads_version) {
         return Err(FormatError::UnknownVersion { found: found("version") });
     }
     Ok(())

@@ -4,6 +4,11 @@
 //! a list of analytical planar rectangles ([`Reflector`]) that enclose the reflective
 //! areas of a level, each with the list of reflectors that may occlude it.
 //!
+//! Each reflector carries the perceptual roughness of its surface (glTF's definition:
+//! 0 is a mirror, 1 fully rough), which a renderer may use to blur its reflection. Files
+//! of version 1, written before roughness was recorded, still read: their reflectors get
+//! roughness 0, and they are written back as version [`FORMAT_VERSION`].
+//!
 //! This crate knows nothing about glTF or wgpu. It owns the serde derives and the format
 //! version; every other crate converts to and from these types.
 //!
@@ -38,7 +43,10 @@ mod validate;
 
 pub use error::{FormatError, InvalidField, ReflectorRef};
 pub use reflector::{Reflector, ReflectorKind, ReflectorSource};
-pub use set::{ExtractorInfo, FORMAT_NAME, FORMAT_VERSION, ReflectorSet, SourceInfo};
+pub use set::{
+    ExtractorInfo, FORMAT_NAME, FORMAT_VERSION, OLDEST_READABLE_VERSION, ReflectorSet, SourceInfo,
+    reads_version,
+};
 pub use validate::{AXIS_TOLERANCE, MAX_COORDINATE, PARALLEL_GROUP_MAX_ANGLE_DEG, parallel_groups};
 
 /// The JSON Schema of the format, as published beside it in `schema/`.

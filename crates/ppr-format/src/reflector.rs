@@ -66,6 +66,7 @@ pub struct ReflectorSource {
 /// - `half_extents` are finite and strictly positive;
 /// - `center` is finite and within [`crate::MAX_COORDINATE`] of the origin;
 /// - `coverage` is in `[0, 1]`;
+/// - `roughness` is finite and in `[0, 1]`;
 /// - `occluders` are indices of other reflectors of the same set, without repeats;
 /// - reflectors of one `parallel_group` face the same way: each normal is within
 ///   [`crate::PARALLEL_GROUP_MAX_ANGLE_DEG`] of the group's first reflector's.
@@ -93,6 +94,12 @@ pub struct Reflector {
     pub normal: DVec3,
     /// Reflective area of the fitted region divided by the rectangle's area, in `[0, 1]`.
     pub coverage: f64,
+    /// Perceptual roughness of the surface, as glTF defines it (`roughnessFactor` times the
+    /// metallic-roughness texture's green channel): 0 is a perfect mirror, 1 fully rough.
+    /// For a reflector fitted to several surfaces, their area-weighted mean. Absent in
+    /// version-1 files, which read as 0 (they described perfect mirrors).
+    #[serde(default)]
+    pub roughness: f64,
     /// Reflectors with the same group share one normal (within the extractor's tolerance,
     /// and at most [`crate::PARALLEL_GROUP_MAX_ANGLE_DEG`] from the group's first normal);
     /// reflectors facing other ways need groups of their own
@@ -116,7 +123,8 @@ fn default_true() -> bool {
 }
 
 impl Reflector {
-    /// A reflector with the normal `axis_u × axis_v`, full coverage and no occluders.
+    /// A reflector with the normal `axis_u × axis_v`, full coverage, roughness 0 (a perfect
+    /// mirror) and no occluders.
     pub fn new(
         id: u32,
         name: impl Into<String>,
@@ -137,6 +145,7 @@ impl Reflector {
             half_extents,
             normal: axis_u.cross(axis_v),
             coverage: 1.0,
+            roughness: 0.0,
             parallel_group: 0,
             occluders: Vec::new(),
             source: ReflectorSource::default(),

@@ -8,8 +8,27 @@ use crate::Reflector;
 
 /// Value of the `format` field of every reflector-set file.
 pub const FORMAT_NAME: &str = "ppr-reflector-set";
-/// The format version this build writes and reads.
-pub const FORMAT_VERSION: u32 = 1;
+/// The format version this build writes (and reads, with every version from
+/// [`OLDEST_READABLE_VERSION`] on).
+///
+/// Version 2 added each reflector's `roughness` (perceptual, as glTF defines it); a
+/// version-1 file reads with every `roughness` at 0 (the perfect mirrors it described).
+pub const FORMAT_VERSION: u32 = 2;
+/// The oldest format version this build reads; older versions' files are read as
+/// [`FORMAT_VERSION`] (absent fields take their documented defaults).
+pub const OLDEST_READABLE_VERSION: u32 = 1;
+
+/// Whether this build reads files of `version`.
+pub fn reads_version(version: u64) -> bool {
+    (u64::from(OLDEST_READABLE_VERSION)..=u64::from(FORMAT_VERSION)).contains(&version)
+}
+
+/// Reads `version`, turning every version this build reads into [`FORMAT_VERSION`]: a
+/// loaded set is always of the current version, and is written as such.
+fn upgrade_version<'de, D: serde::Deserializer<'de>>(d: D) -> Result<u32, D::Error> {
+    let version = u32::deserialize(d)?;
+    Ok(if reads_version(u64::from(version)) { FORMAT_VERSION } else { version })
+}
 
 /// The level a set was extracted from.
 #[derive(Clone, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
@@ -47,7 +66,8 @@ impl Default for ExtractorInfo {
 pub struct ReflectorSet {
     /// Always [`FORMAT_NAME`].
     pub format: String,
-    /// Always [`FORMAT_VERSION`] once loaded.
+    /// Always [`FORMAT_VERSION`] once loaded (older versions are upgraded on reading).
+    #[serde(deserialize_with = "upgrade_version")]
     pub version: u32,
     /// The level this set belongs to.
     pub source: SourceInfo,

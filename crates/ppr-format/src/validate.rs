@@ -144,6 +144,9 @@ fn check_reflector(r: &Reflector, count: usize, index: usize) -> Result<(), (Str
     if !(r.coverage.is_finite() && (0.0..=1.0).contains(&r.coverage)) {
         return err("coverage", format!("{} is not in [0, 1]", r.coverage));
     }
+    if !(r.roughness.is_finite() && (0.0..=1.0).contains(&r.roughness)) {
+        return err("roughness", format!("{} is not in [0, 1] (0 is a mirror, 1 fully rough)", r.roughness));
+    }
     let mut seen = vec![false; count];
     for (k, &o) in r.occluders.iter().enumerate() {
         let field = format!("occluders[{k}]");

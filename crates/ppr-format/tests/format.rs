@@ -20,6 +20,7 @@ fn sample_set() -> ReflectorSet {
         DVec2::new(4.0, 3.0),
     );
     floor.coverage = 0.75;
+    floor.roughness = 0.35;
     floor.occluders = vec![1];
     floor.source.nodes = vec!["Floor".into()];
     floor.source.materials = vec!["polished".into()];
@@ -105,6 +106,18 @@ fn invalid_fields_are_named() {
             Box::new(|v| v["reflectors"][0]["coverage"] = serde_json::json!(1.5)),
             Some(0),
             "coverage",
+        ),
+        (
+            "roughness above 1",
+            Box::new(|v| v["reflectors"][1]["roughness"] = serde_json::json!(1.25)),
+            Some(1),
+            "roughness",
+        ),
+        (
+            "negative roughness",
+            Box::new(|v| v["reflectors"][0]["roughness"] = serde_json::json!(-0.01)),
+            Some(0),
+            "roughness",
         ),
         (
             "occluder out of range",
@@ -231,6 +244,76 @@ fn a_refused_save_leaves_the_old_file_untouched() {
     assert!(good.save(dir.path().join("missing/level.ppr.json")).is_err());
 }
 
+// ---- Roughness and version 1 ------------------------------------------------------
+
+/// A version-1 file as `ppr-extract` wrote them before roughness was recorded.
+const VERSION_1_FILE: &str = r#"{
+  "format": "ppr-reflector-set",
+  "version": 1,
+  "source": { "path": "level.glb", "hash": "" },
+  "extractor": { "name": "ppr-extract", "version": "0.1.0", "params": {} },
+  "reflectors": [
+    {
+      "id": 3, "name": "floor", "kind": "opaque", "enabled": true,
+      "center": [0.0, 0.0, 0.0], "axis_u": [1.0, 0.0, 0.0], "axis_v": [0.0, 0.0, -1.0],
+      "half_extents": [2.0, 1.0], "normal": [0.0, 1.0, 0.0], "coverage": 1.0,
+      "parallel_group": 0, "occluders": [], "source": { "nodes": ["Floor"] }
+    }
+  ]
+}"#;
+
+#[test]
+fn a_version_1_file_reads_with_mirror_roughness_and_is_written_as_the_current_version() {
+    assert_eq!(FORMAT_VERSION, 2);
+    let set = ReflectorSet::from_json_str(VERSION_1_FILE).expect("version 1 still reads");
+    assert_eq!(set.version, FORMAT_VERSION, "upgraded on reading");
+    assert_eq!(set.reflectors[0].roughness, 0.0, "version 1 described perfect mirrors");
+    let text = set.to_json_string().unwrap();
+    let written: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(written["version"], serde_json::json!(FORMAT_VERSION));
+    assert_eq!(written["reflectors"][0]["roughness"], serde_json::json!(0.0));
+    assert_eq!(ReflectorSet::from_json_str(&text).unwrap(), set);
+    // The schema describes both versions.
+    let old: serde_json::Value = serde_json::from_str(VERSION_1_FILE).unwrap();
+    assert!(schema().is_valid(&old), "the schema accepts a version-1 file");
+    assert!(schema().is_valid(&written), "the schema accepts its version-2 rewrite");
+    // Version 0 and versions after this build's are refused as such.
+    for version in [0, FORMAT_VERSION + 1] {
+        let text = VERSION_1_FILE.replace("\"version\": 1,", &format!("\"version\": {version},"));
+        let err = ReflectorSet::from_json_str(&text).unwrap_err();
+        assert!(matches!(err, FormatError::UnknownVersion { .. }), "{version}: {err}");
+        assert!(err.to_string().contains("reads versions 1 to 2"), "{err}");
+    }
+}
+
+#[test]
+fn roughness_round_trips_and_bad_values_name_reflector_and_field() {
+    let mut set = sample_set();
+    for (r, roughness) in set.reflectors.iter_mut().zip([0.0, 1.0]) {
+        r.roughness = roughness;
+    }
+    let text = set.to_json_string().unwrap();
+    assert_eq!(ReflectorSet::from_json_str(&text).unwrap(), set, "0 and 1 are valid");
+    set.reflectors[1].roughness = 0.123_456_789_012_345_67;
+    let back = ReflectorSet::from_json_str(&set.to_json_string().unwrap()).unwrap();
+    assert_eq!(back.reflectors[1].roughness.to_bits(), set.reflectors[1].roughness.to_bits());
+    for bad in [f64::NAN, f64::INFINITY, -1e-12, 1.000_000_1] {
+        set.reflectors[1].roughness = bad;
+        let err = set.validate().unwrap_err();
+        assert_eq!(err.field_path().as_deref(), Some("reflectors[1].roughness"), "{bad}: {err}");
+        let msg = err.to_string();
+        assert!(msg.contains("mirror wall") && msg.contains("roughness"), "{msg}");
+        assert!(set.to_json_string().is_err(), "{bad} is not written");
+    }
+    // Written by hand: a string, null (JSON's NaN) or a number out of range.
+    for bad in [serde_json::json!("0.2"), serde_json::Value::Null, serde_json::json!(2)] {
+        let text = mutate(|v| v["reflectors"][1]["roughness"] = bad.clone());
+        let err = ReflectorSet::from_json_str(&text).unwrap_err();
+        let path = err.field_path().unwrap_or_default();
+        assert!(path.starts_with("reflectors[1].roughness"), "{bad}: {err}");
+    }
+}
+
 // ---- JSON Schema -------------------------------------------------------------------
 
 fn schema() -> jsonschema::Validator {
@@ -248,7 +331,9 @@ fn schema_accepts_what_serde_writes_and_refuses_broken_shapes() {
         mutate(|v| v["reflectors"][0]["kind"] = serde_json::json!("glossy")),
         mutate(|v| v["reflectors"][0]["half_extents"] = serde_json::json!([0, 1])),
         mutate(|v| v["reflectors"][0]["center"] = serde_json::json!([0, 1])),
-        mutate(|v| v["version"] = serde_json::json!(2)),
+        mutate(|v| v["version"] = serde_json::json!(FORMAT_VERSION + 1)),
+        mutate(|v| v["reflectors"][0]["roughness"] = serde_json::json!(1.5)),
+        mutate(|v| v["reflectors"][0]["roughness"] = serde_json::json!("rough")),
         mutate(|v| v["reflectors"][0]["extra"] = serde_json::json!(true)),
     ] {
         let value: serde_json::Value = serde_json::from_str(&broken).unwrap();
@@ -281,12 +366,14 @@ prop_compose! {
         (u, v) in unit_frame(),
         half in prop::array::uniform2(1e-4f64..1e4),
         coverage in 0.0f64..=1.0,
+        roughness in 0.0f64..=1.0,
         group in 0u32..50,
         nodes in prop::collection::vec("[A-Za-z0-9_]{1,8}", 0..3),
     ) -> Reflector {
         let mut r = Reflector::new(id, name, kind, DVec3::from(center), u, v, DVec2::from(half));
         r.enabled = enabled;
         r.coverage = coverage;
+        r.roughness = roughness;
         r.parallel_group = group;
         r.source.nodes = nodes;
         r
@@ -315,6 +402,7 @@ enum Breakage {
     TiltV(f64),
     Extent(f64),
     Coverage(f64),
+    Roughness(f64),
     OccluderOutOfRange(u32),
     NanCenter,
 }
@@ -325,6 +413,8 @@ fn breakage() -> impl Strategy<Value = Breakage> {
         prop_oneof![-1.0f64..-0.01, 0.01f64..1.0].prop_map(Breakage::TiltV),
         prop_oneof![Just(0.0), Just(f64::NAN), Just(f64::INFINITY), -1e3f64..0.0].prop_map(Breakage::Extent),
         prop_oneof![Just(f64::NAN), -1.0f64..-1e-9, 1.0000001f64..5.0].prop_map(Breakage::Coverage),
+        prop_oneof![Just(f64::NAN), Just(f64::NEG_INFINITY), -1.0f64..-1e-9, 1.0000001f64..5.0]
+            .prop_map(Breakage::Roughness),
         (0u32..100).prop_map(Breakage::OccluderOutOfRange),
         Just(Breakage::NanCenter),
     ]
@@ -351,6 +441,7 @@ proptest! {
             Breakage::TiltV(t) => { r.axis_v = (r.axis_v + r.axis_u * t).normalize(); "axis_v" }
             Breakage::Extent(e) => { r.half_extents.y = e; "half_extents" }
             Breakage::Coverage(c) => { r.coverage = c; "coverage" }
+            Breakage::Roughness(x) => { r.roughness = x; "roughness" }
             Breakage::OccluderOutOfRange(k) => { r.occluders = vec![n + k]; "occluders[0]" }
             Breakage::NanCenter => { r.center.y = f64::NAN; "center" }
         };

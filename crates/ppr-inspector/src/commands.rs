@@ -28,6 +28,13 @@ pub enum EditCommand {
         /// New kind.
         kind: ReflectorKind,
     },
+    /// Set a reflector's perceptual roughness (0 mirror to 1 fully rough).
+    SetRoughness {
+        /// Reflector id.
+        id: u32,
+        /// New roughness (the document refuses values outside `[0, 1]`).
+        roughness: f64,
+    },
     /// Rename a reflector.
     Rename {
         /// Reflector id.
@@ -86,6 +93,9 @@ impl EditCommand {
                 format!("{} {}", if *enabled { "enable" } else { "disable" }, name_of(set, *id))
             }
             Self::SetKind { id, kind } => format!("make {} {kind}", name_of(set, *id)),
+            Self::SetRoughness { id, roughness } => {
+                format!("set the roughness of {} to {roughness:.3}", name_of(set, *id))
+            }
             Self::Rename { id, name } => format!("rename {} to {name:?}", name_of(set, *id)),
             Self::Place { id, .. } => format!("move/resize {}", name_of(set, *id)),
             Self::Split { id, axis, .. } => format!("split {} across {axis:?}", name_of(set, *id)),
@@ -99,6 +109,7 @@ impl EditCommand {
         match self {
             Self::SetEnabled { id, .. }
             | Self::SetKind { id, .. }
+            | Self::SetRoughness { id, .. }
             | Self::Rename { id, .. }
             | Self::Place { id, .. }
             | Self::Split { id, .. }
@@ -122,6 +133,7 @@ impl EditCommand {
         match self {
             Self::SetEnabled { enabled, .. } => out.set.reflectors[index].enabled = *enabled,
             Self::SetKind { kind, .. } => out.set.reflectors[index].kind = *kind,
+            Self::SetRoughness { roughness, .. } => out.set.reflectors[index].roughness = *roughness,
             Self::Rename { name, .. } => out.set.reflectors[index].name = name.clone(),
             Self::Place { placement, .. } => {
                 let r = &doc.set.reflectors[index];

@@ -1,4 +1,4 @@
-//! The selected reflector's properties: enable, kind, name, placement fields, and the
+//! The selected reflector's properties: enable, kind, roughness, name, placement fields, and the
 //! split, merge and re-fit operations. Every change is an edit command (undoable,
 //! validated; a refused one shows as an error).
 
@@ -97,6 +97,20 @@ impl PropertiesPanel {
                     state.apply(EditCommand::SetKind { id, kind });
                 }
             }
+        });
+
+        ui.horizontal(|ui| {
+            let label = ui.label("Roughness");
+            let mut roughness = r.roughness;
+            let response = ui
+                .add(DragValue::new(&mut roughness).speed(0.005).range(0.0..=1.0).max_decimals(3))
+                .labelled_by(label.id)
+                .on_hover_text("perceptual roughness, as glTF's: 0 is a mirror, 1 fully rough");
+            if response.changed() && roughness != r.roughness {
+                let g = self.gesture(state, response.id);
+                state.apply_in_gesture(EditCommand::SetRoughness { id, roughness }, Some(g));
+            }
+            self.end_gesture(&response);
         });
 
         ui.separator();

@@ -123,7 +123,7 @@ pub fn split(
     let hull = region.map(|g| {
         let flat = convex_hull(&g.points.iter().map(|&p| local2(r, p)).collect::<Vec<_>>());
         let spatial = flat.iter().map(|&q| lift2(r, q)).collect();
-        Polygon { flat, spatial }
+        Polygon { flat, spatial, roughness: r.roughness }
     });
     let mut parts = Vec::with_capacity(2);
     for (k, (lo, hi)) in sides.into_iter().enumerate() {
@@ -248,8 +248,15 @@ pub fn merge(
         _ => (a.corners().into_iter().chain(b.corners()).collect(), None),
     };
     let mut merged = fit_in_plane(a, &points).ok_or_else(|| refuse("nothing to fit".into()))?;
-    let area = reflective_area(a, a_region) + reflective_area(b, b_region);
+    let (area_a, area_b) = (reflective_area(a, a_region), reflective_area(b, b_region));
+    let area = area_a + area_b;
     merged.coverage = coverage_of(area, &merged);
+    // The extractor's rule for a region of several surfaces: the area-weighted mean.
+    merged.roughness = if area > 0.0 {
+        ((area_a * a.roughness + area_b * b.roughness) / area).clamp(0.0, 1.0)
+    } else {
+        0.5 * (a.roughness + b.roughness)
+    };
     merged.name = format!("{} + {}", a.name, b.name);
     merged.enabled = a.enabled || b.enabled;
     for n in &b.source.nodes {

@@ -4,6 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
+use image::ImageEncoder;
 use serde_json::{Value, json};
 
 /// How positions are stored.
@@ -126,6 +127,49 @@ impl GltfBuilder {
             "meshes",
             json!({"name": name, "primitives": [{"attributes": {"POSITION": pacc}, "indices": iacc, "material": material}]}),
         )
+    }
+
+    /// Adds texture coordinates (set 0) to every primitive of `mesh`, one per position.
+    pub fn uvs(&mut self, mesh: usize, uvs: &[[f32; 2]]) {
+        let bytes: Vec<u8> = uvs.iter().flatten().flat_map(|f| f.to_le_bytes()).collect();
+        let view = self.view(&bytes);
+        let acc = self.push(
+            "accessors",
+            json!({"bufferView": view, "componentType": 5126, "count": uvs.len(), "type": "VEC2"}),
+        );
+        for prim in self.json["meshes"][mesh]["primitives"].as_array_mut().into_iter().flatten() {
+            prim["attributes"]["TEXCOORD_0"] = json!(acc);
+        }
+    }
+
+    /// Adds a `width × height` PNG whose green channel is `green` (rows top to bottom; red
+    /// and blue 0) as an embedded image and a texture with a sampler of the given glTF
+    /// wrap mode (10497 repeat, 33648 mirrored, 33071 clamp), and binds it as `material`'s
+    /// metallic-roughness texture; returns the texture's index.
+    ///
+    /// # Panics
+    /// When `green` does not hold `width * height` texels.
+    pub fn roughness_texture(
+        &mut self,
+        material: usize,
+        width: u32,
+        height: u32,
+        green: &[u8],
+        wrap: u32,
+    ) -> usize {
+        assert_eq!(green.len(), (width * height) as usize, "one green value per texel");
+        let rgb: Vec<u8> = green.iter().flat_map(|&g| [0, g, 0]).collect();
+        let mut png = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut png)
+            .write_image(&rgb, width, height, image::ExtendedColorType::Rgb8)
+            .expect("PNG encoding in memory does not fail");
+        let view = self.view(&png);
+        let img = self.push("images", json!({"bufferView": view, "mimeType": "image/png"}));
+        let sampler = self.push("samplers", json!({"wrapS": wrap, "wrapT": wrap}));
+        let texture = self.push("textures", json!({"source": img, "sampler": sampler}));
+        self.json["materials"][material]["pbrMetallicRoughness"]["metallicRoughnessTexture"] =
+            json!({"index": texture});
+        texture
     }
 
     /// Adds a root node with a mesh and a TRS; returns its index.

@@ -1,4 +1,5 @@
-//! Base colour textures decoded to RGBA8 (PNG and JPEG). A texture that cannot be read or
+//! Base colour textures decoded to RGBA8 (PNG and JPEG; [`decode`] also reads the images of
+//! `roughness_maps.rs`). A texture that cannot be read or
 //! decoded is a note, not an error: it does not change geometry, so a level that one tool
 //! opens without textures opens in every tool.
 
@@ -53,7 +54,11 @@ pub(crate) fn read_base_color_textures(
     (textures, texture_of_image)
 }
 
-fn decode(image: &gltf::Image, data: &BufferData, base_dir: &Path) -> Result<(u32, u32, Vec<u8>), String> {
+pub(crate) fn decode(
+    image: &gltf::Image,
+    data: &BufferData,
+    base_dir: &Path,
+) -> Result<(u32, u32, Vec<u8>), String> {
     let owned;
     let bytes: &[u8] = match image.source() {
         gltf::image::Source::View { view, .. } => data.view(&view).map_err(|e| e.to_string())?.bytes,

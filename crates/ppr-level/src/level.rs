@@ -1,12 +1,16 @@
 //! The level as the extractor reads it: world-space triangles with where each came from
-//! and its material, flattened from a [`Scene`].
+//! and its material (and texture coordinates where roughness maps need them), flattened
+//! from a [`Scene`].
+
+use std::sync::Arc;
 
 use glam::DVec3;
 
 use crate::extras::ReflectorOverride;
-use crate::{LoadError, MAX_LEVEL_TRIANGLES, Material, Scene};
+use crate::{LoadError, MAX_LEVEL_TRIANGLES, Material, RoughnessMap, Scene};
 
-/// The material properties candidate selection looks at (glTF factors, textures ignored).
+/// The material properties the extractor reads: glTF factors for candidate selection, and
+/// the roughness map for each reflector's roughness.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MaterialInfo {
     /// Material name, or `#index` when it has none.
@@ -15,6 +19,9 @@ pub struct MaterialInfo {
     pub roughness: f64,
     /// `pbrMetallicRoughness.metallicFactor` (glTF default 1).
     pub metallic: f64,
+    /// The metallic-roughness texture's green channel, which multiplies `roughness`
+    /// (sampled with [`Level::uvs`]); `None` without one.
+    pub roughness_map: Option<Arc<RoughnessMap>>,
     /// `KHR_materials_transmission.transmissionFactor` (0 when absent).
     pub transmission: f64,
     /// `KHR_materials_clearcoat.clearcoatFactor` (0 when absent).
@@ -34,6 +41,7 @@ impl MaterialInfo {
             name: "(default material)".into(),
             roughness: 1.0,
             metallic: 1.0,
+            roughness_map: None,
             transmission: 0.0,
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
@@ -49,6 +57,7 @@ impl From<&Material> for MaterialInfo {
             name: m.name.clone(),
             roughness: f64::from(m.roughness),
             metallic: f64::from(m.metallic),
+            roughness_map: m.roughness_map.clone(),
             transmission: f64::from(m.transmission),
             clearcoat: m.clearcoat,
             clearcoat_roughness: m.clearcoat_roughness,
@@ -94,7 +103,7 @@ impl LevelTriangle {
 /// A flattened level: every triangle of the scene in world space.
 ///
 /// Invariants: every `source` indexes `sources`, every source's `material` indexes
-/// `materials`, and every position is finite.
+/// `materials`, every position is finite, and `uvs` is empty or one per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Level {
     /// The file it was read from, as given.
@@ -107,6 +116,10 @@ pub struct Level {
     pub sources: Vec<TriangleSource>,
     /// The materials the sources refer to.
     pub materials: Vec<MaterialInfo>,
+    /// UV set 0 of each triangle's corners (in the order of its `positions`), when a
+    /// material has a roughness map; else empty (the extractor then reads factors only).
+    /// `[0, 0]` for primitives without texture coordinates.
+    pub uvs: Vec<[[f32; 2]; 3]>,
     /// Things the loader skipped that are not errors (point and line primitives, ...).
     pub notes: Vec<String>,
 }
@@ -126,6 +139,7 @@ impl Level {
                 mesh_extras: ReflectorOverride::default(),
             }],
             materials: vec![material],
+            uvs: Vec::new(),
             notes: Vec::new(),
         }
     }
@@ -162,8 +176,13 @@ impl Level {
             triangles: Vec::with_capacity(total),
             sources: Vec::new(),
             materials: scene.materials.iter().map(MaterialInfo::from).collect(),
+            uvs: Vec::new(),
             notes: scene.notes.clone(),
         };
+        let with_uvs = level.materials.iter().any(|m| m.roughness_map.is_some());
+        if with_uvs {
+            level.uvs.reserve_exact(total);
+        }
         let mut start = 0;
         while start < scene.instances.len() {
             // One node's instances: the first has `gpu_instance` 0.
@@ -191,6 +210,13 @@ impl Level {
                         let [a, b, c] = [t[0], t[1], t[2]].map(|i| world[i as usize]);
                         LevelTriangle { positions: if flip { [a, c, b] } else { [a, b, c] }, source }
                     }));
+                    if with_uvs {
+                        let uv = |i: u32| prim.uvs.get(i as usize).map_or([0.0; 2], |v| v.to_array());
+                        level.uvs.extend(prim.indices.chunks_exact(3).map(|t| {
+                            let [a, b, c] = [t[0], t[1], t[2]].map(uv);
+                            if flip { [a, c, b] } else { [a, b, c] }
+                        }));
+                    }
                 }
             }
             start = end;
@@ -203,6 +229,9 @@ impl Level {
     /// # Errors
     /// A message naming the first triangle or source that breaks one.
     pub fn validate(&self) -> Result<(), String> {
+        if !self.uvs.is_empty() && self.uvs.len() != self.triangles.len() {
+            return Err(format!("{} uvs for {} triangles", self.uvs.len(), self.triangles.len()));
+        }
         for (i, s) in self.sources.iter().enumerate() {
             if s.material as usize >= self.materials.len() {
                 return Err(format!("sources[{i}].material {} is out of range", s.material));

@@ -12,10 +12,12 @@
 //!
 //! - [`load_scene`] gives a [`Scene`], what renderers draw: shared meshes placed by
 //!   [`Instance`]s, [`Material`]s (base colour, alpha mode, roughness, metallic,
-//!   transmission, clearcoat, unlit, double-sidedness, `extras.ppr`), decoded base colour
+//!   transmission, clearcoat, unlit, double-sidedness, `extras.ppr`, the green channel of
+//!   the metallic-roughness texture as a [`RoughnessMap`]), decoded base colour
 //!   [`Texture`]s and the file's [`Camera`]s.
 //! - [`load_level`] gives a [`Level`], what the extractor reads: every triangle in world
-//!   space with the node, mesh and material it came from ([`Level::from_scene`]).
+//!   space with the node, mesh and material it came from, and its UV set 0 where a
+//!   material has a roughness map ([`Level::from_scene`]).
 //! - `extras.ppr` (`{"ppr": {"reflector": bool, "kind": "opaque|transparent|water"}}` on a
 //!   node, mesh or material) is read in one place into a [`ReflectorOverride`]; a
 //!   malformed one is an error that names its owner.
@@ -57,6 +59,7 @@ mod materials;
 mod meshopt_views;
 mod node_tree;
 mod primitive_reader;
+mod roughness_maps;
 mod scene;
 mod scene_reader;
 mod uri;
@@ -70,6 +73,7 @@ pub use load::{
     load_scene_from_bytes,
 };
 pub use materials::{AlphaMode, Material};
+pub use roughness_maps::{RoughnessMap, Wrap};
 pub use scene::{Camera, CameraProjection, Instance, Mesh, Primitive, Scene, Texture, Vertex};
 
 /// The deepest node hierarchy read: a node more than this many levels below a root is an

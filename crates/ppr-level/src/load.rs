@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::buffers::BufferData;
 use crate::scene_reader::SceneReader;
-use crate::{Level, LoadError, Scene, container, images, materials};
+use crate::{Level, LoadError, Scene, container, images, materials, roughness_maps};
 
 /// Extensions that change how geometry is stored and that this crate decodes.
 const GEOMETRY_EXTENSIONS: &[&str] =
@@ -35,14 +35,17 @@ pub fn can_read_extension(name: &str) -> bool {
         || name.starts_with("KHR_materials_")
 }
 
-/// Whether textures are decoded.
+/// Whether textures are decoded. What is accepted does not change: an image that fails is
+/// only ever a note.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum TextureLoading {
-    /// Decode base colour textures (renderers).
+    /// Decode base colour textures and roughness maps (renderers).
     #[default]
     Decode,
-    /// Leave [`Scene::textures`] empty (the extractor reads geometry and factors only).
-    /// What is accepted does not change: an image that fails is only ever a note.
+    /// Decode only the roughness maps ([`crate::Material::roughness_map`]), leave
+    /// [`Scene::textures`] empty (the extractor: geometry, factors and roughness).
+    RoughnessOnly,
+    /// Decode nothing.
     Skip,
 }
 
@@ -59,9 +62,10 @@ impl LoadParams {
         Self { textures: TextureLoading::Decode }
     }
 
-    /// Geometry and material factors only.
+    /// Geometry, material factors and roughness maps: what the extractor reads, so that
+    /// its reflectors' roughness does not depend on which tool extracted them.
     pub fn geometry() -> Self {
-        Self { textures: TextureLoading::Skip }
+        Self { textures: TextureLoading::RoughnessOnly }
     }
 }
 
@@ -110,16 +114,23 @@ pub fn load_scene_from_bytes(
             scene.textures = textures;
             map
         }
+        TextureLoading::RoughnessOnly | TextureLoading::Skip => HashMap::new(),
+    };
+    let roughness_maps = match params.textures {
+        TextureLoading::Decode | TextureLoading::RoughnessOnly => {
+            roughness_maps::read_roughness_maps(&doc, &data, base_dir, &mut scene.notes)
+        }
         TextureLoading::Skip => HashMap::new(),
     };
-    scene.materials = materials::read_materials(path, &doc, &texture_of_image)?;
+    scene.materials = materials::read_materials(path, &doc, &texture_of_image, &roughness_maps)?;
     let default_material = scene.materials.len() - 1;
     SceneReader { path, doc: &doc, data: &data, default_material }.read(&mut scene)?;
     scene.check_world_positions()?;
     Ok(scene)
 }
 
-/// Reads and flattens the level at `path` (geometry only, no textures).
+/// Reads and flattens the level at `path` (geometry, material factors and roughness maps;
+/// no base colour textures).
 ///
 /// # Errors
 /// As [`load_scene`], and [`Level::from_scene`]'s size limit.

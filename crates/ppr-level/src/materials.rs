@@ -3,9 +3,10 @@
 
 use std::collections::HashMap;
 use std::path::Path;
+use std::sync::Arc;
 
-use crate::LoadError;
 use crate::extras::{ReflectorOverride, display_name, read_override};
+use crate::{LoadError, RoughnessMap};
 
 /// How a material's alpha is used (glTF `alphaMode`).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -22,7 +23,8 @@ pub enum AlphaMode {
     Blend,
 }
 
-/// One material of a level. Textures other than the base colour are not read.
+/// One material of a level. Of its textures, the base colour is decoded for renderers and
+/// the metallic-roughness texture's green channel (roughness) for the extractor.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Name from the file, or `#index` when it has none.
@@ -38,6 +40,10 @@ pub struct Material {
     pub roughness: f32,
     /// `pbrMetallicRoughness.metallicFactor` (glTF default 1).
     pub metallic: f32,
+    /// The green channel of `pbrMetallicRoughness.metallicRoughnessTexture` (UV set 0),
+    /// which multiplies `roughness`; `None` when absent, not decoded, or not decodable (a
+    /// note says why).
+    pub roughness_map: Option<Arc<RoughnessMap>>,
     /// `KHR_materials_transmission.transmissionFactor` (0 when absent).
     pub transmission: f32,
     /// `KHR_materials_clearcoat.clearcoatFactor` as written in the JSON (0 when absent).
@@ -66,6 +72,7 @@ impl Material {
             emissive: [0.0; 3],
             roughness: 1.0,
             metallic: 1.0,
+            roughness_map: None,
             transmission: 0.0,
             clearcoat: 0.0,
             clearcoat_roughness: 0.0,
@@ -79,11 +86,13 @@ impl Material {
 }
 
 /// Reads every material of the document and appends the glTF default material last.
-/// `texture_of_image` maps an image index to its decoded texture.
+/// `texture_of_image` maps an image index to its decoded texture, `roughness_maps` a
+/// texture index to its decoded roughness map.
 pub(crate) fn read_materials(
     path: &Path,
     doc: &gltf::Document,
     texture_of_image: &HashMap<usize, usize>,
+    roughness_maps: &HashMap<usize, Arc<RoughnessMap>>,
 ) -> Result<Vec<Material>, LoadError> {
     let mut out = Vec::new();
     for m in doc.materials() {
@@ -103,6 +112,9 @@ pub(crate) fn read_materials(
             emissive: m.emissive_factor(),
             roughness: pbr.roughness_factor(),
             metallic: pbr.metallic_factor(),
+            roughness_map: pbr
+                .metallic_roughness_texture()
+                .and_then(|info| roughness_maps.get(&info.texture().index()).cloned()),
             transmission: m.transmission().map_or(0.0, |t| t.transmission_factor()),
             clearcoat: number("clearcoatFactor", 0.0),
             clearcoat_roughness: number("clearcoatRoughnessFactor", 0.0),

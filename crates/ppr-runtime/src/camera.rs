@@ -6,7 +6,7 @@
 
 use glam::camera::rh::proj::directx;
 use glam::camera::rh::view::look_to_quat;
-use glam::{DVec3, Mat4, Quat, Vec3, Vec4};
+use glam::{DMat4, DVec3, Mat4, Quat, Vec3, Vec4};
 
 /// Which way depth runs in clip space (wgpu's z is in `[0, 1]`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
@@ -29,17 +29,32 @@ pub struct Projection {
     pub far: Option<f32>,
     /// Standard or reversed Z.
     pub depth: DepthMode,
+    /// The game's own clip-from-view matrix (wgpu clip space, z in `[0, 1]`), used instead
+    /// of the one `fov_y`, `near` and `far` give, whatever the viewport's aspect: TAA
+    /// jitter, off-centre and oblique-near-plane projections. `depth` must say which way
+    /// its depth runs. A perspective matrix: reflections are mirrored about the camera's
+    /// position.
+    pub matrix: Option<Mat4>,
 }
 
 impl Default for Projection {
     fn default() -> Self {
-        Self { fov_y: 60f32.to_radians(), near: 0.05, far: Some(500.0), depth: DepthMode::Standard }
+        Self {
+            fov_y: 60f32.to_radians(),
+            near: 0.05,
+            far: Some(500.0),
+            depth: DepthMode::Standard,
+            matrix: None,
+        }
     }
 }
 
 impl Projection {
     /// Clip-from-view matrix for a viewport of the given aspect ratio (width / height).
     pub fn clip_from_view(&self, aspect: f32) -> Mat4 {
+        if let Some(m) = self.matrix {
+            return m;
+        }
         match (self.far, self.depth) {
             (Some(far), DepthMode::Standard) => directx::perspective(self.fov_y, aspect, self.near, far),
             // Swapping near and far maps the near plane to 1 and the far plane to 0.
@@ -68,6 +83,16 @@ impl Projection {
     }
 }
 
+/// Why a game's matrices make no [`Camera`].
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum CameraError {
+    /// The view matrix is not a rotation and a translation.
+    #[error(
+        "the view matrix is not rigid (scale {scale:?}, or shear, or not invertible): pass a rotation and translation only"
+    )]
+    NotRigid { scale: [f64; 3] },
+}
+
 /// A camera: where it is (f64), where it looks, and how it projects.
 ///
 /// The view looks down its local -Z with +Y up (glTF and glam convention).
@@ -87,6 +112,29 @@ impl Camera {
         let forward = (target - eye).as_vec3().normalize();
         let rotation = look_to_quat(forward, up).inverse();
         Self { position: eye, rotation, projection }
+    }
+
+    /// The camera of a game's view matrix (view-from-world, f64 so that a level far from
+    /// the origin keeps its precision) and projection matrix (`clip_from_view`, see
+    /// [`Projection::matrix`]), with `depth` saying which way the projection's depth runs.
+    ///
+    /// # Errors
+    /// [`CameraError::NotRigid`] when the view matrix scales, shears or is not invertible:
+    /// the runtime needs a camera position and a rotation.
+    pub fn from_matrices(view: DMat4, clip_from_view: Mat4, depth: DepthMode) -> Result<Self, CameraError> {
+        let world_from_view = view.inverse();
+        let (scale, rotation, position) = world_from_view.to_scale_rotation_translation();
+        let rigid = world_from_view.is_finite()
+            && (scale - glam::DVec3::ONE).abs().max_element() < 1e-5
+            && (DMat4::from_rotation_translation(rotation, position) - world_from_view)
+                .to_cols_array()
+                .iter()
+                .all(|d| d.abs() < 1e-6 * (1.0 + position.length()));
+        if !rigid {
+            return Err(CameraError::NotRigid { scale: scale.to_array() });
+        }
+        let projection = Projection { depth, matrix: Some(clip_from_view), ..Projection::default() };
+        Ok(Self { position, rotation: rotation.as_quat().normalize(), projection })
     }
 
     /// View-from-relative matrix: a pure rotation (positions are already camera-relative).
@@ -136,6 +184,36 @@ mod tests {
         check_depth(Projection { depth: DepthMode::Reversed, ..p }, 1.0, 0.0);
         check_depth(Projection { far: None, ..p }, 0.0, 1.0);
         check_depth(Projection { far: None, depth: DepthMode::Reversed, ..p }, 1.0, 0.0);
+    }
+
+    #[test]
+    fn a_camera_from_matrices_projects_as_the_camera_they_came_from() {
+        let projection = Projection { depth: DepthMode::Reversed, far: None, ..Projection::default() };
+        let cam = Camera::look_at(
+            DVec3::new(1e5, 2.0, -3.0),
+            DVec3::new(1e5 + 4.0, 1.0, -9.0),
+            Vec3::Y,
+            projection,
+        );
+        let view = DMat4::from_rotation_translation(cam.rotation.as_dquat(), cam.position).inverse();
+        let aspect = 16.0 / 9.0;
+        let jitter = Mat4::from_translation(Vec3::new(0.5 / 960.0, -0.5 / 540.0, 0.0));
+        let clip = jitter * projection.clip_from_view(aspect);
+        let from = Camera::from_matrices(view, clip, DepthMode::Reversed).expect("rigid view");
+        assert!((from.position - cam.position).length() < 1e-9, "{:?}", from.position);
+        let p = Vec3::new(1.0, -0.5, -4.0);
+        let expected = jitter * cam.project_relative(p, aspect);
+        // The projection matrix is the game's, whatever the aspect.
+        for a in [aspect, 1.0] {
+            let got = from.project_relative(p, a);
+            assert!((got - expected).abs().max_element() < 1e-5, "{got} vs {expected}");
+        }
+        assert_eq!(from.projection.far_depth(), 0.0);
+        let scaled = view * DMat4::from_scale(DVec3::splat(2.0));
+        assert!(matches!(
+            Camera::from_matrices(scaled, clip, DepthMode::Standard),
+            Err(CameraError::NotRigid { .. })
+        ));
     }
 
     #[test]

@@ -8,26 +8,43 @@
 //!
 //! This crate does no file I/O and knows nothing about glTF or any UI.
 
+// The game-facing API is what the crate root re-exports below. The modules are public for
+// the workspace's tests, bench and debug views (CPU references of the encoding, the shape
+// table, the passes and their WGSL) but hidden from the documentation: they are not part
+// of the API a game should build on.
+#[doc(hidden)]
 pub mod camera;
+#[doc(hidden)]
 pub mod encoding;
 mod frame_buffers;
 mod frame_upload;
+#[doc(hidden)]
 pub mod gpu_types;
+#[doc(hidden)]
 pub mod passes;
+#[doc(hidden)]
 pub mod plan;
 mod reduced_targets;
+#[doc(hidden)]
 pub mod renderer;
+#[doc(hidden)]
 pub mod settings;
+#[doc(hidden)]
 pub mod shader;
+#[doc(hidden)]
 pub mod shape_tests;
+#[doc(hidden)]
 pub mod shapes;
+#[doc(hidden)]
 pub mod source_box;
+#[doc(hidden)]
 pub mod timestamps;
 
-pub use camera::{Camera, DepthMode, Projection};
+pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
+pub use passes::projection::Ablation;
 pub use passes::reflection::OUTPUT_FORMAT;
 pub use plan::{Choice, FramePlan, PlanParams, ScreenRect};
-pub use renderer::{FrameInputs, ReflectionRenderer, RendererDesc};
+pub use renderer::{DebugOptions, FrameInputs, ReflectionRenderer, RendererDesc};
 pub use settings::{ReflectionSettings, ResolutionTier, WriteMode};
 pub use timestamps::PassTimings;

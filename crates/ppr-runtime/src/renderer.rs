@@ -87,6 +87,27 @@ impl<'a> FrameInputs<'a> {
     }
 }
 
+/// Debug and bench knobs of a [`ReflectionRenderer`]: what the inspector, the tests and the
+/// bench change, and a game leaves at the defaults.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DebugOptions {
+    /// How the projection pass writes (shows the write-order artefact).
+    pub write_mode: WriteMode,
+    /// Record per source pixel which visible shapes it wrote for (see
+    /// [`ReflectionRenderer::debug_writes_buffer`]).
+    pub writes: bool,
+    /// With `writes`: record each pixel's tile candidate-list length (0xffffffff: the list
+    /// overflowed or there is none) instead of the write bits.
+    pub tile_lists: bool,
+    /// Use this encoding instead of the one the plan picks for the viewport (e.g. the
+    /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
+    /// fit the viewport ([`EncodingLayout::fits_viewport`]) or long offsets are dropped.
+    pub encoding: Option<EncodingLayout>,
+    /// Leave parts of the projection pass out, to time the rest (bench only; the image
+    /// is wrong with anything but [`Ablation::None`]).
+    pub projection_ablation: Ablation,
+}
+
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
 /// may share one renderer and one submit).
 ///
@@ -112,21 +133,9 @@ pub struct ReflectionRenderer {
     pub settings: ReflectionSettings,
     /// How the frame plan picks passes and variants.
     pub plan_params: PlanParams,
-    /// How the projection pass writes (debug: shows the write-order artefact).
-    pub write_mode: WriteMode,
-    /// Record per source pixel which visible shapes it wrote for (debug; see
-    /// [`Self::debug_writes_buffer`]).
-    pub debug_writes: bool,
-    /// With `debug_writes`: record each pixel's tile candidate-list length (0xffffffff:
-    /// the list overflowed or there is none) instead of the write bits.
-    pub debug_tile_lists: bool,
-    /// Use this encoding instead of the one the plan picks for the viewport (e.g. the
-    /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
-    /// fit the viewport ([`EncodingLayout::fits_viewport`]) or long offsets are dropped.
-    pub encoding_override: Option<EncodingLayout>,
-    /// Leave parts of the projection pass out, to time the rest (bench only; the image
-    /// is wrong with anything but [`Ablation::None`]).
-    pub projection_ablation: Ablation,
+    /// Debug and bench knobs (write order, write records, encoding, ablations); a game
+    /// leaves them at their defaults.
+    pub debug: DebugOptions,
     classify: TileClassifyPass,
     clear: ClearPass,
     super_tile_lists: SuperTileListPass,
@@ -159,11 +168,7 @@ impl ReflectionRenderer {
             device: device.clone(),
             settings: ReflectionSettings::default(),
             plan_params: PlanParams::default(),
-            write_mode: WriteMode::default(),
-            debug_writes: false,
-            encoding_override: None,
-            debug_tile_lists: false,
-            projection_ablation: Ablation::None,
+            debug: DebugOptions::default(),
             classify: TileClassifyPass::new(device),
             clear: ClearPass::new(device),
             super_tile_lists: SuperTileListPass::new(device),
@@ -222,7 +227,7 @@ impl ReflectionRenderer {
             self.reduced = Some(ReducedTargets::new(&self.device, planned));
         }
         let mut plan = FramePlan::build(&self.table, camera, planned, &self.plan_params);
-        if let Some(layout) = self.encoding_override {
+        if let Some(layout) = self.debug.encoding {
             plan.encoding = layout;
         }
         if !plan.is_empty() {
@@ -245,20 +250,20 @@ impl ReflectionRenderer {
             occluder_tests: plan.occluder_tests,
             depth_occlusion: plan.depth_occlusion,
             layers: !plan.layers.is_empty(),
-            debug_writes: self.debug_writes,
-            debug_tile_lists: self.debug_writes && self.debug_tile_lists,
+            debug_writes: self.debug.writes,
+            debug_tile_lists: self.debug.writes && self.debug.tile_lists,
             source_boxes: !plan.source_rects.is_empty(),
             uniform_tests: plan.uniform_tests,
-            ablation: self.projection_ablation,
+            ablation: self.debug.projection_ablation,
         }
     }
 
     fn upload(&mut self, camera: &Camera, plan: &FramePlan) {
         let [w, h] = plan.viewport;
         let shapes = self.table.gpu_shapes(camera.position);
-        let fits = self.buffers.as_ref().is_some_and(|b| b.fits(&self.table, plan, self.debug_writes));
+        let fits = self.buffers.as_ref().is_some_and(|b| b.fits(&self.table, plan, self.debug.writes));
         if self.table_dirty || !fits {
-            self.buffers = Some(FrameBuffers::new(&self.device, &self.table, plan, self.debug_writes));
+            self.buffers = Some(FrameBuffers::new(&self.device, &self.table, plan, self.debug.writes));
             self.table_dirty = false;
         }
         let b = self.buffers.as_ref().expect("allocated above");
@@ -279,7 +284,7 @@ impl ReflectionRenderer {
             size: [w, h],
             visible_count: plan.visible.len() as u32,
             flags: self.settings.flags()
-                | self.write_mode.flags()
+                | self.debug.write_mode.flags()
                 | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 },
             far_depth: camera.projection.far_depth(),
             plane_epsilon: PLANE_EPSILON,
@@ -313,7 +318,7 @@ impl ReflectionRenderer {
                 plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
             shape_tests(&self.table, &tested, camera.position)
         };
-        debug_assert!(b.fits(&self.table, plan, self.debug_writes));
+        debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         self.upload = Some(FrameUpload::new(
             &self.device,
             &[
@@ -628,10 +633,10 @@ impl ReflectionRenderer {
         self.buffers.as_ref().map(|b| &b.intermediate)
     }
 
-    /// With [`Self::debug_writes`], one u32 per pixel: bit `k % 32` set when the pixel was
+    /// With [`DebugOptions::writes`], one u32 per pixel: bit `k % 32` set when the pixel was
     /// written for the `k`-th shape of the plan's visible list.
     pub fn debug_writes_buffer(&self) -> Option<&wgpu::Buffer> {
-        self.buffers.as_ref().filter(|_| self.debug_writes).map(|b| &b.debug_writes)
+        self.buffers.as_ref().filter(|_| self.debug.writes).map(|b| &b.debug_writes)
     }
 
     /// The super-tile counts and lists of the last frame that built them (layout in

@@ -108,4 +108,84 @@ mod tests {
         assert_eq!(size("Layer"), std::mem::size_of::<GpuLayer>());
         assert_eq!(size("EncodingParams"), std::mem::size_of::<crate::encoding::EncodingParams>());
     }
+
+    /// The constants both sides use have the same values (flags, kinds, tile and block
+    /// sizes, list capacities, the encoding's bit counts), and the shape tests and the
+    /// uniform copy of them have their Rust sizes.
+    #[test]
+    fn wgsl_constants_match_rust() {
+        use crate::encoding::{CLEAR_VALUE, FRACTION_SCALE_NUMERATOR, OFFSET_SUBPIXEL_BITS, TANGENT_BITS};
+        use crate::gpu_types::*;
+        use crate::passes::block_lists::BLOCK_LIST_CAPACITY;
+        use crate::passes::projection::BLOCK;
+        use crate::passes::super_tile_lists::{SUPER_LIST_CAPACITY, SUPER_TILE};
+        use naga::Literal::{I32, U32};
+        use ppr_format::ReflectorKind;
+
+        let source = super::source_with(&[super::VIEW, super::TILE_TEST], crate::passes::projection::WGSL);
+        let module =
+            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        let constant = |name: &str| {
+            let c = module
+                .constants
+                .iter()
+                .find(|(_, c)| c.name.as_deref() == Some(name))
+                .unwrap_or_else(|| panic!("no constant {name}"))
+                .1;
+            match module.global_expressions[c.init] {
+                naga::Expression::Literal(l) => l,
+                ref e => panic!("{name} is not a literal: {e:?}"),
+            }
+        };
+        let expected = [
+            ("PPR_FLAG_HOLES", U32(FLAG_HOLES)),
+            ("PPR_FLAG_FILTERING", U32(FLAG_FILTERING)),
+            ("PPR_FLAG_ANTI_BLEEDING", U32(FLAG_ANTI_BLEEDING)),
+            ("PPR_FLAG_OCCLUDER_TESTS", U32(FLAG_OCCLUDER_TESTS)),
+            ("PPR_FLAG_WRITE_LAST", U32(FLAG_WRITE_LAST)),
+            ("PPR_FLAG_WRITE_MAX", U32(FLAG_WRITE_MAX)),
+            ("PPR_FLAG_WATER_STRETCH", U32(FLAG_WATER_STRETCH)),
+            ("PPR_FLAG_REPLACE_FAR", U32(FLAG_REPLACE_FAR)),
+            ("PPR_SHAPE_OCCLUDES", U32(SHAPE_OCCLUDES)),
+            ("PPR_KIND_OPAQUE", U32(kind_code(ReflectorKind::Opaque))),
+            ("PPR_KIND_TRANSPARENT", U32(kind_code(ReflectorKind::Transparent))),
+            ("PPR_KIND_WATER", U32(kind_code(ReflectorKind::Water))),
+            ("PPR_CLEAR_VALUE", U32(CLEAR_VALUE)),
+            ("PPR_OFFSET_SUBPIXEL_BITS", U32(OFFSET_SUBPIXEL_BITS)),
+            ("PPR_TANGENT_BITS", U32(TANGENT_BITS)),
+            ("PPR_FRACTION_SCALE_NUMERATOR", I32(FRACTION_SCALE_NUMERATOR)),
+            ("BLOCK_SIZE", U32(BLOCK)),
+            ("QUARTER", U32(BLOCK / 2)),
+            ("BLOCK_LIST_CAPACITY", U32(BLOCK_LIST_CAPACITY)),
+            ("SUPER_TILE_SIZE", U32(SUPER_TILE)),
+            ("SUPER_LIST_CAPACITY", U32(SUPER_LIST_CAPACITY)),
+        ];
+        for (name, value) in expected {
+            assert_eq!(constant(name), value, "{name}");
+        }
+        // The projection's workgroup is 16 x 16 threads of four pixels: one block.
+        let entry = module.entry_points.iter().find(|e| e.name == "main").expect("projection main");
+        assert_eq!(entry.workgroup_size, [crate::passes::TILE, crate::passes::TILE, 1]);
+        assert_eq!(crate::passes::TILE * 2, BLOCK);
+        // The uniform copy of the shape tests: `array<ShapeTest, N>` with N the plan's capacity.
+        let uniform_tests = module
+            .global_variables
+            .iter()
+            .find(|(_, g)| g.name.as_deref() == Some("uniform_tests"))
+            .expect("uniform_tests")
+            .1;
+        let size = module.types[uniform_tests.ty].inner.size(module.to_ctx()) as usize;
+        assert_eq!(size, crate::plan::UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>());
+        let test_size = module
+            .types
+            .iter()
+            .find_map(|(_, t)| match &t.inner {
+                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some("ShapeTest") => {
+                    Some(*span as usize)
+                }
+                _ => None,
+            })
+            .expect("ShapeTest");
+        assert_eq!(test_size, std::mem::size_of::<GpuShapeTest>());
+    }
 }

@@ -21,7 +21,13 @@ impl LevelCamera {
     /// planes and the given depth convention.
     pub fn to_runtime_camera(&self, choice: ProjectionChoice) -> Camera {
         let far = if choice.infinite_far { None } else { self.zfar };
-        self.to_camera(Projection { fov_y: self.yfov, near: self.znear, far, depth: choice.depth })
+        self.to_camera(Projection {
+            fov_y: self.yfov,
+            near: self.znear,
+            far,
+            depth: choice.depth,
+            matrix: None,
+        })
     }
 }
 

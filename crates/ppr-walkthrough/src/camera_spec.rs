@@ -23,7 +23,13 @@ pub fn level_camera(camera: &LevelCamera, choice: ProjectionChoice) -> Camera {
     Camera {
         position,
         rotation,
-        projection: Projection { fov_y: camera.yfov, near: camera.znear, far, depth: choice.depth },
+        projection: Projection {
+            fov_y: camera.yfov,
+            near: camera.znear,
+            far,
+            depth: choice.depth,
+            matrix: None,
+        },
     }
 }
 

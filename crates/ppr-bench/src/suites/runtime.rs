@@ -152,7 +152,7 @@ pub fn run_runtime(
         }
         for (suffix, params, reflectors, tuning) in variants {
             let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params)?;
-            ppr.renderer().projection_ablation = tuning;
+            ppr.renderer().debug.projection_ablation = tuning;
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
                     let size = res.size();

@@ -7,6 +7,7 @@ mod level_size;
 mod loading;
 mod manual_edits;
 mod near_planar;
+mod roughness;
 mod scaling;
 mod scenes;
 mod synthetic;

@@ -31,12 +31,13 @@ fn extracted_demo_room() -> (tempfile::TempDir, PathBuf, PathBuf) {
     (dir, level, set)
 }
 
-/// Edits the set as the inspector does: the reflector with `id` renamed, disabled and
-/// shrunk, the set saved, its id recorded in the edits file beside it.
+/// Edits the set as the inspector does: the reflector with `id` renamed, disabled, made
+/// rough and shrunk, the set saved, its id recorded in the edits file beside it.
 fn edit_as_the_inspector_does(set_path: &Path, set: &mut ReflectorSet, id: u32, edits: &mut ManualEdits) {
     let r = set.reflectors.iter_mut().find(|r| r.id == id).unwrap();
     r.name = format!("artist fix {id}");
     r.enabled = false;
+    r.roughness = 0.42;
     r.half_extents *= 0.5;
     edits.edited.insert(id);
     set.save(set_path).unwrap();
@@ -72,6 +73,7 @@ fn an_edit_survives_re_extraction_and_a_stale_one_is_named() {
     let r = after.by_id(kept_id).expect("the edited reflector keeps its id");
     assert_eq!(r.name, format!("artist fix {kept_id}"));
     assert!(!r.enabled);
+    assert_eq!(r.roughness, 0.42, "the artist's roughness beats the material's");
     assert_eq!(r.half_extents, fresh.reflectors[0].half_extents * 0.5);
     // The extractor's own reflector is back where the stale edit was.
     let back = after.by_id(fresh.reflectors[1].id).expect("the extractor's reflector is back");

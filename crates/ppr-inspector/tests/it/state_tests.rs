@@ -63,6 +63,29 @@ fn edits_undo_and_redo_step_by_step() {
 }
 
 #[test]
+fn roughness_is_edited_undone_and_refused_outside_zero_to_one() {
+    let original = demo_document(&ExtractParams::default());
+    let mirror = id_named(&original, "mirror on mirror_wall");
+    let before = original.set.by_id(mirror).expect("mirror").roughness;
+    let mut state = state_with(original.clone());
+    assert!(state.apply(EditCommand::SetRoughness { id: mirror, roughness: 0.35 }));
+    let r = state.set().and_then(|s| s.by_id(mirror)).expect("mirror");
+    assert_eq!(r.roughness, 0.35);
+    assert!(state.doc.as_ref().is_some_and(|d| d.edits.edited.contains(&mirror)), "recorded as an edit");
+    assert_eq!(state.history.undo_label(), Some("set the roughness of \"mirror on mirror_wall\" to 0.350"));
+    state.undo();
+    assert_eq!(state.set().and_then(|s| s.by_id(mirror)).map(|r| r.roughness), Some(before));
+    state.redo();
+    assert_eq!(state.set().and_then(|s| s.by_id(mirror)).map(|r| r.roughness), Some(0.35));
+    for bad in [1.5, -0.1, f64::NAN] {
+        assert!(!state.apply(EditCommand::SetRoughness { id: mirror, roughness: bad }), "{bad}");
+        let message = state.messages.latest_error().expect("an error").text.clone();
+        assert!(message.contains("roughness") && message.contains("mirror on mirror_wall"), "{message}");
+    }
+    assert_eq!(state.history.undo_len(), 1);
+}
+
+#[test]
 fn one_gesture_is_one_undo_step() {
     let original = demo_document(&ExtractParams::default());
     let mirror = id_named(&original, "mirror on mirror_wall");
@@ -329,7 +352,7 @@ fn float_fields(r: &ppr_format::Reflector) -> Vec<f64> {
         .iter()
         .flat_map(|v| v.to_array())
         .chain(r.half_extents.to_array())
-        .chain([r.coverage])
+        .chain([r.coverage, r.roughness])
         .collect()
 }
 
@@ -363,9 +386,13 @@ fn manual_edits_survive_save_reopen_and_reextraction() {
     let mut state = state_with(doc);
     assert!(state.apply(EditCommand::Rename { id: mirror, name: "hero mirror".into() }));
     assert!(state.apply(EditCommand::SetEnabled { id: puddle, enabled: false }));
+    assert!(state.apply(EditCommand::SetRoughness { id: mirror, roughness: 0.4 }));
     assert!(state.apply(EditCommand::Split { id: water, axis: SplitAxis::V, at: 0.5 }));
     state.save_as(&path).expect("saved");
     assert!(edits_path.exists(), "the edits are saved beside the set");
+    let record = std::fs::read_to_string(&edits_path).expect("read");
+    let record = ppr_format::edits::EditsFile::from_json_str(&record).expect("an edits file");
+    assert!(record.edited.contains(&mirror), "the roughness edit is recorded: {record:?}");
     let saved = state.set().expect("set").clone();
 
     // Reopen (a new session): the set is the file's, and re-extraction keeps the edits.
@@ -379,6 +406,7 @@ fn manual_edits_survive_save_reopen_and_reextraction() {
     assert!(reopened.wait_for_job(Duration::from_secs(120)));
     let set = reopened.set().expect("set");
     assert_eq!(set.by_id(mirror).map(|r| r.name.as_str()), Some("hero mirror"));
+    assert_eq!(set.by_id(mirror).map(|r| r.roughness), Some(0.4), "re-extraction keeps the roughness");
     assert_eq!(set.by_id(puddle).map(|r| r.enabled), Some(false));
     assert!(set.by_id(water).is_none(), "the split water stays split");
     assert_eq!(set.reflectors.iter().filter(|r| r.name.starts_with("water on water_surface [")).count(), 2);

@@ -338,3 +338,40 @@ fn reextract_from_the_panel_keeps_a_rename() {
     assert_eq!(state.selection, Some(water));
     assert_eq!(state.history.undo_len(), 2, "rename, re-extract");
 }
+
+#[test]
+fn the_panel_shows_and_edits_the_roughness() {
+    let mut snapshots = SnapshotResults::new();
+    let mut harness = harness();
+    harness.state_mut().state.open_level(std::path::Path::new(DEMO_LEVEL), None);
+    wait_for_extraction(&mut harness);
+    harness.get_by_label("mirror on mirror_wall").click();
+    harness.run();
+    let mirror = selected(&harness);
+    // The extractor took the demo mirror's roughness from its material (factor 0.02).
+    assert_eq!(mirror.roughness, f64::from(0.02f32));
+    assert!(harness.query_by_label("Roughness").is_some(), "a roughness field in the panel");
+
+    harness.get_by_label("Roughness").set_value_accesskit(0.35);
+    harness.run();
+    let rough = selected(&harness);
+    assert_eq!((rough.id, rough.roughness), (mirror.id, 0.35));
+    assert!(harness.state().state.is_dirty());
+    let recorded = harness.state().state.doc.as_ref().is_some_and(|d| d.edits.edited.contains(&mirror.id));
+    assert!(recorded, "recorded in the edits, so that a re-extraction keeps it");
+    snapshot(&mut harness, &mut snapshots, "inspector/roughness", &[]);
+
+    // Out of range is clamped by the field. Both values were set in one interaction with
+    // the field (it kept the focus): one undo step gives the mirror back, redo the edit.
+    harness.get_by_label("Roughness").set_value_accesskit(3.0);
+    harness.run();
+    assert_eq!(selected(&harness).roughness, 1.0);
+    assert_eq!(harness.state().state.history.undo_len(), 1);
+    harness.get_by_label("Undo").click();
+    harness.run();
+    assert_eq!(selected(&harness), mirror);
+    harness.get_by_label("Redo").click();
+    harness.run();
+    assert_eq!(selected(&harness).roughness, 1.0);
+    snapshots.unwrap();
+}
