@@ -11,6 +11,7 @@
 //! [`technique::BenchTechnique`] that records its passes and reports per-pass GPU times.
 
 pub mod bandwidth;
+pub mod bounce_reference;
 pub mod buffer_readback;
 pub mod camera_ranking;
 pub mod cameras;

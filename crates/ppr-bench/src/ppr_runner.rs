@@ -12,6 +12,8 @@ use crate::timing::PassTime;
 pub struct PprRunner {
     label: String,
     technique: PprTechnique,
+    /// Scored against this reference instead of the one of its bounces.
+    reference_bounces: Option<u32>,
 }
 
 impl PprRunner {
@@ -25,7 +27,19 @@ impl PprRunner {
     ) -> Result<Self, BenchError> {
         let mut technique = PprTechnique::new(device, queue, reflectors, settings)?;
         technique.renderer().plan_params = plan_params;
-        Ok(Self { label: label.into(), technique })
+        Ok(Self { label: label.into(), technique, reference_bounces: None })
+    }
+
+    /// Frames of the same camera per bench frame, each fed the previous one's composite
+    /// ([`PprTechnique::set_bounces`]); the timings are the last frame's passes and the
+    /// copy that feeds it, what a game pays per frame.
+    pub fn set_bounces(&mut self, bounces: u32) {
+        self.technique.set_bounces(bounces);
+    }
+
+    /// Scored against the reference of `bounces` bounces (default: as many as it feeds back).
+    pub fn set_reference_bounces(&mut self, bounces: u32) {
+        self.reference_bounces = Some(bounces.max(1));
     }
 
     /// The runtime renderer (plan, intermediate buffer, active tiles).
@@ -41,6 +55,10 @@ impl BenchTechnique for PprRunner {
 
     fn family(&self) -> Family {
         Family::Ppr
+    }
+
+    fn reference_bounces(&self) -> u32 {
+        self.reference_bounces.unwrap_or_else(|| self.technique.bounces())
     }
 
     fn prepare(

@@ -58,6 +58,12 @@ pub trait BenchTechnique {
     /// Its family.
     fn family(&self) -> Family;
 
+    /// The bounces of the reference it is scored against (PPR fed its previous frame N
+    /// times: N; everything else: 1).
+    fn reference_bounces(&self) -> u32 {
+        1
+    }
+
     /// Where the reflection goes.
     fn output(&self) -> ReflectionOutput {
         ReflectionOutput::OutputTexture

@@ -33,7 +33,10 @@ pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
     ("ppr-holes", "PPR with hole filling"),
     ("ppr-filter", "PPR with hole filling and bilinear filtering"),
     ("ppr", "PPR with hole filling, filtering and anti-bleeding (the seed's final image)"),
-    ("exact", "the exact planar reflection (the testbed's reference: mirrored re-render per plane)"),
+    (
+        "exact",
+        "the exact planar reflection (the testbed's reference: mirrored re-render per plane); bounces=",
+    ),
     ("ssr-brute", "brute-force SSR, one-pixel steps [McGuire14]; thickness=metres"),
     ("ssr-low", "low-quality SSR, 64-pixel steps + bisection; stride=, refine=, thickness="),
     ("ssr-hiz", "Hi-Z SSR with its pyramid build [Uludag14]; iterations=, thickness= (none: seed)"),
@@ -60,16 +63,27 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
     "sspr-stretch",
 ];
 
-/// PPR settings accept `culling=on|off|auto` and `indirect=on|off|auto`.
-const PPR_KEYS: [&str; 5] = ["culling", "indirect", "fade", "replace-far", "tier"];
+/// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `fade=`, `replace-far=`,
+/// `tier=` and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// composited image as its colour input; scored against the N-bounce reference).
+/// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
+/// against the N-bounce reference (default: its `bounces`, else 1).
+const PPR_KEYS: [&str; 7] =
+    ["culling", "indirect", "fade", "replace-far", "tier", "bounces", "reference-bounces"];
+
+/// Largest `bounces=` (each bounce is a frame of PPR and, in the reference, a level of
+/// mirrored views).
+pub const MAX_BOUNCES: u32 = 4;
 
 /// Settings each baseline accepts.
 fn keys_of(name: &str) -> &'static [&'static str] {
     match name {
         n if n.starts_with("ppr") => &PPR_KEYS,
-        "ssr-brute" => &["thickness"],
-        "ssr-low" => &["stride", "refine", "thickness"],
-        "ssr-hiz" => &["iterations", "thickness"],
+        "ssr-brute" => &["thickness", "reference-bounces"],
+        "ssr-low" => &["stride", "refine", "thickness", "reference-bounces"],
+        "ssr-hiz" => &["iterations", "thickness", "reference-bounces"],
+        "sspr" | "sspr-stretch" => &["reference-bounces"],
+        "exact" => &["bounces"],
         _ => &[],
     }
 }
@@ -154,6 +168,9 @@ impl TechniqueSpec {
                 "tier" => {
                     parse_tier(v).map_err(bad)?;
                 }
+                "bounces" | "reference-bounces" => {
+                    parse_bounces(v).map_err(bad)?;
+                }
                 "fade" => {
                     let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
                     if !(0.0..=0.5).contains(&f) {
@@ -171,6 +188,34 @@ impl TechniqueSpec {
             }
         }
         Ok(())
+    }
+}
+
+fn parse_bounces(v: &str) -> Result<u32, String> {
+    match v.parse::<u32>() {
+        Ok(n) if (1..=MAX_BOUNCES).contains(&n) => Ok(n),
+        Ok(n) => Err(format!("bounces: {n} is outside [1, {MAX_BOUNCES}]")),
+        Err(e) => Err(format!("bounces: {e}")),
+    }
+}
+
+/// The frames a PPR spec feeds back (`bounces=N`, 1 without the key; 1 for other techniques).
+///
+/// # Errors
+/// [`BenchError::Spec`] when the value does not parse.
+pub fn ppr_bounces(spec: &TechniqueSpec) -> Result<u32, BenchError> {
+    spec.param("bounces").map_or(Ok(1), |v| parse_bounces(v).map_err(BenchError::Spec))
+}
+
+/// The bounces of the reference `spec` is scored against: `reference-bounces=N`, else its
+/// `bounces=N`, else 1.
+///
+/// # Errors
+/// [`BenchError::Spec`] when a value does not parse.
+pub fn reference_bounces(spec: &TechniqueSpec) -> Result<u32, BenchError> {
+    match spec.param("reference-bounces") {
+        Some(v) => parse_bounces(v).map_err(BenchError::Spec),
+        None => ppr_bounces(spec),
     }
 }
 
@@ -250,24 +295,28 @@ pub fn build_technique(
     ctx: &TechniqueContext<'_>,
 ) -> Result<Box<dyn BenchTechnique>, BenchError> {
     if let Some((settings, params)) = ppr_settings(spec, ctx.plan_params)? {
-        return Ok(Box::new(PprRunner::new(
-            ctx.device,
-            ctx.queue,
-            ctx.reflectors,
-            spec.label(),
-            settings,
-            params,
-        )?));
+        let mut runner =
+            PprRunner::new(ctx.device, ctx.queue, ctx.reflectors, spec.label(), settings, params)?;
+        runner.set_bounces(ppr_bounces(spec)?);
+        runner.set_reference_bounces(reference_bounces(spec)?);
+        return Ok(Box::new(runner));
     }
     let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
     let num = |key: &str| spec.param(key).and_then(|v| v.parse::<f32>().ok());
     let int = |key: &str| spec.param(key).and_then(|v| v.parse::<u32>().ok());
     let runner =
         |family, inner: Box<dyn ReflectionTechnique>| -> Result<Box<dyn BenchTechnique>, BenchError> {
-            Ok(Box::new(TraitRunner::new(spec.label(), family, inner)))
+            let runner = TraitRunner::new(spec.label(), family, inner);
+            Ok(Box::new(runner.with_reference_bounces(reference_bounces(spec)?)))
         };
     match spec.name.as_str() {
-        "exact" => Ok(Box::new(ExactReference::new(device, queue))),
+        "exact" => Ok(Box::new(ExactReference::with_bounces(
+            device,
+            queue,
+            (ctx.level, set),
+            ctx.render,
+            spec.param("bounces").and_then(|v| v.parse().ok()).unwrap_or(1),
+        ))),
         "ssr-brute" | "ssr-low" => {
             let mut s = if spec.name == "ssr-brute" {
                 SsrSettings::brute_force()
@@ -328,6 +377,17 @@ mod tests {
         );
         assert_eq!(TechniqueSpec::defaults().len(), DEFAULT_TECHNIQUES.len());
         assert!("ppr:culling".parse::<TechniqueSpec>().is_err());
+        let fed: TechniqueSpec = "ppr:bounces=2".parse().expect("bounces");
+        assert_eq!((fed.label().as_str(), ppr_bounces(&fed).ok()), ("ppr bounces=2", Some(2)));
+        assert_eq!(ppr_bounces(&TechniqueSpec::named("ppr")).ok(), Some(1));
+        assert!("ppr:bounces=0".parse::<TechniqueSpec>().is_err());
+        assert!("ppr:bounces=9".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:bounces=2".parse::<TechniqueSpec>().is_err());
+        let rescored: TechniqueSpec = "ssr-brute:reference-bounces=2".parse().expect("rescored");
+        assert_eq!(reference_bounces(&rescored).ok(), Some(2));
+        assert_eq!(reference_bounces(&fed).ok(), Some(2));
+        assert!("exact:reference-bounces=2".parse::<TechniqueSpec>().is_err());
+        assert!("exact:bounces=2".parse::<TechniqueSpec>().is_ok());
         for (name, _) in KNOWN_TECHNIQUES {
             assert_eq!(name.parse::<TechniqueSpec>().expect("known").label(), name);
         }

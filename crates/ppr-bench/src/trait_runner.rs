@@ -12,11 +12,18 @@ pub struct TraitRunner {
     label: String,
     family: Family,
     inner: Box<dyn ReflectionTechnique>,
+    reference_bounces: u32,
 }
 
 impl TraitRunner {
     pub fn new(label: impl Into<String>, family: Family, inner: Box<dyn ReflectionTechnique>) -> Self {
-        Self { label: label.into(), family, inner }
+        Self { label: label.into(), family, inner, reference_bounces: 1 }
+    }
+
+    /// Scored against the reference of `bounces` bounces (1 by default).
+    pub fn with_reference_bounces(mut self, bounces: u32) -> Self {
+        self.reference_bounces = bounces.max(1);
+        self
     }
 }
 
@@ -27,6 +34,10 @@ impl BenchTechnique for TraitRunner {
 
     fn family(&self) -> Family {
         self.family
+    }
+
+    fn reference_bounces(&self) -> u32 {
+        self.reference_bounces
     }
 
     fn prepare(

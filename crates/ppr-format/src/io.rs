@@ -2,11 +2,7 @@
 
 use std::path::Path;
 
-<<<<<<< HEAD
-use crate::{FORMAT_NAME, FormatError, ReflectorSet};
-=======
-use crate::{FORMAT_NAME, FORMAT_VERSION, FormatError, ReflectorSet, write_atomically};
->>>>>>> tools
+use crate::{FORMAT_NAME, FormatError, ReflectorSet, write_atomically};
 
 impl ReflectorSet {
     /// Parses and validates a set from JSON text.

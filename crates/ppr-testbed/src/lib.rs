@@ -9,6 +9,8 @@
 //! reflection, reflected position, [`ReflectedPointClass`]) are then ready to read back
 //! ([`readback`]), composite ([`CompositePass`]), write ([`image_io`]) and measure ([`metrics`]).
 
+pub mod bounce_composite;
+pub mod bounce_plan;
 pub mod camera_spec;
 pub mod composite;
 pub mod depth_copy;
@@ -23,8 +25,10 @@ pub mod level;
 pub mod mesh;
 pub mod metrics;
 pub mod mirror_camera;
+pub mod mirror_chain;
 pub mod pixel_mask;
 pub mod ppr_technique;
+pub mod previous_frame_feed;
 pub mod readback;
 pub mod reference;
 pub mod reflector_planes;

@@ -3,6 +3,8 @@
 use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
 
+use crate::composite::CompositeParams;
+use crate::previous_frame_feed::{FeedInputs, PREVIOUS_FRAME_COPY, PreviousFrameFeed};
 use crate::target_clear::clear_target;
 use crate::technique::{ReflectionInputs, ReflectionTechnique};
 
@@ -18,6 +20,11 @@ pub struct PprTechnique {
     /// The output size of the last `prepare` (the plan's viewport is smaller in a reduced
     /// resolution tier).
     size: [u32; 2],
+    /// Frames of the same camera per [`ReflectionTechnique::encode`] (see [`Self::set_bounces`]).
+    bounces: u32,
+    /// The previous frame's composite, when `bounces > 1`.
+    feed: Option<PreviousFrameFeed>,
+    queue: wgpu::Queue,
 }
 
 /// Textures the runtime writes when a frame has glass or water layers.
@@ -136,6 +143,9 @@ impl PprTechnique {
             merge: LayerMerge::new(device),
             layer_targets: None,
             size: [1, 1],
+            bounces: 1,
+            feed: None,
+            queue: queue.clone(),
         })
     }
 
@@ -164,6 +174,20 @@ impl PprTechnique {
         self.layer_targets.as_ref().expect("created above")
     }
 
+    /// Renders `bounces` frames of the same camera per encode, each after the first reading
+    /// the previous frame's composited image (scene colour with that frame's reflection
+    /// composited on reflector pixels, [`CompositeParams::default`]) as its colour input:
+    /// a mirror seen in a mirror gains one bounce per frame. 1 (the default) is one
+    /// ordinary frame. Needs the reflector id in the inputs; without it one frame is run.
+    pub fn set_bounces(&mut self, bounces: u32) {
+        self.bounces = bounces.max(1);
+    }
+
+    /// Frames per encode ([`Self::set_bounces`]).
+    pub fn bounces(&self) -> u32 {
+        self.bounces
+    }
+
     /// The runtime renderer (for its plan, intermediate buffer and settings).
     pub fn renderer(&mut self) -> &mut ReflectionRenderer {
         &mut self.renderer
@@ -174,8 +198,12 @@ impl ReflectionTechnique for PprTechnique {
     fn name(&self) -> String {
         let s = self.renderer.settings;
         let on = |b: bool| if b { "on" } else { "off" };
+        let bounces = match self.bounces {
+            1 => String::new(),
+            n => format!(", {n} frames fed back"),
+        };
         format!(
-            "PPR (holes {}, filtering {}, anti-bleeding {})",
+            "PPR (holes {}, filtering {}, anti-bleeding {}{bounces})",
             on(s.holes),
             on(s.filtering),
             on(s.anti_bleeding)
@@ -194,6 +222,45 @@ impl ReflectionTechnique for PprTechnique {
     }
 
     fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, inputs: &ReflectionInputs<'_>) {
+        let Some(reflector_id) = inputs.reflector_id.filter(|_| self.bounces > 1) else {
+            self.encode_frame(encoder, inputs);
+            return;
+        };
+        let mut feed = self
+            .feed
+            .take()
+            .unwrap_or_else(|| PreviousFrameFeed::new(&self.device, &self.queue, CompositeParams::default()));
+        for frame in 0..self.bounces {
+            let color = match frame {
+                0 => inputs.color,
+                _ => feed.previous(self.size).expect("the previous frame fed it"),
+            };
+            let frame_inputs = ReflectionInputs { color, ..*inputs };
+            self.encode_frame(encoder, &frame_inputs);
+            if frame + 1 < self.bounces {
+                let feed_inputs =
+                    FeedInputs { scene_color: inputs.color, reflection: inputs.output, reflector_id };
+                feed.encode(&self.device, encoder, &feed_inputs, self.size, frame + 2 == self.bounces);
+            }
+        }
+        self.feed = Some(feed);
+    }
+
+    fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
+        let t = self.renderer.read_timings()?;
+        let mut passes: Vec<(String, f64)> =
+            t.passes().iter().filter_map(|(name, ms)| ms.map(|ms| ((*name).to_owned(), ms))).collect();
+        if let Some(ms) = self.feed.as_ref().filter(|_| self.bounces > 1).and_then(|f| f.read_copy_ms(device))
+        {
+            passes.push((PREVIOUS_FRAME_COPY.to_owned(), ms));
+        }
+        Some(passes)
+    }
+}
+
+impl PprTechnique {
+    /// One frame: the runtime's passes (and the layer merge) on `inputs`.
+    fn encode_frame(&mut self, encoder: &mut wgpu::CommandEncoder, inputs: &ReflectionInputs<'_>) {
         let size = self.size;
         if self.renderer.plan().is_none_or(|p| p.layers.is_empty()) {
             let frame = FrameInputs {
@@ -218,10 +285,5 @@ impl ReflectionTechnique for PprTechnique {
         };
         self.renderer.encode(encoder, &frame);
         self.merge.encode(&self.device, encoder, targets, inputs.output);
-    }
-
-    fn timings(&mut self, _device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
-        let t = self.renderer.read_timings()?;
-        Some(t.passes().iter().filter_map(|(name, ms)| ms.map(|ms| ((*name).to_owned(), ms))).collect())
     }
 }

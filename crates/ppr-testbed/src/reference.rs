@@ -149,6 +149,11 @@ impl ReferenceBindings {
         queue.write_buffer(&self.uniforms, u64::from(slot) * self.stride, bytemuck::bytes_of(&u));
     }
 
+    /// The reflector → plane slot table (`u32` per reflector), for passes that need it.
+    pub fn plane_of_reflector(&self) -> &wgpu::Buffer {
+        &self.plane_of_reflector
+    }
+
     /// Writes which plane slot each reflector belongs to (`u32::MAX` for none).
     pub fn write_plane_of_reflector(&self, queue: &wgpu::Queue, plane_of: &[u32]) {
         let n = plane_of.len().min(self.reflector_capacity);

@@ -3,11 +3,15 @@
 use ppr_format::ReflectorSet;
 use ppr_runtime::Camera;
 
+use crate::bounce_composite::{BounceCompositePass, BounceTargets};
+use crate::bounce_plan::{BounceParent, BouncePlan, BounceRoot, BounceScene, plan_bounces};
+use crate::composite::CompositeParams;
 use crate::gbuffer::{GBufferDraw, GBufferPass, ViewKind};
 use crate::gbuffer_targets::GBuffer;
 use crate::level::Level;
 use crate::mesh::LevelMeshes;
 use crate::mirror_camera::{MirrorClipping, mirrored_view};
+use crate::mirror_chain::ChainedView;
 use crate::reference::{MirrorReference, OnScreenTolerance, ReferenceBindings, ReferenceTargets};
 use crate::reflector_planes::{ReflectorPlane, group_by_plane, may_be_visible};
 use crate::scene_layouts::SceneLayouts;
@@ -29,7 +33,21 @@ pub struct RenderSettings {
     pub on_screen: OnScreenTolerance,
     /// Near plane of the mirrored views; [`MirrorClipping::Oblique`] for the exact reference.
     pub mirror_clipping: MirrorClipping,
+    /// Bounces of the reference: 1 shows other mirrors in a reflection with their own
+    /// colour; `N` composites each mirror seen in a mirrored view with its own reflection,
+    /// recursively to depth `N` (`mix(colour, reflection, CompositeParams::default()
+    /// .reflectivity)`, the composite's formula). 1 to 4 are useful.
+    pub reference_bounces: u32,
+    /// Most views beyond the first bounce per frame (the recursion's cost cap: views are
+    /// planned breadth first, so the deepest bounces go first; the frame's summary counts
+    /// those skipped).
+    pub max_bounce_views: usize,
 }
+
+/// [`RenderSettings::max_bounce_views`] by default: every second-bounce view of the
+/// bench's generated mirror rooms (at most 185, `mirror-room-6`; the corridor 36–77), so
+/// their 2-bounce references are exact; a third bounce in the corridor would need ~580.
+pub const DEFAULT_MAX_BOUNCE_VIEWS: usize = 256;
 
 impl Default for RenderSettings {
     fn default() -> Self {
@@ -39,6 +57,8 @@ impl Default for RenderSettings {
             background: DEFAULT_BACKGROUND,
             on_screen: OnScreenTolerance::default(),
             mirror_clipping: MirrorClipping::Oblique,
+            reference_bounces: 1,
+            max_bounce_views: DEFAULT_MAX_BOUNCE_VIEWS,
         }
     }
 }
@@ -52,6 +72,10 @@ pub struct FrameSummary {
     pub planes: usize,
     /// Indices of the plane groups whose mirrored view is rendered this frame.
     pub rendered_planes: Vec<usize>,
+    /// Views rendered beyond the first bounce ([`RenderSettings::reference_bounces`]).
+    pub bounce_views: usize,
+    /// Views beyond the first bounce left out by [`RenderSettings::max_bounce_views`].
+    pub bounce_views_skipped: usize,
 }
 
 struct FrameTargets {
@@ -65,6 +89,9 @@ pub struct LevelRenderer {
     layouts: SceneLayouts,
     gbuffer_pass: GBufferPass,
     reference_pass: MirrorReference,
+    bounce_pass: BounceCompositePass,
+    bounce_targets: Option<BounceTargets>,
+    bounce_plan: BouncePlan,
     meshes: LevelMeshes,
     reflectors: ReflectorSet,
     planes: Vec<ReflectorPlane>,
@@ -85,18 +112,28 @@ impl LevelRenderer {
         let layouts = SceneLayouts::new(device);
         let gbuffer_pass = GBufferPass::new(device, &layouts);
         let reference_pass = MirrorReference::new(device);
+        let bounce_pass = BounceCompositePass::new(device);
         let meshes = LevelMeshes::new(device, queue, &layouts, level);
         let views = ViewBindings::new(device, &layouts, 1, 1);
         let mut renderer = Self {
             layouts,
             gbuffer_pass,
             reference_pass,
+            bounce_pass,
+            bounce_targets: None,
+            bounce_plan: BouncePlan::default(),
             meshes,
             reflectors: ReflectorSet::new(""),
             planes: Vec::new(),
             views,
             frame: None,
-            summary: FrameSummary { size: [0, 0], planes: 0, rendered_planes: Vec::new() },
+            summary: FrameSummary {
+                size: [0, 0],
+                planes: 0,
+                rendered_planes: Vec::new(),
+                bounce_views: 0,
+                bounce_views_skipped: 0,
+            },
             camera: None,
             settings: RenderSettings::default(),
         };
@@ -111,6 +148,7 @@ impl LevelRenderer {
         let slots = 1 + u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
         self.views = ViewBindings::new(device, &self.layouts, slots, reflectors.reflectors.len());
         self.frame = None;
+        self.bounce_targets = None;
     }
 
     /// The reflector set in use.
@@ -145,7 +183,10 @@ impl LevelRenderer {
                 self.reflectors.reflectors.len(),
             );
             self.frame = Some(FrameTargets { main, reference, bindings });
+            self.bounce_targets = None;
         }
+        let bounces = self.settings.reference_bounces.max(1);
+        self.allocate_bounces(device, queue, size, bounces);
         let frame = self.frame.as_ref().expect("allocated above");
         let aspect = f64::from(size[0]) / f64::from(size[1]);
         let s = &self.settings;
@@ -159,6 +200,10 @@ impl LevelRenderer {
 
         let mut plane_of = vec![u32::MAX; self.reflectors.reflectors.len()];
         let mut rendered = Vec::new();
+        let mut roots = Vec::new();
+        // Later bounces need the mirrored views' reflector ids (one bounce keeps them off,
+        // as before bounces existed).
+        let mirrored_shapes = if bounces > 1 { shape_count } else { 0 };
         for (k, group) in self.planes.iter().enumerate() {
             let slot = u32::try_from(k).expect("fewer than 2^32 planes");
             for &m in &group.members {
@@ -170,15 +215,70 @@ impl LevelRenderer {
             let Some(mirrored) = mirrored_view(camera, aspect, &group.plane, s.mirror_clipping) else {
                 continue;
             };
-            let view = ViewUniform::new(mirrored.clip_from_rel.as_mat4(), &s.lighting, &s.mask, 0);
+            let view =
+                ViewUniform::new(mirrored.clip_from_rel.as_mat4(), &s.lighting, &s.mask, mirrored_shapes);
             self.views.write_view(queue, 1 + slot, &view);
             frame.bindings.write_plane(queue, slot, camera, size, &mirrored, &s.on_screen);
             rendered.push(k);
+            let reflection = group.plane.reflection_relative_to(camera.position);
+            roots.push(BounceRoot { plane: k, chain: ChainedView { view: mirrored, reflection } });
         }
         frame.bindings.write_plane_of_reflector(queue, &plane_of);
+        self.bounce_plan = if bounces > 1 {
+            let scene = BounceScene {
+                set: &self.reflectors,
+                planes: &self.planes,
+                camera,
+                aspect,
+                clipping: s.mirror_clipping,
+            };
+            plan_bounces(&scene, &roots, bounces, s.max_bounce_views)
+        } else {
+            BouncePlan::default()
+        };
+        let first_bounce_slot = 1 + u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+        for (i, v) in self.bounce_plan.views.iter().enumerate() {
+            let shapes = if v.depth < bounces { shape_count } else { 0 };
+            let view = ViewUniform::new(v.chain.view.clip_from_rel.as_mat4(), &s.lighting, &s.mask, shapes);
+            let slot = first_bounce_slot + u32::try_from(i).expect("fewer than 2^32 views");
+            self.views.write_view(queue, slot, &view);
+        }
         self.camera = Some(*camera);
-        self.summary = FrameSummary { size, planes: self.planes.len(), rendered_planes: rendered };
+        self.summary = FrameSummary {
+            size,
+            planes: self.planes.len(),
+            rendered_planes: rendered,
+            bounce_views: self.bounce_plan.views.len(),
+            bounce_views_skipped: self.bounce_plan.skipped,
+        };
         &self.summary
+    }
+
+    /// Room for the later bounces' views and their scratch targets, when the settings ask
+    /// for more than one bounce.
+    fn allocate_bounces(&mut self, device: &wgpu::Device, queue: &wgpu::Queue, size: [u32; 2], bounces: u32) {
+        if bounces <= 1 {
+            return;
+        }
+        let planes = u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+        let views = u32::try_from(self.settings.max_bounce_views).unwrap_or(u32::MAX - 1 - planes);
+        let slots = 1 + planes + views;
+        let shapes = self.reflectors.reflectors.len();
+        if !self.views.fits(slots, shapes) {
+            self.views = ViewBindings::new(device, &self.layouts, slots, shapes);
+        }
+        if self.bounce_targets.as_ref().is_none_or(|t| !t.fits(size, bounces)) {
+            let frame = self.frame.as_ref().expect("allocated before the bounces");
+            self.bounce_targets = Some(self.bounce_pass.targets(
+                device,
+                queue,
+                size,
+                bounces,
+                &frame.reference.mirror,
+                frame.bindings.plane_of_reflector(),
+                self.planes.len(),
+            ));
+        }
     }
 
     /// Records the main G-buffer pass of the prepared frame.
@@ -218,7 +318,35 @@ impl LevelRenderer {
                 background: self.settings.background,
             };
             self.gbuffer_pass.encode(encoder, &self.meshes, &self.views, &draw);
+            self.encode_bounces(encoder, BounceParent::Plane(k), &frame.reference.mirror);
             self.reference_pass.encode_resolve(encoder, &frame.reference, &frame.bindings, slot, n == 0);
+        }
+    }
+
+    /// Records the later-bounce views seen in `parent` (drawn into `parent_target`),
+    /// depth first: each view's own children are blended into it before it is blended
+    /// into its parent.
+    fn encode_bounces(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        parent: BounceParent,
+        parent_target: &GBuffer,
+    ) {
+        let (Some(targets), Some(camera)) = (&self.bounce_targets, &self.camera) else { return };
+        let first_slot = 1 + u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+        for (i, v) in self.bounce_plan.children(parent) {
+            let target = &targets.scratch[(v.depth - 2) as usize];
+            let draw = GBufferDraw {
+                targets: target,
+                slot: first_slot + u32::try_from(i).expect("fewer than 2^32 views"),
+                kind: if v.depth % 2 == 0 { ViewKind::Direct } else { ViewKind::Mirrored },
+                depth: camera.projection.depth,
+                background: self.settings.background,
+            };
+            self.gbuffer_pass.encode(encoder, &self.meshes, &self.views, &draw);
+            self.encode_bounces(encoder, BounceParent::View(i), target);
+            let reflectivity = CompositeParams::default().reflectivity;
+            self.bounce_pass.encode(encoder, targets, parent_target, v.depth, v.plane, reflectivity);
         }
     }
 

@@ -10,7 +10,8 @@
 //   weight: the forward pass's reflectivity × Fresnel (0 on surfaces that reflect nothing).
 
 struct Composite {
-    // 0: final image; 1: PPR's raw reflection buffer (holes dark purple); 2: the weight.
+    // 0: final image; 1: PPR's raw reflection buffer (holes dark purple); 2: the weight;
+    // 3: final image in linear HDR (not tone mapped or encoded: the next frame's PPR input).
     mode: u32,
     // 1 when the reflection texture holds this frame's PPR output (0: nothing was visible).
     reflections: u32,
@@ -66,6 +67,9 @@ fn fs_main(@builtin(position) position: vec4<f32>) -> @location(0) vec4<f32> {
             let reflected = mix(composite.fallback.rgb, found.rgb, confidence);
             rgb = mix(scene, reflected, clamp(weight, 0.0, 1.0));
         }
+    }
+    if (composite.mode == 3u) {
+        return vec4<f32>(rgb, 1.0);
     }
     if (composite.mode != 2u) {
         rgb = tonemap(max(rgb, vec3<f32>(0.0)) * composite.exposure);

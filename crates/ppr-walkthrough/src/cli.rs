@@ -11,8 +11,9 @@ use crate::view_mode::ViewMode;
 /// Walk through a glTF level with pixel-projected reflections (ppr-runtime).
 ///
 /// Keys: WASD move, Q/E down/up, Shift fast, hold the right mouse button to look, wheel
-/// for speed; H holes, F filtering, B anti-bleeding, V view (final, reflection buffer,
-/// intermediate buffer, weight), C next camera of the level, F9 lose the device, Esc quit.
+/// for speed; H holes, F filtering, B anti-bleeding, P feed the previous frame to PPR, V
+/// view (final, reflection buffer, intermediate buffer, weight), C next camera of the level,
+/// F9 lose the device, Esc quit.
 /// The reflector set is reloaded when its file changes.
 #[derive(Clone, Debug, Parser)]
 #[command(name = "ppr-walkthrough", version)]
@@ -57,6 +58,10 @@ pub struct Args {
     /// Start with anti-bleeding off.
     #[arg(long)]
     pub no_anti_bleed: bool,
+    /// Start feeding PPR the previous frame's composite as its colour input (key P): a
+    /// mirror seen in a mirror gains one bounce per frame.
+    #[arg(long)]
+    pub feed_previous_frame: bool,
     /// Resolution the PPR passes run at: full, half or quarter (each side); the reflection
     /// is upsampled to the window, edge-aware. Half costs about a quarter of the pixels.
     #[arg(long, default_value = "full", value_parser = parse_tier)]

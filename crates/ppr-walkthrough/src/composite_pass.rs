@@ -19,6 +19,9 @@ pub enum CompositeMode {
     ReflectionBuffer,
     /// The per-pixel reflection weight of the forward pass.
     ReflectionWeight,
+    /// The game's image in linear HDR, neither tone mapped nor encoded (the previous
+    /// frame PPR may read as its colour input, [`crate::previous_frame`]).
+    FinalLinear,
 }
 
 /// Composite uniform.
@@ -110,6 +113,7 @@ impl CompositePass {
                 CompositeMode::Final => 0,
                 CompositeMode::ReflectionBuffer => 1,
                 CompositeMode::ReflectionWeight => 2,
+                CompositeMode::FinalLinear => 3,
             },
             reflections: u32::from(reflections),
             encode_srgb: u32::from(self.encode_srgb),

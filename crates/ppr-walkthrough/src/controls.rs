@@ -10,6 +10,8 @@ pub enum Action {
     ToggleHoles,
     ToggleFiltering,
     ToggleAntiBleeding,
+    /// Feed the previous frame's composite to PPR as its colour input.
+    TogglePreviousFrame,
     NextView,
     NextCamera,
     /// Lose the GPU device on purpose, to see the recovery.
@@ -23,6 +25,7 @@ pub fn action(key: KeyCode) -> Option<Action> {
         KeyCode::KeyH => Action::ToggleHoles,
         KeyCode::KeyF => Action::ToggleFiltering,
         KeyCode::KeyB => Action::ToggleAntiBleeding,
+        KeyCode::KeyP => Action::TogglePreviousFrame,
         KeyCode::KeyV => Action::NextView,
         KeyCode::KeyC => Action::NextCamera,
         KeyCode::F9 => Action::LoseDevice,
@@ -55,6 +58,7 @@ mod tests {
     fn toggles_and_movement_keys() {
         assert_eq!(action(KeyCode::KeyH), Some(Action::ToggleHoles));
         assert_eq!(action(KeyCode::KeyB), Some(Action::ToggleAntiBleeding));
+        assert_eq!(action(KeyCode::KeyP), Some(Action::TogglePreviousFrame));
         assert_eq!(action(KeyCode::KeyW), None);
         let mut keys = MoveKeys::default();
         assert!(update_move_keys(&mut keys, KeyCode::KeyW, true));

@@ -68,6 +68,7 @@ impl HeadlessSession {
         let mut renderer =
             WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = args.settings();
+        renderer.feed_previous_frame = args.feed_previous_frame;
         let screen = ScreenPasses::new(&ctx.device, &ctx.queue, OFFSCREEN_FORMAT);
         let target = OffscreenTarget::new(&ctx.device, args.size);
         Ok(Self { ctx, renderer, screen, target })

@@ -39,6 +39,7 @@ pub mod level_meshes;
 pub mod offscreen_target;
 pub mod overlay_pass;
 pub mod overlay_text;
+pub mod previous_frame;
 pub mod reflectivity;
 pub mod screen_passes;
 pub mod status_line;

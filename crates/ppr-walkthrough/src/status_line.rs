@@ -147,7 +147,7 @@ pub fn status_lines(s: &StatusInputs<'_>) -> Vec<TextLine> {
     }
     if s.keys {
         lines.push(TextLine::new(
-            "WASD move, Q/E down/up, Shift fast, right mouse look, wheel speed, C next camera, F9 lose device, Esc quit",
+            "WASD move, Q/E down/up, Shift fast, right mouse look, wheel speed, C next camera, P feed previous frame, F9 lose device, Esc quit",
             TextColour::Dim,
         ));
     }

@@ -12,7 +12,8 @@
 //!    onto the swapchain, then its UI (here: the text overlay).
 //!
 //! PPR never sees the meshes, the materials or the swapchain: only colour, depth and its
-//! output texture.
+//! output texture. With [`WalkthroughRenderer::feed_previous_frame`] its colour is the
+//! previous frame's composite instead of step 1's ([`crate::previous_frame`]).
 
 use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, Choice, DepthMode, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc};
@@ -22,6 +23,7 @@ use crate::frame_targets::FrameTargets;
 use crate::fullscreen_pipeline::begin_output_pass;
 use crate::gltf_level::LevelData;
 use crate::level_meshes::LevelMeshes;
+use crate::previous_frame::PreviousFrame;
 use crate::screen_passes::{ScreenInputs, ScreenPasses};
 use crate::view_mode::ViewMode;
 
@@ -36,6 +38,10 @@ pub struct WalkthroughRenderer {
     /// The sun of the forward pass.
     pub light: SceneLight,
     targets: Option<FrameTargets>,
+    /// PPR reads the previous frame's composite as its colour (one more bounce per frame
+    /// in a mirror seen in a mirror); the first frame after switching on reads the scene.
+    pub feed_previous_frame: bool,
+    previous: Option<PreviousFrame>,
 }
 
 impl WalkthroughRenderer {
@@ -67,6 +73,8 @@ impl WalkthroughRenderer {
             ppr,
             light: SceneLight::default(),
             targets: None,
+            feed_previous_frame: false,
+            previous: None,
         })
     }
 
@@ -102,6 +110,12 @@ impl WalkthroughRenderer {
         if self.targets.as_ref().is_none_or(|t| t.size != size) {
             self.targets = Some(FrameTargets::new(&self.device, size));
         }
+        if !self.feed_previous_frame || self.previous.as_ref().is_some_and(|p| p.size() != size) {
+            self.previous = None;
+        }
+        if self.feed_previous_frame && self.previous.is_none() {
+            self.previous = Some(PreviousFrame::new(&self.device, &self.queue, size));
+        }
         let targets = self.targets.as_ref().expect("allocated above");
 
         // 1. The game's scene: camera-relative draws, lit colour, reflection weight, depth.
@@ -134,10 +148,13 @@ impl WalkthroughRenderer {
         // 3. PPR, call 2 of 2: record clear, projection and reflection after the scene.
         //    Nothing is recorded when the plan is empty (then `reflection` is stale: the
         //    composite is told so).
-        self.ppr.encode(
-            &mut encoder,
-            &FrameInputs::new(&targets.color.view, &targets.depth.view, &targets.reflection.view),
-        );
+        let color =
+            self.previous.as_ref().and_then(PreviousFrame::color_input).unwrap_or(&targets.color.view);
+        self.ppr
+            .encode(&mut encoder, &FrameInputs::new(color, &targets.depth.view, &targets.reflection.view));
+        if let Some(previous) = &mut self.previous {
+            previous.encode(&mut encoder, targets, !plan.is_empty());
+        }
 
         // 4. The game's composite and UI onto each output.
         let inputs = ScreenInputs { targets, ppr: &self.ppr, plan: &plan, mode };

@@ -111,6 +111,7 @@ impl WindowSession {
         let mut renderer =
             WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = settings;
+        renderer.feed_previous_frame = args.feed_previous_frame;
         let screen = ScreenPasses::new(&ctx.device, &ctx.queue, config.format);
         Ok(Self { surface, config, ctx, renderer, screen })
     }
@@ -198,6 +199,8 @@ impl WalkthroughApp {
             Action::ToggleHoles => self.settings.holes = !self.settings.holes,
             Action::ToggleFiltering => self.settings.filtering = !self.settings.filtering,
             Action::ToggleAntiBleeding => self.settings.anti_bleeding = !self.settings.anti_bleeding,
+            // Kept in `args`, so that a session rebuilt after a device loss keeps it.
+            Action::TogglePreviousFrame => self.args.feed_previous_frame = !self.args.feed_previous_frame,
             Action::NextView => self.view = self.view.next(),
             Action::NextCamera => {
                 if !self.level.cameras.is_empty() {
@@ -215,6 +218,7 @@ impl WalkthroughApp {
         }
         if let Some(session) = &mut self.session {
             session.renderer.ppr.settings = self.settings;
+            session.renderer.feed_previous_frame = self.args.feed_previous_frame;
         }
     }
 

@@ -56,7 +56,9 @@ impl CauseRunner {
         spec: &TechniqueSpec,
         base: PlanParams,
     ) -> Result<Option<Self>, BenchError> {
-        if spec.name != "ppr" {
+        // Fed-back frames (`bounces=`) are scored against a deeper reference than the
+        // breakdown's variants, which run one frame: no breakdown for them.
+        if spec.name != "ppr" || crate::technique_spec::reference_bounces(spec)? > 1 {
             return Ok(None);
         }
         let Some((settings, params)) = ppr_settings(spec, base)? else { return Ok(None) };

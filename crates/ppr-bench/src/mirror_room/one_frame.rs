@@ -50,9 +50,27 @@ pub fn render_scene_frame(
     techniques: &[TechniqueSpec],
     plan_params: &PlanParams,
 ) -> Result<SceneFrame, BenchError> {
+    render_scene_frame_bounces(gpu, scene, camera, size, techniques, plan_params, 1)
+}
+
+/// As [`render_scene_frame`], every technique scored against the exact reference of
+/// `reference_bounces` bounces (`RenderSettings::reference_bounces`).
+///
+/// # Errors
+/// A technique cannot be built, or a readback fails.
+pub fn render_scene_frame_bounces(
+    gpu: &GpuContext,
+    scene: &BenchScene,
+    camera: &Camera,
+    size: [u32; 2],
+    techniques: &[TechniqueSpec],
+    plan_params: &PlanParams,
+    reference_bounces: u32,
+) -> Result<SceneFrame, BenchError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
     let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
     level.settings = scene.render_settings();
+    level.settings.reference_bounces = reference_bounces;
     level.render(device, queue, camera, size);
     let images = FrameImages::read(device, queue, &level)?;
     let reference = ReferenceFrame::new(images.clone());

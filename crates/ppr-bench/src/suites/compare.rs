@@ -1,6 +1,7 @@
 //! The comparison (issue 6): scenes × cameras × resolutions × techniques, each timed per
 //! pass and measured against the exact reflection.
 
+use std::collections::BTreeSet;
 use std::sync::Arc;
 
 use indicatif::{ProgressBar, ProgressStyle};
@@ -10,6 +11,7 @@ use ppr_testbed::readback::read_rgba_f32;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs, clear_target};
 
+use crate::bounce_reference::DeeperReferences;
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
 use crate::error_causes::{CauseFrame, CauseRow, CauseRunner, classify};
@@ -127,6 +129,22 @@ pub fn run_compare(
                 cause_runners.push((spec.label(), r));
             }
         }
+        // Rows that feed PPR its previous frame are scored against the reference of as many
+        // bounces; every other row against the one-bounce reference.
+        let depths: BTreeSet<u32> = techniques.iter().map(|t| t.reference_bounces()).collect();
+        let deeper_rows: Vec<String> = techniques
+            .iter()
+            .filter(|t| t.reference_bounces() > 1)
+            .map(|t| format!("`{}` against the {}-bounce reference", t.label(), t.reference_bounces()))
+            .collect();
+        if !deeper_rows.is_empty() {
+            outcome.notes.push(format!(
+                "{}: {}; every other row against the one-bounce reference (mirrors in a reflection \
+                 show their own colour); scores against different references are not comparable",
+                scene.name,
+                deeper_rows.join(", ")
+            ));
+        }
         for (cam_index, cam) in scene.cameras.iter().enumerate() {
             for &res in &cc.resolutions {
                 let size = res.size();
@@ -149,6 +167,18 @@ pub fn run_compare(
                     }
                     Some(i) => (Some(Arc::new(ReferenceFrame::new(i))), None),
                     None => (None, None),
+                };
+                let deeper = match &reference {
+                    Some(_) => DeeperReferences::render(
+                        (device, queue),
+                        &mut level,
+                        &cam.camera,
+                        size,
+                        &depths,
+                        &format!("{} {} {res}", scene.name, cam.name),
+                        &mut outcome.notes,
+                    )?,
+                    None => DeeperReferences::default(),
                 };
                 let sheet_here = cam_index == 0 && res == cc.sheet_resolution;
                 let mut sheet = match (&reference, sheet_here) {
@@ -180,7 +210,7 @@ pub fn run_compare(
                     let run = frames.run(device, queue, technique.as_mut(), &frame, &cam.camera, size);
                     let id = results.len();
                     let mut quality = None;
-                    if let Some(r) = &reference {
+                    if let Some(r) = &deeper.pick(technique.reference_bounces(), reference.as_ref()) {
                         match technique.output() {
                             ReflectionOutput::Reference => quality = Some(Quality::exact(r)),
                             ReflectionOutput::OutputTexture => {

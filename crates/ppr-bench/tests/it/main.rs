@@ -1,6 +1,7 @@
 //! Integration tests of the bench: the library entry point end to end on the software
 //! adapter (llvmpipe through wgpu's GL backend where there is no GPU).
 
+mod bounces;
 mod error_causes;
 mod mirror_rooms;
 mod quick_compare;

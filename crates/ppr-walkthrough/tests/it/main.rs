@@ -10,4 +10,5 @@ mod composite;
 mod device_loss;
 mod headless_vs_testbed;
 mod hot_reload;
+mod previous_frame;
 mod shared_scenes;
