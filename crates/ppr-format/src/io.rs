@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use crate::{FORMAT_NAME, FormatError, ReflectorSet, write_atomically};
+use crate::{FORMAT_NAME, FormatError, ReflectorSet};
 
 impl ReflectorSet {
     /// Parses and validates a set from JSON text.
@@ -44,17 +44,18 @@ impl ReflectorSet {
         Self::from_json_str(&text).map_err(|e| e.in_file(path))
     }
 
-    /// Validates the set and writes it to `path` atomically ([`write_atomically`]): the
+    /// Validates the set and writes it to `path` atomically ([`crate::write_atomically`]): the
     /// text goes to a temporary file beside the file (beside a symlink's target, so the link
     /// stays), which gets the old file's permissions and is renamed over it. On failure
     /// `path` is left as it was and no temporary file remains.
     ///
     /// # Errors
     /// Validation errors (nothing is written) or [`FormatError::Write`].
+    #[cfg(feature = "save")]
     pub fn save(&self, path: impl AsRef<Path>) -> Result<(), FormatError> {
         let path = path.as_ref();
         let text = self.to_json_string().map_err(|e| e.in_file(path))?;
-        write_atomically(path, text.as_bytes())
+        crate::write_atomically(path, text.as_bytes())
             .map_err(|source| FormatError::Write { path: path.to_owned(), source })
     }
 }

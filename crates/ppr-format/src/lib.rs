@@ -31,7 +31,9 @@
 //! assert_eq!(set, back);
 //! ```
 
+#[cfg(feature = "save")]
 mod atomic_write;
+#[cfg(feature = "save")]
 pub use atomic_write::write_atomically;
 pub mod edits;
 mod error;
