@@ -226,3 +226,31 @@ fn a_camera_from_the_games_matrices_renders_as_the_camera_it_describes() {
     let changed = a.intermediate.iter().zip(&c.intermediate).filter(|(x, y)| x != y).count();
     assert!(changed * 10 > written, "a half-pixel jitter must move the projection: {changed} of {written}");
 }
+
+#[test]
+fn an_empty_plan_reports_no_timings_without_waiting() {
+    // Looking away from the only mirror: nothing visible, nothing recorded, no times (not
+    // zeros, and not a wait for a frame that timed nothing).
+    let s = scene();
+    let away = Camera::look_at(
+        DVec3::new(0.0, 1.6, -3.0),
+        DVec3::new(0.0, 1.6, 5.0),
+        Vec3::Y,
+        Projection::default(),
+    );
+    let frame = s.render(&away, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.set_reflectors(&s.reflector_set()).expect("a valid set");
+    let out = run(&mut r, &gpu, &away);
+    assert!(out.plan.is_empty(), "{}", out.plan);
+    assert_eq!(r.passes_recorded(), [false; 7]);
+    assert!(r.read_timings().is_none(), "an empty plan has no pass times");
+    // A frame that ran passes still reports them where the adapter has timestamps.
+    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let gpu = GpuFrame::upload(&s.render(&cam, SIZE));
+    run(&mut r, &gpu, &cam);
+    if r.has_timestamps() {
+        assert!(r.read_timings().is_some(), "a frame with passes reports times");
+    }
+}

@@ -608,9 +608,14 @@ impl ReflectionRenderer {
     }
 
     /// Waits for the last submitted frame and returns its GPU time per pass, when the
-    /// device supports timestamps and the last plan ran passes.
+    /// device supports timestamps and the last plan ran passes; `None` at once (without
+    /// waiting) when it ran none (an empty plan).
     pub fn read_timings(&self) -> Option<PassTimings> {
-        self.timer.as_ref()?.read(&self.device, self.passes_recorded())
+        let ran = self.passes_recorded();
+        if !ran.contains(&true) {
+            return None;
+        }
+        self.timer.as_ref()?.read(&self.device, ran)
     }
 
     /// Which timed passes (classify, clear, projection, reflection, layers, as in
