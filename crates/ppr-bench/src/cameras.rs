@@ -8,7 +8,12 @@ use ppr_runtime::shapes::ShapeTable;
 use ppr_runtime::{Camera, Projection};
 use ppr_testbed::Level;
 
-use crate::scene::NamedCamera;
+/// A camera with the name reports use.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedCamera {
+    pub name: String,
+    pub camera: Camera,
+}
 
 /// Reflectors (largest first) that get candidate viewpoints.
 const CANDIDATE_REFLECTORS: usize = 8;

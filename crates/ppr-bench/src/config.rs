@@ -8,7 +8,27 @@ use std::str::FromStr;
 use ppr_testbed::image_io::ToneMap;
 
 use crate::error::BenchError;
-use crate::frame_loop::{FrameCounts, WARMUP_SECONDS};
+
+/// How many frames a run takes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameCounts {
+    /// Frames run and thrown away first (pipelines, caches, clocks).
+    pub warmup: usize,
+    /// Frames timed.
+    pub timed: usize,
+    /// Frames timed instead when the first timed frame took longer than [`crate::frame_loop::SLOW_FRAME_MS`]
+    /// (brute-force SSR and the exact re-render at 8K: their medians are steady and far
+    /// from PPR's, and a full count would not fit a device lease).
+    pub slow_timed: usize,
+    /// Warm up for at least this long, frames back to back ([`WARMUP_SECONDS`] for
+    /// measurements; 0 for `--quick`).
+    pub warmup_seconds: f64,
+}
+
+/// Shortest warm-up, seconds of frames submitted back to back. Without it, a short
+/// technique timed right after seconds of CPU work (read-backs, metrics) ran 2–2.6× slower
+/// on the H100 at 4K, every pass alike (docs/perf/comparison.md).
+pub const WARMUP_SECONDS: f64 = 0.2;
 
 /// A render size.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]

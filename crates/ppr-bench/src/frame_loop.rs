@@ -6,32 +6,13 @@ use std::time::Instant;
 
 use ppr_runtime::Camera;
 
+pub use crate::config::{FrameCounts, WARMUP_SECONDS};
 use crate::technique::{BenchFrame, BenchTechnique};
 use crate::timing::{PassTime, TimingSeries, TimingSource};
-
-/// How many frames a run takes.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrameCounts {
-    /// Frames run and thrown away first (pipelines, caches, clocks).
-    pub warmup: usize,
-    /// Frames timed.
-    pub timed: usize,
-    /// Frames timed instead when the first timed frame took longer than [`SLOW_FRAME_MS`]
-    /// (brute-force SSR and the exact re-render at 8K: their medians are steady and far
-    /// from PPR's, and a full count would not fit a device lease).
-    pub slow_timed: usize,
-    /// Warm up for at least this long, frames back to back ([`WARMUP_SECONDS`] for
-    /// measurements; 0 for `--quick`).
-    pub warmup_seconds: f64,
-}
 
 /// GPU milliseconds above which a run takes [`FrameCounts::slow_timed`] frames.
 pub const SLOW_FRAME_MS: f64 = 50.0;
 
-/// Shortest warm-up, seconds of frames submitted back to back. Without it, a short
-/// technique timed right after seconds of CPU work (read-backs, metrics) ran 2–2.6× slower
-/// on the H100 at 4K, every pass alike (docs/perf/comparison.md).
-pub const WARMUP_SECONDS: f64 = 0.2;
 /// Most warm-up frames, whatever their time.
 const MAX_WARMUP_FRAMES: usize = 2000;
 

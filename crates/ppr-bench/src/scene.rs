@@ -5,9 +5,10 @@ use std::path::{Path, PathBuf};
 
 use ppr_extract::{ExtractParams, extract};
 use ppr_format::{ReflectorKind, ReflectorSet};
-use ppr_runtime::{Camera, Projection};
+use ppr_runtime::Projection;
 use ppr_testbed::Level;
 
+pub use crate::cameras::NamedCamera;
 use crate::cameras::derive_cameras;
 use crate::error::BenchError;
 
@@ -91,13 +92,6 @@ impl SceneSpec {
         let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| text.into());
         Ok(Self { name, path, preset })
     }
-}
-
-/// A camera with the name reports use.
-#[derive(Clone, Debug, PartialEq)]
-pub struct NamedCamera {
-    pub name: String,
-    pub camera: Camera,
 }
 
 /// A scene ready to render: the level, its reflectors and its cameras.

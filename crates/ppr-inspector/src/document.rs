@@ -4,10 +4,8 @@
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use ppr_extract::Extraction;
-use ppr_extract::manual_edits::EditedSet;
+use ppr_extract::manual_edits::{EditedSet, ManualEdits};
 use ppr_format::ReflectorSet;
-
-use crate::manual_edits::ManualEdits;
 
 pub use ppr_extract::manual_edits::{ReflectorRegion, RegionTable};
 

@@ -5,6 +5,7 @@
 use glam::Vec3;
 use ppr_runtime::{Camera, DepthMode};
 
+use crate::forward_layouts::ForwardLayouts;
 use crate::frame_targets::{COLOR_FORMAT, DEPTH_FORMAT, FrameTargets, WEIGHT_FORMAT};
 use crate::gltf_level::{AlphaBlend, Vertex};
 use crate::level_meshes::{Culling, LevelMeshes};
@@ -41,57 +42,6 @@ struct ViewUniform {
     ambient: [f32; 4],
 }
 const _: () = assert!(size_of::<ViewUniform>() == 96);
-
-/// Bind-group layouts of the forward pass: view (0), material (1), draw (2).
-pub struct ForwardLayouts {
-    pub view: wgpu::BindGroupLayout,
-    pub material: wgpu::BindGroupLayout,
-    pub draw: wgpu::BindGroupLayout,
-}
-
-impl ForwardLayouts {
-    fn new(device: &wgpu::Device) -> Self {
-        let uniform = |binding, dynamic| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-            ty: wgpu::BindingType::Buffer {
-                ty: wgpu::BufferBindingType::Uniform,
-                has_dynamic_offset: dynamic,
-                min_binding_size: None,
-            },
-            count: None,
-        };
-        let layout = |label, entries: &[wgpu::BindGroupLayoutEntry]| {
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries })
-        };
-        Self {
-            view: layout("walkthrough forward: view", &[uniform(0, false)]),
-            material: layout(
-                "walkthrough forward: material",
-                &[
-                    uniform(0, false),
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 1,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
-                        ty: wgpu::BindingType::Texture {
-                            sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                            view_dimension: wgpu::TextureViewDimension::D2,
-                            multisampled: false,
-                        },
-                        count: None,
-                    },
-                    wgpu::BindGroupLayoutEntry {
-                        binding: 2,
-                        visibility: wgpu::ShaderStages::FRAGMENT,
-                        ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                        count: None,
-                    },
-                ],
-            ),
-            draw: layout("walkthrough forward: draw", &[uniform(0, true)]),
-        }
-    }
-}
 
 /// The forward pass for one depth convention.
 pub struct ForwardPass {

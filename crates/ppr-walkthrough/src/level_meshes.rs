@@ -7,7 +7,7 @@ use std::ops::Range;
 use glam::{DMat3, DMat4, DVec3};
 use wgpu::util::DeviceExt;
 
-use crate::forward_pass::ForwardLayouts;
+use crate::forward_layouts::ForwardLayouts;
 use crate::gltf_level::{AlphaBlend, LevelData, Texture, Vertex};
 use crate::reflectivity::reflectivity;
 

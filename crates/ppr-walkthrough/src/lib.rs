@@ -25,6 +25,7 @@ pub mod cli;
 pub mod composite_pass;
 pub mod controls;
 pub mod fly_camera;
+pub mod forward_layouts;
 pub mod forward_pass;
 pub mod frame_clock;
 pub mod frame_targets;

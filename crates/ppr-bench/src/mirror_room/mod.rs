@@ -17,9 +17,10 @@ use ppr_extract::parallel::parallel_groups;
 use ppr_format::ReflectorSet;
 use ppr_testbed::Level;
 
+use crate::cameras::NamedCamera;
 use crate::mirror_room::panels::MirrorPanels;
 use crate::scaling::quad_builder::scenery_color;
-use crate::scene::{BenchScene, NamedCamera, SceneOptions};
+use crate::scene::{BenchScene, SceneOptions};
 
 /// One member of the family.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

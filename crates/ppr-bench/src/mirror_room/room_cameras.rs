@@ -4,8 +4,8 @@
 use glam::{DVec3, Vec3};
 use ppr_runtime::{Camera, Projection};
 
+use crate::cameras::NamedCamera;
 use crate::mirror_room::MirrorRoom;
-use crate::scene::NamedCamera;
 
 fn projection() -> Projection {
     Projection { fov_y: 60f32.to_radians(), near: 0.05, far: Some(60.0), ..Projection::default() }
