@@ -78,9 +78,10 @@ pub struct PlanParams {
     /// a visible reflector (indirect dispatch).
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
-    /// at most this share of the screen. Measured on an H100 at 3840×2160
-    /// (docs/perf/scaling.md): the classification and the per-tile clear and reflection
-    /// are never slower than the full-screen passes up to 0.3 and slower from 0.4 on.
+    /// at most this share of the screen. Measured on the H200 at 3840×2160
+    /// (docs/perf/scaling.md, 2026-12-02): the classification and the per-tile clear and
+    /// reflection are never slower than the full-screen passes up to 0.4 and slower from
+    /// 0.5 on.
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
@@ -123,7 +124,7 @@ impl Default for PlanParams {
             super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
-            indirect_max_coverage: 0.3,
+            indirect_max_coverage: 0.4,
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
