@@ -85,68 +85,7 @@ impl TimingSeries {
     }
 }
 
-/// Timestamps written by the command encoder around a group of passes a technique does not
-/// time itself (the exact reference), read back after the frame.
-pub struct EncoderTimer {
-    query_set: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
-    period_ns: f64,
-}
-
-impl EncoderTimer {
-    /// A timer for one begin/end pair, or `None` without `TIMESTAMP_QUERY_INSIDE_ENCODERS`.
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Option<Self> {
-        let needed = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
-        if !device.features().contains(needed) {
-            return None;
-        }
-        let buffer = |label: &str, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: 16,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        Some(Self {
-            query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("bench encoder timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2,
-            }),
-            resolve: buffer(
-                "bench encoder timestamps resolve",
-                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            ),
-            readback: buffer(
-                "bench encoder timestamps readback",
-                wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            ),
-            period_ns: f64::from(queue.get_timestamp_period()),
-        })
-    }
-
-    /// Records the begin timestamp.
-    pub fn begin(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.write_timestamp(&self.query_set, 0);
-    }
-
-    /// Records the end timestamp and the copy to the readback buffer.
-    pub fn end(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.write_timestamp(&self.query_set, 1);
-        encoder.resolve_query_set(&self.query_set, 0..2, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, 16);
-    }
-
-    /// Waits for the frame and returns the milliseconds between begin and end (`None` when
-    /// the adapter reports an end before the begin, as llvmpipe's GL timers may).
-    pub fn read_ms(&self, device: &wgpu::Device) -> Option<f64> {
-        let words = read_u64s(device, &self.readback)?;
-        let (begin, end) = (words[0], words[1]);
-        (end >= begin && begin != 0).then(|| (end - begin) as f64 * self.period_ns * 1e-6)
-    }
-}
+pub use ppr_testbed::encoder_timer::EncoderTimer;
 
 /// Maps a `MAP_READ` buffer, waits, and returns its contents as little-endian u64s.
 pub fn read_u64s(device: &wgpu::Device, buffer: &wgpu::Buffer) -> Option<Vec<u64>> {

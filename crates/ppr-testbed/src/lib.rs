@@ -14,6 +14,7 @@ pub mod bounce_plan;
 pub mod camera_spec;
 pub mod composite;
 pub mod depth_copy;
+pub mod encoder_timer;
 mod error;
 pub mod frame_images;
 pub mod gbuffer;

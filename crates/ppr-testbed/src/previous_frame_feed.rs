@@ -4,6 +4,7 @@
 //! frame's PPR reads; the copy is what a game pays, timed here with encoder timestamps.
 
 use crate::composite::{COMPOSITE_FORMAT, CompositeInputs, CompositeParams, CompositePass};
+use crate::encoder_timer::EncoderTimer;
 use crate::gbuffer_targets::{COLOR_FORMAT, Target};
 
 /// Label of the copy's time in a technique's timings.
@@ -24,7 +25,7 @@ pub struct PreviousFrameFeed {
     composite: CompositePass,
     params: CompositeParams,
     targets: Option<FeedTargets>,
-    timer: Option<CopyTimer>,
+    timer: Option<EncoderTimer>,
 }
 
 struct FeedTargets {
@@ -40,7 +41,7 @@ impl PreviousFrameFeed {
             composite: CompositePass::new(device),
             params,
             targets: None,
-            timer: CopyTimer::new(device, queue),
+            timer: EncoderTimer::new(device, queue),
         }
     }
 
@@ -88,7 +89,7 @@ impl PreviousFrameFeed {
         self.composite.encode(encoder, &bind_group, &t.composited.view);
         let timer = self.timer.as_ref().filter(|_| timed);
         if let Some(timer) = timer {
-            encoder.write_timestamp(&timer.query_set, 0);
+            timer.begin(encoder);
         }
         encoder.copy_texture_to_texture(
             t.composited.texture.as_image_copy(),
@@ -104,69 +105,5 @@ impl PreviousFrameFeed {
     /// (`None` without encoder timestamps, or when the adapter's timer went backwards).
     pub fn read_copy_ms(&self, device: &wgpu::Device) -> Option<f64> {
         self.timer.as_ref()?.read_ms(device)
-    }
-}
-
-/// A begin/end timestamp pair written by the encoder around the copy.
-struct CopyTimer {
-    query_set: wgpu::QuerySet,
-    resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
-    period_ns: f64,
-}
-
-impl CopyTimer {
-    fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Option<Self> {
-        let needed = wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS;
-        if !device.features().contains(needed) {
-            return None;
-        }
-        let buffer = |label: &str, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: 16,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
-        Some(Self {
-            query_set: device.create_query_set(&wgpu::QuerySetDescriptor {
-                label: Some("previous-frame copy timestamps"),
-                ty: wgpu::QueryType::Timestamp,
-                count: 2,
-            }),
-            resolve: buffer(
-                "previous-frame copy timestamps resolve",
-                wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            ),
-            readback: buffer(
-                "previous-frame copy timestamps readback",
-                wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-            ),
-            period_ns: f64::from(queue.get_timestamp_period()),
-        })
-    }
-
-    fn end(&self, encoder: &mut wgpu::CommandEncoder) {
-        encoder.write_timestamp(&self.query_set, 1);
-        encoder.resolve_query_set(&self.query_set, 0..2, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, 16);
-    }
-
-    fn read_ms(&self, device: &wgpu::Device) -> Option<f64> {
-        let slice = self.readback.slice(..);
-        let (tx, rx) = std::sync::mpsc::channel();
-        slice.map_async(wgpu::MapMode::Read, move |r| {
-            let _ = tx.send(r);
-        });
-        device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
-        rx.recv().ok()?.ok()?;
-        let ticks: Vec<u64> = {
-            let view = slice.get_mapped_range().ok()?;
-            view.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect()
-        };
-        self.readback.unmap();
-        let (begin, end) = (ticks[0], ticks[1]);
-        (end >= begin && begin != 0).then(|| (end - begin) as f64 * self.period_ns * 1e-6)
     }
 }
