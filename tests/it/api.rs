@@ -66,7 +66,7 @@ fn a_second_encode_per_prepare_gives_the_same_output_as_the_first() {
     for indirect in [Choice::On, Choice::Off] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let plan = r.prepare(&cam, SIZE).clone();
         assert_eq!(plan.indirect, indirect == Choice::On, "{plan}");
         let mut outputs = Vec::new();
@@ -131,7 +131,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
             .map(|(c, f)| {
                 let mut r = renderer();
                 r.plan_params.indirect = indirect;
-                r.set_reflectors(&set).expect("a valid set");
+                r.set_reflectors(&ppr_tests::harness::validated(&set));
                 run(&mut r, f, c).pixels
             })
             .collect();
@@ -139,7 +139,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
         // One renderer for both views.
         let mut shared = renderer();
         shared.plan_params.indirect = indirect;
-        shared.set_reflectors(&set).expect("a valid set");
+        shared.set_reflectors(&ppr_tests::harness::validated(&set));
         let outs = [fresh_output(), fresh_output()];
         let mut encoder = g.device.create_command_encoder(&Default::default());
         for k in 0..2 {
@@ -152,7 +152,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
         let own_outs = [fresh_output(), fresh_output()];
         for (k, r) in own.iter_mut().enumerate() {
             r.plan_params.indirect = indirect;
-            r.set_reflectors(&set).expect("a valid set");
+            r.set_reflectors(&ppr_tests::harness::validated(&set));
             r.prepare(&cams[k], SIZE);
         }
         let mut encoder = g.device.create_command_encoder(&Default::default());
@@ -176,12 +176,14 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
 }
 
 #[test]
-fn set_reflectors_refuses_a_set_that_breaks_an_invariant() {
+fn a_set_that_breaks_an_invariant_never_reaches_the_renderer() {
+    // The renderer takes only a ValidatedSet: the broken set is refused when validated,
+    // naming the field, and the renderer keeps what it had.
     let s = scene();
     let mut bad = s.reflector_set();
     bad.reflectors[0].occluders = vec![7];
     let mut r = renderer();
-    let err = r.set_reflectors(&bad).expect_err("an occluder index out of range");
+    let err = ppr_format::ValidatedSet::new(bad).expect_err("an occluder index out of range");
     let field = err.field_path();
     eprintln!("{err}");
     assert_eq!(field.as_deref(), Some("reflectors[0].occluders[0]"), "{err}");
@@ -189,7 +191,7 @@ fn set_reflectors_refuses_a_set_that_breaks_an_invariant() {
     let cam = camera(DVec3::new(0.3, 1.6, 2.0));
     assert!(r.prepare(&cam, SIZE).is_empty());
     // A valid set afterwards renders.
-    r.set_reflectors(&s.reflector_set()).expect("valid");
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     assert_eq!(r.prepare(&cam, SIZE).visible.len(), 1);
 }
 
@@ -212,7 +214,7 @@ fn a_camera_from_the_games_matrices_renders_as_the_camera_it_describes() {
     exact.position = cam.position;
 
     let mut r = renderer();
-    r.set_reflectors(&set).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&set));
     let a = run(&mut r, &gpu, &cam);
     let b = run(&mut r, &gpu, &exact);
     let written = a.pixels.iter().filter(|p| p.w > 0.0).count();
@@ -241,7 +243,7 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
     let frame = s.render(&away, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.set_reflectors(&s.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     let out = run(&mut r, &gpu, &away);
     assert!(out.plan.is_empty(), "{}", out.plan);
     assert_eq!(r.passes_recorded(), [false; 7]);

@@ -57,7 +57,7 @@ fn alpha_is_one_inside_fades_towards_the_border_and_is_zero_without_data() {
     r.plan_params.indirect = Choice::Off;
     // A tenth of the shorter side (the default is off).
     r.settings.border_fade = 0.1;
-    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&scene.reflector_set()));
     let out = run(&mut r, &gpu, &camera);
     let [w, h] = SIZE;
     let alpha = |x: u32, y: u32| out.pixels[(y * w + x) as usize].w;
@@ -112,7 +112,7 @@ fn the_fade_width_is_a_setting_and_found_pixels_stay_found() {
         let mut r = renderer();
         r.plan_params.indirect = Choice::Off;
         r.settings.border_fade = border_fade;
-        r.set_reflectors(&scene.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&scene.reflector_set()));
         run(&mut r, &gpu, &camera).pixels
     };
     let off = run_with(0.0);

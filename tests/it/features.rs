@@ -3,7 +3,7 @@
 //! from the plan (no pass, no variant) when the frame has no such surface.
 
 use glam::{DVec3, Vec3, Vec4};
-use ppr_runtime::{Camera, Choice, Projection, ReflectionSettings};
+use ppr_runtime::{Camera, Choice, FrameInputs, Projection, ReflectionSettings};
 use ppr_tests::harness::{GpuFrame, compare, renderer, run};
 use ppr_tests::masks::{interior, reference_edges};
 use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
@@ -73,7 +73,7 @@ fn a_glass_panel_over_a_floor_mirror_reflects_both() {
     for indirect in [Choice::Off, Choice::On] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let out = run(&mut r, &gpu, &cam);
         eprintln!("{}", out.plan);
         assert_eq!(out.plan.indirect, indirect == Choice::On);
@@ -133,7 +133,7 @@ fn indirect_dispatch_keeps_a_mirror_seen_through_glass_written_to_depth() {
     for indirect in [Choice::Off, Choice::On] {
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let out = run(&mut r, &gpu, &cam);
         assert_eq!(out.plan.indirect, indirect == Choice::On, "{}", out.plan);
         outputs.push(out.pixels);
@@ -174,7 +174,7 @@ fn water_planes_at_two_heights_get_a_layer_each() {
 
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&set).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&set));
     let layered = run(&mut r, &gpu, &cam);
     assert_eq!(layered.plan.layers.len(), 2, "{}", layered.plan);
     assert!(layered.plan.visible.is_empty(), "both water planes are layers");
@@ -190,6 +190,51 @@ fn water_planes_at_two_heights_get_a_layer_each() {
     eprintln!("two water layers {lake_and_basin:?}\n  one layer + main buffer {split:?}");
     assert!(lake_and_basin.pixels > 1500 && lake_and_basin.psnr >= 30.0, "{lake_and_basin:?}");
     assert!((split.psnr - lake_and_basin.psnr).abs() < 3.0, "{split:?} vs {lake_and_basin:?}");
+}
+
+#[test]
+fn layers_are_planned_only_while_the_frame_gives_them_an_output() {
+    // `layers: Auto` with `FrameInputs::new` (no layer output): from the second frame on,
+    // the water planes go to the main buffer instead of layers nobody reads.
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.water("lake", DVec3::new(0.0, 0.0, -4.5), DVec3::X, DVec3::NEG_Z, [3.5, 3.0]);
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let mut r = renderer();
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
+    let g = ppr_tests::gpu::gpu();
+    let color = gpu.color.create_view(&Default::default());
+    let aspect = if gpu.depth.format().has_depth_aspect() {
+        wgpu::TextureAspect::DepthOnly
+    } else {
+        wgpu::TextureAspect::All
+    };
+    let depth = gpu.depth.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
+    let output = gpu.output.create_view(&Default::default());
+    let layer_output = gpu.layer_output.create_view(&Default::default());
+    let mut frame_with = |r: &mut ppr_runtime::ReflectionRenderer, layers: bool| {
+        let plan = r.prepare(&cam, SIZE);
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        let inputs = FrameInputs {
+            layer_output: layers.then_some(&layer_output),
+            ..FrameInputs::new(&color, &depth, &output)
+        };
+        r.encode(&mut encoder, &inputs);
+        g.queue.submit([encoder.finish()]);
+        (plan.layers.len(), plan.visible.len())
+    };
+    // First frame: the renderer cannot know yet, and plans the layer.
+    assert_eq!(frame_with(&mut r, false), (1, 0));
+    // Then: no layer output seen, the lake is an ordinary reflector of the main buffer.
+    assert_eq!(frame_with(&mut r, false), (0, 1));
+    assert_eq!(frame_with(&mut r, true), (0, 1), "planned before this encode gave the output");
+    assert_eq!(frame_with(&mut r, true), (1, 0), "the layer output is back");
+    // `On` plans them whatever the frame gives.
+    r.plan_params.layers = Choice::On;
+    assert_eq!(frame_with(&mut r, false), (1, 0));
+    assert_eq!(frame_with(&mut r, false), (1, 0));
 }
 
 #[test]
@@ -210,7 +255,7 @@ fn water_edge_stretch_fills_reflections_missing_at_the_border() {
     let count = |stretch: bool| {
         let mut r = renderer();
         r.settings = ReflectionSettings { water_edge_stretch: stretch, ..ReflectionSettings::ALL };
-        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let out = run(&mut r, &gpu, &cam);
         assert!(out.layer_pixels.iter().all(|p| p.is_finite()));
         (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.0).count()
@@ -241,7 +286,7 @@ fn normal_maps_bring_the_reflection_closer_to_the_bumpy_reference() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.set_reflectors(&s.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     let mapped = run(&mut r, &gpu, &cam);
     assert!(mapped.plan.normal_maps && mapped.plan.passes().iter().any(|p| p.contains("normal maps")));
     r.plan_params.normal_maps = Choice::Off;
@@ -264,7 +309,7 @@ fn without_glass_water_or_normal_maps_nothing_extra_runs() {
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&s.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     let out = run(&mut r, &gpu, &cam);
     assert!(out.plan.layers.is_empty() && !out.plan.normal_maps, "{}", out.plan);
     assert_eq!(out.plan.passes(), vec!["clear", "projection", "reflection"]);
@@ -297,7 +342,7 @@ fn normal_maps_keep_the_flat_reflection_where_the_source_is_the_pixel_itself() {
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
     r.plan_params.depth_occlusion = Choice::Off;
-    r.set_reflectors(&s.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     let mapped = run(&mut r, &gpu, &cam);
     assert!(mapped.plan.normal_maps, "{}", mapped.plan);
     r.plan_params.normal_maps = Choice::Off;

@@ -71,7 +71,7 @@ fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tes
     let mut r = renderer();
     // Full clears, so that the whole intermediate buffer can be compared.
     r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.set_reflectors(&case.set).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&case.set));
     r.settings = settings;
     r.debug.write_mode = mode;
     run(&mut r, &case.gpu, &case.camera)
@@ -316,7 +316,7 @@ fn anti_bleeding_decides_the_same_at_any_exposure() {
         }
         let mut r = renderer();
         r.plan_params.indirect = ppr_runtime::Choice::Off;
-        r.set_reflectors(&set).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&set));
         r.settings = ReflectionSettings::ALL;
         run(&mut r, &GpuFrame::upload(&f), &camera).pixels
     };
@@ -373,7 +373,7 @@ fn a_far_mirror_under_standard_z_never_reflects_itself() {
         let mut r = renderer();
         r.settings = ReflectionSettings::RAW;
         r.plan_params.depth_occlusion = occlusion;
-        r.set_reflectors(&s.reflector_set()).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let out = run(&mut r, &gpu, &camera);
         let written = out.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
         eprintln!("occlusion {occlusion:?}: {on_mirror} mirror pixels, {written} written");

@@ -162,13 +162,13 @@ fn tile_culling_keeps_every_write_of_the_plain_loop_under_the_parallel_rule() {
         let set = grouped_set(&scene);
 
         let mut plain = configured(Culling::Plain, Choice::On);
-        plain.set_reflectors(&set).expect("a valid set");
+        plain.set_reflectors(&ppr_tests::harness::validated(&set));
         run(&mut plain, &gpu, &camera);
         let a = debug_masks(&plain);
         let writes: usize = a.iter().map(|m| m.count_ones() as usize).sum();
         for culling in CULLED {
             let mut tiled = configured(culling, Choice::On);
-            tiled.set_reflectors(&set).expect("a valid set");
+            tiled.set_reflectors(&ppr_tests::harness::validated(&set));
             let out = run(&mut tiled, &gpu, &camera);
             assert!(out.plan.tile_culling && out.plan.parallel_rule, "{}", out.plan);
             assert_eq!(out.plan.super_tiles, culling == Culling::SuperTiles, "{}", out.plan);
@@ -202,14 +202,14 @@ fn without_parallel_shapes_culling_changes_no_pixel() {
         assert_eq!(groups.len(), set.reflectors.len(), "no two mirrors parallel");
 
         let mut plain = configured(Culling::Plain, Choice::Auto);
-        plain.set_reflectors(&set).expect("a valid set");
+        plain.set_reflectors(&ppr_tests::harness::validated(&set));
         let a = run(&mut plain, &gpu, &camera);
         let bits = |o: &[Vec4]| o.iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
         let written = a.pixels.iter().filter(|p| p.w > 0.0).count();
         eprintln!("case {case}: {} visible, {written} reflection pixels", a.plan.visible.len());
         for culling in CULLED {
             let mut tiled = configured(culling, Choice::On);
-            tiled.set_reflectors(&set).expect("a valid set");
+            tiled.set_reflectors(&ppr_tests::harness::validated(&set));
             let b = run(&mut tiled, &gpu, &camera);
             assert!(!a.plan.parallel_rule && b.plan.parallel_rule);
             assert_eq!(
@@ -238,11 +238,11 @@ fn uniform_and_storage_shape_tests_write_the_same_buffer() {
         let culling = if case < 2 { Culling::Plain } else { Culling::Tiles };
         let rule = if parallel { Choice::On } else { Choice::Off };
         let mut uniform = configured(culling, rule);
-        uniform.set_reflectors(&set).expect("a valid set");
+        uniform.set_reflectors(&ppr_tests::harness::validated(&set));
         let a = run(&mut uniform, &gpu, &camera);
         let mut storage = configured(culling, rule);
         storage.plan_params.uniform_tests = Choice::Off;
-        storage.set_reflectors(&set).expect("a valid set");
+        storage.set_reflectors(&ppr_tests::harness::validated(&set));
         let b = run(&mut storage, &gpu, &camera);
         assert!(a.plan.uniform_tests && !b.plan.uniform_tests, "{} / {}", a.plan, b.plan);
         assert_eq!(a.intermediate, b.intermediate, "intermediate buffers differ in case {case}");
@@ -262,7 +262,7 @@ fn active_tiles_cover_every_reflector_pixel() {
         let gpu = GpuFrame::upload(&frame);
         let mut r = renderer();
         r.plan_params.indirect = Choice::On;
-        r.set_reflectors(&grouped_set(&scene)).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&grouped_set(&scene)));
         let out = run(&mut r, &gpu, &camera);
         assert!(out.plan.indirect);
         let list: Vec<u32> =
@@ -299,11 +299,11 @@ fn indirect_dispatch_gives_the_same_reflection_on_reflector_pixels() {
     let set = grouped_set(&scene);
     let mut full = renderer();
     full.plan_params.indirect = Choice::Off;
-    full.set_reflectors(&set).expect("a valid set");
+    full.set_reflectors(&ppr_tests::harness::validated(&set));
     let a = run(&mut full, &gpu, &camera);
     let mut tiles = renderer();
     tiles.plan_params.indirect = Choice::On;
-    tiles.set_reflectors(&set).expect("a valid set");
+    tiles.set_reflectors(&ppr_tests::harness::validated(&set));
     let b = run(&mut tiles, &gpu, &camera);
     let mut compared = 0;
     for (i, m) in frame.mirror.iter().enumerate() {
@@ -331,7 +331,7 @@ fn a_frame_without_visible_reflectors_dispatches_nothing() {
     let frame = scene.render(&camera, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&scene.reflector_set()));
     let out = run(&mut r, &gpu, &camera);
     eprintln!("{}", out.plan);
     assert!(out.plan.is_empty());
@@ -363,7 +363,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     let gpu = GpuFrame::upload(&frame);
     let mut r = configured(Culling::Tiles, Choice::On);
     r.debug.tile_lists = true;
-    r.set_reflectors(&grouped_set(&scene)).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&grouped_set(&scene)));
     let out = run(&mut r, &gpu, &camera);
     let lengths = debug_masks(&r);
     let listed: Vec<u32> = lengths.iter().copied().filter(|&n| n != u32::MAX).collect();
@@ -382,7 +382,7 @@ fn tile_lists_stay_short_on_coplanar_puddles() {
     // super-tile lists themselves are shorter than the visible list.
     let mut s = configured(Culling::SuperTiles, Choice::On);
     s.debug.tile_lists = true;
-    s.set_reflectors(&grouped_set(&scene)).expect("a valid set");
+    s.set_reflectors(&ppr_tests::harness::validated(&grouped_set(&scene)));
     let out = run(&mut s, &gpu, &camera);
     assert!(out.plan.super_tiles, "{}", out.plan);
     assert_eq!(debug_masks(&s), lengths, "tile lists differ when built from super-tile lists");
@@ -444,7 +444,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     // is then exactly the plain loop's.
     let (camera, gpu, set) = dense_puddles_frame(1200);
     let mut plain = configured(Culling::Plain, Choice::On);
-    plain.set_reflectors(&set).expect("a valid set");
+    plain.set_reflectors(&ppr_tests::harness::validated(&set));
     let a = run(&mut plain, &gpu, &camera);
     let written = a.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
     assert!(a.plan.visible.len() > 1024, "{}", a.plan);
@@ -452,7 +452,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
     for culling in CULLED {
         let mut r = configured(culling, Choice::On);
         r.debug.tile_lists = true;
-        r.set_reflectors(&set).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&set));
         let b = run(&mut r, &gpu, &camera);
         let lengths = debug_masks(&r);
         let overflowed = lengths.iter().filter(|&&n| n == u32::MAX).count();
@@ -477,7 +477,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
 fn super_tiles_run_from_the_plan_threshold() {
     let (camera, gpu, set) = dense_puddles_frame(200);
     let mut r = renderer();
-    r.set_reflectors(&set).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&set));
     let out = run(&mut r, &gpu, &camera);
     let n = out.plan.visible.len();
     assert!(n >= r.plan_params.tile_culling_min_shapes && n < 512, "{}", out.plan);
@@ -517,13 +517,13 @@ fn the_default_plan_never_drops_a_reflection_the_plain_loop_shows() {
     let set = grouped_set(&s);
 
     let mut plain = configured(Culling::Plain, Choice::Off);
-    plain.set_reflectors(&set).expect("a valid set");
+    plain.set_reflectors(&ppr_tests::harness::validated(&set));
     run(&mut plain, &gpu, &camera);
     let a = debug_masks(&plain);
     let mut default = renderer();
     default.plan_params.indirect = Choice::Off;
     default.debug.writes = true;
-    default.set_reflectors(&set).expect("a valid set");
+    default.set_reflectors(&ppr_tests::harness::validated(&set));
     let out = run(&mut default, &gpu, &camera);
     let b = debug_masks(&default);
     let writes: usize = a.iter().map(|m| m.count_ones() as usize).sum();

@@ -8,7 +8,7 @@ use crate::scene::Frame;
 
 /// What one run of the runtime produced.
 pub struct Output {
-    pub plan: FramePlan,
+    pub plan: std::sync::Arc<FramePlan>,
     /// Reflection colour + confidence alpha per pixel (0: no reflection found).
     pub pixels: Vec<Vec4>,
     /// The intermediate buffer after the projection pass.
@@ -229,7 +229,7 @@ pub fn run(renderer: &mut ReflectionRenderer, frame: &GpuFrame, camera: &Camera)
             t.size(),
         );
     }
-    let plan = renderer.prepare(camera, frame.size).clone();
+    let plan = renderer.prepare(camera, frame.size);
     let color = frame.color.create_view(&Default::default());
     let aspect = if frame.depth.format().has_depth_aspect() {
         wgpu::TextureAspect::DepthOnly
@@ -257,6 +257,11 @@ pub fn run(renderer: &mut ReflectionRenderer, frame: &GpuFrame, camera: &Camera)
         .map(|b| bytemuck::pod_collect_to_vec(&read_buffer(b)))
         .unwrap_or_default();
     Output { plan, pixels, intermediate, layer_pixels }
+}
+
+/// `set`, validated (panics naming the broken field when it is not).
+pub fn validated(set: &ppr_format::ReflectorSet) -> ppr_format::ValidatedSet {
+    ppr_format::ValidatedSet::new(set.clone()).unwrap_or_else(|e| panic!("a valid set: {e}"))
 }
 
 /// A renderer on the test device.

@@ -129,8 +129,8 @@ impl AnalyticScene {
             name,
             kind,
             quad.center,
+            quad.u.cross(quad.v),
             quad.u,
-            quad.v,
             glam::DVec2::new(quad.half[0], quad.half[1]),
         );
         self.set.push(r);

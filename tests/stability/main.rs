@@ -88,7 +88,7 @@ pub fn run_case(
     let gpu = ppr_tests::harness::GpuFrame::upload(&frame);
     let mut r = ppr_tests::harness::renderer();
     r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&scene.reflector_set()));
     let out = ppr_tests::harness::run(&mut r, &gpu, camera);
     (frame, out)
 }

@@ -78,7 +78,7 @@ fn far_plane_nan_and_infinite_depths_and_colours_never_reach_the_output() {
     let gpu = GpuFrame::upload_raw_depth(&frame);
     let mut r = renderer();
     r.plan_params.indirect = Choice::Off;
-    r.set_reflectors(&scene.reflector_set()).expect("a valid set");
+    r.set_reflectors(&ppr_tests::harness::validated(&scene.reflector_set()));
     let out = run(&mut r, &gpu, &camera);
     let inv = invariants(&frame, &out.plan, &out.pixels, &out.intermediate);
     let non_finite = out.pixels.iter().filter(|p: &&Vec4| !p.is_finite()).count();

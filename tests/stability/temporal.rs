@@ -37,7 +37,7 @@ fn frame_to_frame(mirror_fractions: bool) -> (f32, f64, usize) {
             anti_bleeding: false,
             ..ReflectionSettings::ALL
         };
-        r.set_reflectors(&set).expect("a valid set");
+        r.set_reflectors(&ppr_tests::harness::validated(&set));
         let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
         r.debug.encoding = Some(ppr_runtime::EncodingLayout { mirror_fractions, ..layout });
         let out = run(&mut r, &gpu, &camera);

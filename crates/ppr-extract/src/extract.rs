@@ -179,8 +179,9 @@ fn build_set(
                 node: &s.primary.0,
                 material: &s.primary.1,
             });
-            let mut r = Reflector::new(0, name, s.kind, center, axis_u, axis_v, half);
-            r.normal = normal;
+            let mut r = Reflector::new(0, name, s.kind, center, normal, axis_u, half);
+            // The fit's own in-plane frame, which may be left-handed about the normal.
+            r.axis_v = axis_v;
             r.coverage = (s.area / rect_area).clamp(0.0, 1.0);
             r.roughness = area_weighted_roughness(&s.polygons);
             r.normal_map =

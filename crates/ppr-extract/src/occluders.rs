@@ -309,7 +309,7 @@ mod tests {
     use proptest::prelude::*;
 
     fn shape(center: DVec3, rot: DQuat, half: DVec2) -> Reflector {
-        Reflector::new(0, "s", ReflectorKind::Opaque, center, rot * DVec3::X, rot * DVec3::NEG_Z, half)
+        Reflector::new(0, "s", ReflectorKind::Opaque, center, rot * DVec3::Y, rot * DVec3::X, half)
     }
 
     /// Ground truth by sampling: does some sampled point of `b` lie strictly in front of

@@ -22,8 +22,8 @@
 //!     "floor",
 //!     ReflectorKind::Opaque,
 //!     DVec3::ZERO,
+//!     DVec3::Y, // the reflecting side
 //!     DVec3::X,
-//!     DVec3::NEG_Z,
 //!     DVec2::new(5.0, 5.0),
 //! ));
 //! let json = set.to_json_string().unwrap();
@@ -43,6 +43,7 @@ mod set;
 mod source_check;
 pub use source_check::SourceMismatch;
 mod validate;
+mod validated;
 
 pub use error::{FormatError, InvalidField, ReflectorRef};
 pub use reflector::{Reflector, ReflectorKind, ReflectorSource};
@@ -51,6 +52,7 @@ pub use set::{
     reads_version,
 };
 pub use validate::{AXIS_TOLERANCE, MAX_COORDINATE, PARALLEL_GROUP_MAX_ANGLE_DEG, parallel_groups};
+pub use validated::ValidatedSet;
 
 /// The JSON Schema of the format, as published beside it in `schema/`.
 pub const JSON_SCHEMA: &str = include_str!("../schema/ppr-reflector-set.schema.json");

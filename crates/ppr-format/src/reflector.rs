@@ -123,15 +123,20 @@ fn default_true() -> bool {
 }
 
 impl Reflector {
-    /// A reflector with the normal `axis_u × axis_v`, full coverage, roughness 0 (a perfect
-    /// mirror) and no occluders.
+    /// A rectangle at `center` that reflects on the side `normal` points to, `half_extents`
+    /// along `axis_u` and along `axis_v = normal × axis_u`; full coverage, roughness 0 (a
+    /// perfect mirror), no occluders.
+    ///
+    /// The facing is what you pass: a floor seen from above has `normal = +Y` whatever its
+    /// in-plane axes. `normal` and `axis_u` must be unit length and orthogonal
+    /// ([`crate::ReflectorSet::validate`] checks it).
     pub fn new(
         id: u32,
         name: impl Into<String>,
         kind: ReflectorKind,
         center: DVec3,
+        normal: DVec3,
         axis_u: DVec3,
-        axis_v: DVec3,
         half_extents: DVec2,
     ) -> Self {
         Self {
@@ -141,9 +146,9 @@ impl Reflector {
             enabled: true,
             center,
             axis_u,
-            axis_v,
+            axis_v: normal.cross(axis_u),
             half_extents,
-            normal: axis_u.cross(axis_v),
+            normal,
             coverage: 1.0,
             roughness: 0.0,
             parallel_group: 0,

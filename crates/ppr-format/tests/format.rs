@@ -1,7 +1,7 @@
 //! Format tests: round trips, refusal of broken files with named fields, the JSON Schema.
 
 use glam::{DVec2, DVec3};
-use ppr_format::{FORMAT_VERSION, FormatError, Reflector, ReflectorKind, ReflectorSet};
+use ppr_format::{FORMAT_VERSION, FormatError, Reflector, ReflectorKind, ReflectorSet, ValidatedSet};
 use proptest::prelude::*;
 
 fn sample_set() -> ReflectorSet {
@@ -15,8 +15,8 @@ fn sample_set() -> ReflectorSet {
         "floor",
         ReflectorKind::Opaque,
         DVec3::ZERO,
+        DVec3::Y,
         DVec3::X,
-        DVec3::NEG_Z,
         DVec2::new(4.0, 3.0),
     );
     floor.coverage = 0.75;
@@ -29,8 +29,8 @@ fn sample_set() -> ReflectorSet {
         "mirror wall",
         ReflectorKind::Transparent,
         DVec3::new(0.0, 1.5, -6.0),
+        DVec3::Z,
         DVec3::X,
-        DVec3::Y,
         DVec2::new(3.0, 1.5),
     );
     mirror.parallel_group = 1;
@@ -65,6 +65,39 @@ fn round_trip_through_text_and_file() {
     // Nothing but the file itself is left in the directory.
     let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(names, vec![std::ffi::OsString::from("level.ppr.json")]);
+}
+
+#[test]
+fn the_facing_is_the_normal_given_whatever_the_in_plane_axis() {
+    // A floor seen from above faces +Y for any in-plane axis: the constructor derives
+    // axis_v from the normal, so swapped axes cannot turn a reflector around.
+    for u in [DVec3::X, DVec3::NEG_X, DVec3::Z, DVec3::NEG_Z] {
+        let r = Reflector::new(0, "floor", ReflectorKind::Opaque, DVec3::ZERO, DVec3::Y, u, DVec2::ONE);
+        assert_eq!(r.normal, DVec3::Y);
+        assert!(
+            (r.axis_u.cross(r.axis_v) - DVec3::Y).length() < 1e-12,
+            "u {u}: frame {} {}",
+            r.axis_u,
+            r.axis_v
+        );
+        assert!(r.signed_distance(DVec3::new(0.0, 1.0, 0.0)) > 0.0);
+        let mut set = ReflectorSet::new("level.glb");
+        set.reflectors.push(r);
+        ValidatedSet::new(set).expect("a right-handed unit frame is valid");
+    }
+    // An in-plane axis that is not in the plane is refused by validation.
+    let mut set = ReflectorSet::new("level.glb");
+    set.reflectors.push(Reflector::new(
+        0,
+        "tilted",
+        ReflectorKind::Opaque,
+        DVec3::ZERO,
+        DVec3::Y,
+        DVec3::new(0.6, 0.8, 0.0),
+        DVec2::ONE,
+    ));
+    let err = ValidatedSet::new(set).expect_err("axis_u not orthogonal to the normal");
+    assert!(err.field_path().is_some_and(|f| f.starts_with("reflectors[0].")), "{err}");
 }
 
 #[test]
@@ -370,7 +403,7 @@ prop_compose! {
         group in 0u32..50,
         nodes in prop::collection::vec("[A-Za-z0-9_]{1,8}", 0..3),
     ) -> Reflector {
-        let mut r = Reflector::new(id, name, kind, DVec3::from(center), u, v, DVec2::from(half));
+        let mut r = Reflector::new(id, name, kind, DVec3::from(center), u.cross(v), u, DVec2::from(half));
         r.enabled = enabled;
         r.coverage = coverage;
         r.roughness = roughness;

@@ -39,8 +39,8 @@ mod tests {
                 "f",
                 ReflectorKind::Opaque,
                 DVec3::new(0.0, y, 0.0),
+                DVec3::Y,
                 DVec3::X,
-                DVec3::NEG_Z,
                 DVec2::ONE,
             )
         };

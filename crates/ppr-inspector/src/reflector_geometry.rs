@@ -279,7 +279,7 @@ mod tests {
     use super::*;
 
     fn floor(center: DVec3, half: DVec2) -> Reflector {
-        Reflector::new(1, "floor", ReflectorKind::Opaque, center, DVec3::X, DVec3::NEG_Z, half)
+        Reflector::new(1, "floor", ReflectorKind::Opaque, center, DVec3::Y, DVec3::X, half)
     }
 
     fn square_region(lo: DVec2, hi: DVec2) -> ReflectorRegion {
@@ -351,7 +351,7 @@ mod tests {
         up.center.y = 0.5;
         assert!(matches!(merge(&a, None, &up, None, tol), Err(EditError::NotMergeable { .. })));
         let mut wall =
-            Reflector::new(3, "wall", ReflectorKind::Opaque, DVec3::ZERO, DVec3::X, DVec3::Y, DVec2::ONE);
+            Reflector::new(3, "wall", ReflectorKind::Opaque, DVec3::ZERO, DVec3::Z, DVec3::X, DVec2::ONE);
         wall.normal = DVec3::Z;
         assert!(matches!(merge(&a, None, &wall, None, tol), Err(EditError::NotMergeable { .. })));
         assert!(matches!(merge(&a, None, &a, None, tol), Err(EditError::NotMergeable { .. })));

@@ -99,8 +99,8 @@ mod tests {
                 name,
                 ReflectorKind::Opaque,
                 DVec3::ZERO,
+                DVec3::Y,
                 DVec3::X,
-                DVec3::NEG_Z,
                 DVec2::splat(half),
             );
             r.coverage = cov;

@@ -100,15 +100,7 @@ mod tests {
     use crate::reflector_geometry::place;
 
     fn rect() -> Reflector {
-        Reflector::new(
-            1,
-            "r",
-            ReflectorKind::Opaque,
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::NEG_Z,
-            DVec2::new(2.0, 1.0),
-        )
+        Reflector::new(1, "r", ReflectorKind::Opaque, DVec3::ZERO, DVec3::Y, DVec3::X, DVec2::new(2.0, 1.0))
     }
 
     #[test]

@@ -98,7 +98,8 @@ impl ViewportRenderer {
         let device = self.device.clone();
         within_error_scope(&device, || {
             // The runtime checks the set first: nothing changes if it refuses it.
-            self.ppr.renderer().set_reflectors(set)?;
+            let valid = ppr_format::ValidatedSet::new(set.clone())?;
+            self.ppr.renderer().set_reflectors(&valid);
             self.level.set_reflectors(&self.device, set);
             Ok(())
         })

@@ -1,9 +1,10 @@
 //! `ReflectionRenderer`: what a game creates once and calls twice per frame.
 
 use std::cell::Cell;
+use std::sync::Arc;
 
 use glam::DMat4;
-use ppr_format::{FormatError, ReflectorSet};
+use ppr_format::ValidatedSet;
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
@@ -23,7 +24,7 @@ use crate::passes::{
     Ablation, BlockListPass, ClearPass, DownsamplePass, LayerReflectionPass, ProjectionPass,
     ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
 };
-use crate::plan::{FramePlan, PlanParams};
+use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shape_tests::shape_tests;
@@ -64,8 +65,9 @@ impl Default for RendererDesc {
 /// Optional:
 /// - `layer_output`: like `output`, for the reflections of glass panels and water planes
 ///   (the nearest one the view ray hits in front of the depth buffer); written over the
-///   plan's `layer_rect` when it has layers. Without it, layers are computed but not
-///   resolved: set [`PlanParams::layers`] to `Off` instead.
+///   plan's `layer_rect` when it has layers. With [`PlanParams::layers`] at `Auto`, a
+///   renderer whose last `encode` had no layer output plans no layers (only the first
+///   frame computes them for nothing); `Off` never plans them.
 /// - `normals`: the shading normals (world space, xyz in any float format, e.g.
 ///   `Rgba16Float`), `TEXTURE_BINDING`; reflectors with `normal_map` are perturbed by them.
 pub struct FrameInputs<'a> {
@@ -112,13 +114,13 @@ pub struct DebugOptions {
 /// may share one renderer and one submit).
 ///
 /// ```no_run
-/// # fn frames(device: &wgpu::Device, queue: &wgpu::Queue, set: &ppr_format::ReflectorSet,
+/// # fn frames(device: &wgpu::Device, queue: &wgpu::Queue, set: &ppr_format::ValidatedSet,
 /// #     camera: &ppr_runtime::Camera, color: &wgpu::TextureView, depth: &wgpu::TextureView,
 /// #     output: &wgpu::TextureView, [width, height]: [u32; 2]) {
 /// use ppr_runtime::{FrameInputs, ReflectionRenderer, RendererDesc};
 /// // once:
 /// let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-/// ppr.set_reflectors(set).expect("a valid set"); // validated again: a bad set is an error
+/// ppr.set_reflectors(set); // a ValidatedSet: ValidatedSet::load(path)?, or ::new(set)?
 /// // every frame, after the scene's colour and depth are recorded:
 /// let plan = ppr.prepare(camera, [width, height]);
 /// let mut encoder = device.create_command_encoder(&Default::default());
@@ -153,12 +155,13 @@ pub struct ReflectionRenderer {
     table: ShapeTable,
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
-    plan: Option<FramePlan>,
+    plan: Option<Arc<FramePlan>>,
     /// What the last `prepare` uploads; `encode` copies it into `buffers`.
     upload: Option<FrameUpload>,
     timer: Option<PassTimer>,
     dispatches: Cell<u32>,
-    layer_output_given: Cell<bool>,
+    /// Whether the last `encode` had a layer output (`None` before the first).
+    layer_output_given: Cell<Option<bool>>,
 }
 
 impl ReflectionRenderer {
@@ -188,23 +191,17 @@ impl ReflectionRenderer {
             upload: None,
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
-            layer_output_given: Cell::new(false),
+            layer_output_given: Cell::new(None),
         }
     }
 
-    /// Replaces the reflectors, after checking every invariant of the format
-    /// ([`ReflectorSet::validate`]: a set from [`ReflectorSet::load`] passes; one built or
-    /// edited in memory may not). Cheap: no pipeline is rebuilt.
-    ///
-    /// # Errors
-    /// The [`FormatError`] naming the first reflector and field that break an invariant
-    /// (an occluder index out of range, a parallel group mixing orientations, ...); the
-    /// renderer then keeps the reflectors it had.
-    pub fn set_reflectors(&mut self, set: &ReflectorSet) -> Result<(), FormatError> {
-        set.validate()?;
+    /// Replaces the reflectors. The set is a [`ValidatedSet`] (from
+    /// [`ValidatedSet::load`], [`ValidatedSet::from_json_str`] or [`ValidatedSet::new`] on
+    /// a set built or edited in memory), so every invariant of the format holds and this
+    /// cannot fail. Cheap: no pipeline is rebuilt.
+    pub fn set_reflectors(&mut self, set: &ValidatedSet) {
         self.table = ShapeTable::from_set(set);
         self.table_dirty = true;
-        Ok(())
     }
 
     /// The reflectors as the runtime holds them.
@@ -218,7 +215,10 @@ impl ReflectionRenderer {
     /// prepare, encode) before one submit, each with its own camera.
     ///
     /// With a reduced [`crate::ResolutionTier`] the plan is built for the reduced viewport.
-    pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> &FramePlan {
+    ///
+    /// Returns the plan (shared, cheap to keep: the renderer holds the same one until the
+    /// next `prepare`).
+    pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> Arc<FramePlan> {
         let tier = self.settings.resolution;
         let planned = tier.reduced(viewport);
         self.full_viewport = viewport;
@@ -226,7 +226,12 @@ impl ReflectionRenderer {
         if self.reduced_active && self.reduced.as_ref().is_none_or(|r| r.size != planned) {
             self.reduced = Some(ReducedTargets::new(&self.device, planned));
         }
-        let mut plan = FramePlan::build(&self.table, camera, planned, &self.plan_params);
+        let mut params = self.plan_params;
+        if params.layers == Choice::Auto && !self.layer_output_given.get().unwrap_or(true) {
+            // The last encode gave the layers nowhere to go: do not compute them.
+            params.layers = Choice::Off;
+        }
+        let mut plan = FramePlan::build(&self.table, camera, planned, &params);
         if let Some(layout) = self.debug.encoding {
             plan.encoding = layout;
         }
@@ -234,12 +239,14 @@ impl ReflectionRenderer {
             self.projection.prepare_variant(&self.device, self.variant(&plan));
         }
         self.upload(camera, &plan);
-        self.plan.insert(plan)
+        let plan = Arc::new(plan);
+        self.plan = Some(Arc::clone(&plan));
+        plan
     }
 
     /// The plan of the last [`Self::prepare`].
     pub fn plan(&self) -> Option<&FramePlan> {
-        self.plan.as_ref()
+        self.plan.as_deref()
     }
 
     fn variant(&self, plan: &FramePlan) -> ProjectionVariant {
@@ -346,7 +353,7 @@ impl ReflectionRenderer {
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, inputs: &FrameInputs<'_>) {
         let plan = self.plan.as_ref().expect("prepare() before encode()");
         self.dispatches.set(0);
-        self.layer_output_given.set(inputs.layer_output.is_some());
+        self.layer_output_given.set(Some(inputs.layer_output.is_some()));
         if plan.is_empty() {
             return;
         }
@@ -626,7 +633,7 @@ impl ReflectionRenderer {
             return [false; TIMED_PASSES as usize];
         };
         let has_main = !plan.visible.is_empty();
-        let layers = !plan.layers.is_empty() && self.layer_output_given.get();
+        let layers = !plan.layers.is_empty() && self.layer_output_given.get() == Some(true);
         let reduced = self.reduced_active;
         [plan.indirect && has_main, true, true, has_main, layers, reduced, reduced && (has_main || layers)]
     }

@@ -1,6 +1,6 @@
 //! Pixel-projected reflections from `ppr-runtime` as a [`ReflectionTechnique`].
 
-use ppr_format::{FormatError, ReflectorSet};
+use ppr_format::{FormatError, ReflectorSet, ValidatedSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
 
 use crate::composite::CompositeParams;
@@ -135,7 +135,7 @@ impl PprTechnique {
         settings: ReflectionSettings,
     ) -> Result<Self, FormatError> {
         let mut renderer = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-        renderer.set_reflectors(reflectors)?;
+        renderer.set_reflectors(&ValidatedSet::new(reflectors.clone())?);
         renderer.settings = settings;
         Ok(Self {
             renderer,

@@ -118,8 +118,8 @@ impl SyntheticScene {
             "floor_mirror",
             ReflectorKind::Opaque,
             DVec3::ZERO,
+            DVec3::Y,
             DVec3::X,
-            DVec3::NEG_Z,
             DVec2::splat(params.floor_half_size),
         ));
         if params.wall_pane {
@@ -128,8 +128,8 @@ impl SyntheticScene {
                 "pane",
                 ReflectorKind::Transparent,
                 DVec3::new(0.0, 1.25, -2.2),
+                DVec3::Z,
                 DVec3::X,
-                DVec3::Y,
                 DVec2::new(2.5, 1.25),
             ));
         }

@@ -38,7 +38,7 @@ pub struct HeadlessFrame {
     pub reflection: Rgba32FImage,
     /// The forward pass's reflection weight (reflectivity × Fresnel), 0–255.
     pub reflection_weight: GrayImage,
-    pub plan: FramePlan,
+    pub plan: std::sync::Arc<FramePlan>,
     pub timings: Option<PassTimings>,
     pub camera: Camera,
     pub adapter: String,
@@ -111,10 +111,8 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
     let mut frame = 0;
     while frame < frames || session.ctx.lost().is_some() {
         for event in watcher.poll() {
-            if let Some(set) = sets.apply(event)
-                && let Err(e) = session.renderer.set_reflectors(set)
-            {
-                eprintln!("ppr-walkthrough: the runtime refused {set_file}: {e}");
+            if let Some(set) = sets.apply(event) {
+                session.renderer.set_reflectors(set);
             }
             if let Some(warning) = sets.take_warning() {
                 eprintln!("ppr-walkthrough: warning: {warning}");
@@ -130,7 +128,7 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
             adapter: &session.ctx.describe(),
             size: args.size,
             frame_ms,
-            plan: plan.as_ref(),
+            plan: plan.as_deref(),
             timings: timings.as_ref(),
             timestamps: session.renderer.ppr.has_timestamps(),
             set_file: &set_file,

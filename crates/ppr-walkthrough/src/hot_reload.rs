@@ -27,7 +27,7 @@ use std::sync::mpsc::{self, Receiver, RecvTimeoutError, Sender};
 use std::thread::JoinHandle;
 use std::time::{Duration, SystemTime};
 
-use ppr_format::ReflectorSet;
+use ppr_format::ValidatedSet;
 
 use crate::level_match::{LevelMatch, MatchOutcome};
 
@@ -38,7 +38,7 @@ pub const POLL_INTERVAL: Duration = Duration::from_millis(250);
 #[derive(Debug)]
 pub enum ReloadEvent {
     /// The file parsed and validated.
-    Loaded(Box<ReflectorSet>),
+    Loaded(Box<ValidatedSet>),
     /// The file is there but is not a valid set (the message names the field).
     Refused(String),
     /// The file cannot be read (missing, or no permission).
@@ -75,7 +75,7 @@ fn stamp(path: &Path) -> Stamp {
 fn read(path: &Path) -> ReloadEvent {
     match std::fs::read_to_string(path) {
         Err(e) => ReloadEvent::Unreadable(format!("{}: cannot read: {e}", path.display())),
-        Ok(text) => match ReflectorSet::from_json_str(&text) {
+        Ok(text) => match ValidatedSet::from_json_str(&text) {
             Ok(set) => ReloadEvent::Loaded(Box::new(set)),
             Err(e) => ReloadEvent::Refused(format!("{}: {e}", path.display())),
         },
@@ -148,7 +148,7 @@ impl Drop for ReflectorSetWatcher {
 /// keeping the last good set when a new file is refused.
 #[derive(Debug)]
 pub struct ReflectorSetState {
-    set: Option<ReflectorSet>,
+    set: Option<ValidatedSet>,
     status: SetStatus,
     reloads: u32,
     level: Option<LevelMatch>,
@@ -175,7 +175,7 @@ impl ReflectorSetState {
     }
 
     /// Applies one event; returns the new set when the renderer must take it.
-    pub fn apply(&mut self, event: ReloadEvent) -> Option<&ReflectorSet> {
+    pub fn apply(&mut self, event: ReloadEvent) -> Option<&ValidatedSet> {
         let keeping = self.set.as_ref().map(|s| s.reflectors.len());
         match event {
             ReloadEvent::Loaded(set) => {
@@ -208,7 +208,7 @@ impl ReflectorSetState {
     }
 
     /// The last good set.
-    pub fn set(&self) -> Option<&ReflectorSet> {
+    pub fn set(&self) -> Option<&ValidatedSet> {
         self.set.as_ref()
     }
 

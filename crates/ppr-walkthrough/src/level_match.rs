@@ -48,10 +48,10 @@ mod tests {
     use super::*;
     use crate::hot_reload::{ReflectorSetState, ReloadEvent, SetStatus};
 
-    fn set_with_hash(hash: &str) -> Box<ReflectorSet> {
+    fn set_with_hash(hash: &str) -> Box<ppr_format::ValidatedSet> {
         let mut set = ReflectorSet::new("room.glb");
         set.source.hash = hash.to_owned();
-        Box::new(set)
+        Box::new(ppr_format::ValidatedSet::new(set).expect("an empty set is valid"))
     }
 
     fn state(accept_mismatch: bool) -> ReflectorSetState {

@@ -15,7 +15,9 @@
 //! output texture. With [`WalkthroughRenderer::feed_previous_frame`] its colour is the
 //! previous frame's composite instead of step 1's ([`crate::previous_frame`]).
 
-use ppr_format::{FormatError, ReflectorSet};
+use std::sync::Arc;
+
+use ppr_format::{FormatError, ReflectorSet, ValidatedSet};
 use ppr_runtime::{Camera, Choice, DepthMode, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc};
 
 use crate::forward_pass::{ForwardPass, SceneLight};
@@ -54,7 +56,7 @@ impl WalkthroughRenderer {
         device: &wgpu::Device,
         queue: &wgpu::Queue,
         level: &LevelData,
-        reflectors: Option<&ReflectorSet>,
+        reflectors: Option<&ValidatedSet>,
         depth: DepthMode,
     ) -> Result<Self, FormatError> {
         let forward = ForwardPass::new(device, depth);
@@ -64,7 +66,10 @@ impl WalkthroughRenderer {
         // and a composite that knows their surfaces; this walkthrough keeps to the main
         // buffer: water is reflected there and glass panels are skipped.
         ppr.plan_params.layers = Choice::Off;
-        ppr.set_reflectors(reflectors.unwrap_or(&ReflectorSet::new("")))?;
+        match reflectors {
+            Some(set) => ppr.set_reflectors(set),
+            None => ppr.set_reflectors(&ValidatedSet::new(ReflectorSet::new(""))?),
+        }
         Ok(Self {
             device: device.clone(),
             queue: queue.clone(),
@@ -80,11 +85,9 @@ impl WalkthroughRenderer {
 
     /// Takes a new reflector set (hot reload): cheap, nothing is recompiled.
     ///
-    /// # Errors
-    /// The runtime refuses a set that breaks an invariant of the format (it keeps the
-    /// previous one); a set from `ReflectorSet::load` passes.
-    pub fn set_reflectors(&mut self, reflectors: &ReflectorSet) -> Result<(), FormatError> {
-        self.ppr.set_reflectors(reflectors)
+    /// The set was validated when it was read (`ValidatedSet`), so this cannot fail.
+    pub fn set_reflectors(&mut self, reflectors: &ValidatedSet) {
+        self.ppr.set_reflectors(reflectors);
     }
 
     /// The targets of the last frame (scene colour, weight, depth, PPR output).
@@ -104,7 +107,7 @@ impl WalkthroughRenderer {
         size: [u32; 2],
         mode: ViewMode,
         outputs: &[(&ScreenPasses, &wgpu::TextureView)],
-    ) -> FramePlan {
+    ) -> Arc<FramePlan> {
         assert_eq!(camera.projection.depth, self.forward.depth_mode(), "one depth convention per renderer");
         let size = [size[0].max(1), size[1].max(1)];
         if self.targets.as_ref().is_none_or(|t| t.size != size) {
@@ -126,7 +129,7 @@ impl WalkthroughRenderer {
         //    The intermediate-buffer view needs the whole buffer cleared: no indirect dispatch.
         self.ppr.plan_params.indirect =
             if mode == ViewMode::Intermediate { Choice::Off } else { Choice::Auto };
-        let plan = self.ppr.prepare(camera, size).clone();
+        let plan = self.ppr.prepare(camera, size);
 
         let mut encoder = self
             .device

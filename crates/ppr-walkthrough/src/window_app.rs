@@ -145,7 +145,7 @@ struct WalkthroughApp {
     clock: FrameClock,
     timings: Option<PassTimings>,
     timings_read: Instant,
-    plan: Option<FramePlan>,
+    plan: Option<std::sync::Arc<FramePlan>>,
     recoveries: u32,
     surface_note: Option<&'static str>,
     frames: u32,
@@ -158,9 +158,8 @@ impl WalkthroughApp {
         for event in self.watcher.poll() {
             if let Some(set) = self.sets.apply(event)
                 && let Some(session) = &mut self.session
-                && let Err(e) = session.renderer.set_reflectors(set)
             {
-                eprintln!("ppr-walkthrough: the runtime refused the reflector set: {e}");
+                session.renderer.set_reflectors(set);
             }
             if let Some(warning) = self.sets.take_warning() {
                 eprintln!("ppr-walkthrough: warning: {warning}");
@@ -268,7 +267,7 @@ impl WalkthroughApp {
             adapter: &session.ctx.describe(),
             size,
             frame_ms: self.clock.mean_ms(),
-            plan: self.plan.as_ref(),
+            plan: self.plan.as_deref(),
             timings: self.timings.as_ref(),
             timestamps: session.renderer.ppr.has_timestamps(),
             set_file: &self.set_file,

@@ -39,8 +39,8 @@ impl MirrorPanels {
             name,
             ReflectorKind::Opaque,
             center,
+            u.cross(v).normalize(),
             u.normalize(),
-            v.normalize(),
             DVec2::new(u.length(), v.length()),
         ));
     }

@@ -38,8 +38,8 @@ pub fn coverage_level(coverage: f64) -> GeneratedLevel {
         "floor mirror",
         ReflectorKind::Opaque,
         DVec3::ZERO,
+        DVec3::Y,
         DVec3::X,
-        DVec3::NEG_Z,
         half,
     ));
     // Straight down, with +z as the screen's "down" direction.

@@ -89,8 +89,8 @@ pub fn generate(family: LevelFamily, count: usize) -> GeneratedLevel {
                 format!("{}-{id}", family.as_str()),
                 ReflectorKind::Opaque,
                 center,
+                u.cross(v),
                 u,
-                v,
                 half,
             ));
             q.quad(mirror, center, u * half.x, v * half.y);

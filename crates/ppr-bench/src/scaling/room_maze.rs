@@ -103,8 +103,8 @@ pub fn room_maze(count: usize) -> GeneratedLevel {
                     format!("rooms-{id}"),
                     ReflectorKind::Opaque,
                     center_w,
+                    u_w.cross(v_w).normalize(),
                     u_w.normalize(),
-                    v_w.normalize(),
                     DVec2::new(u_w.length(), v_w.length()),
                 ));
                 q.quad(material, center_w, u_w, v_w);

@@ -29,13 +29,11 @@ pub fn demo_reflectors() -> ReflectorSet {
             let n = v3(&rect["normal"]).normalize();
             let u = v3(&rect["axis_u"]);
             let u = (u - n * n.dot(u)).normalize();
-            let v = n.cross(u);
             let he = rect["half_extents"].as_array().expect("half extents");
             let half = DVec2::new(he[0].as_f64().expect("x"), he[1].as_f64().expect("y"));
             let id = set.next_id();
             let name = format!("{}#{k}", r["name"].as_str().expect("name"));
-            let mut reflector = Reflector::new(id, name, kind, v3(&rect["center"]), u, v, half);
-            reflector.normal = n;
+            let reflector = Reflector::new(id, name, kind, v3(&rect["center"]), n, u, half);
             set.reflectors.push(reflector);
         }
     }

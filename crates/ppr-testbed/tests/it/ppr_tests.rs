@@ -75,8 +75,8 @@ fn a_set_from_other_level_bytes_is_refused() {
         "floor",
         ppr_format::ReflectorKind::Opaque,
         glam::DVec3::ZERO,
+        glam::DVec3::Y,
         glam::DVec3::X,
-        glam::DVec3::NEG_Z,
         glam::DVec2::new(2.0, 2.0),
     ));
     // A hash other than the level file's: the set predates a change of the level.

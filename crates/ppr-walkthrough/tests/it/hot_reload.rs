@@ -21,8 +21,8 @@ fn floor_set(n: usize) -> ReflectorSet {
             format!("floor {k}"),
             ReflectorKind::Opaque,
             DVec3::new(3.0 * k as f64, 0.0, 0.0),
+            DVec3::Y,
             DVec3::X,
-            DVec3::NEG_Z,
             DVec2::new(1.0, 1.0),
         ));
     }
