@@ -214,7 +214,7 @@ fn layers_are_planned_only_while_the_frame_gives_them_an_output() {
     let depth = gpu.depth.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
     let output = gpu.output.create_view(&Default::default());
     let layer_output = gpu.layer_output.create_view(&Default::default());
-    let mut frame_with = |r: &mut ppr_runtime::ReflectionRenderer, layers: bool| {
+    let frame_with = |r: &mut ppr_runtime::ReflectionRenderer, layers: bool| {
         let plan = r.prepare(&cam, SIZE);
         let mut encoder = g.device.create_command_encoder(&Default::default());
         let inputs = FrameInputs {
