@@ -5,5 +5,6 @@ mod api;
 mod confidence;
 mod encoding_parity;
 mod features;
+mod glossy;
 mod reflection;
 mod tiles;

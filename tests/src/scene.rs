@@ -206,6 +206,13 @@ impl AnalyticScene {
         self
     }
 
+    /// Gives the reflector `name` a roughness (its reflection becomes glossy).
+    pub fn roughen(&mut self, name: &str, roughness: f64) -> &mut Self {
+        let r = self.set.iter_mut().find(|r| r.name == name).unwrap_or_else(|| panic!("no reflector {name}"));
+        r.roughness = roughness;
+        self
+    }
+
     /// The scene's reflectors as a valid set (parallel groups by normal).
     pub fn reflector_set(&self) -> ReflectorSet {
         let mut set = ReflectorSet::new("analytic scene");
@@ -248,6 +255,7 @@ impl AnalyticScene {
             glass_reference: vec![Vec3::ZERO; n],
             glass_on_screen: vec![false; n],
             glass_depth: vec![None; n],
+            glossy_reference: vec![Vec3::ZERO; n],
             far_depth: camera.projection.far_depth(),
         };
         let project = |p_rel: DVec3| {
@@ -323,6 +331,12 @@ impl AnalyticScene {
                 }
                 f.mirror[i] = Some(m);
                 let (c, on_screen, px) = reflect(hit, dir - 2.0 * dir.dot(shading) * shading, quad.normal());
+                let roughness = self.set[m].roughness;
+                f.glossy_reference[i] = if roughness > 0.0 {
+                    glossy(roughness, quad.normal(), dir, |r| reflect(hit, r, quad.normal()).0)
+                } else {
+                    c
+                };
                 f.reference[i] = c;
                 f.on_screen[i] = on_screen;
                 f.source_px[i] = px;
@@ -330,6 +344,31 @@ impl AnalyticScene {
         }
         f
     }
+}
+
+/// Samples of the GGX lobe per pixel of the glossy reference.
+pub const GLOSSY_SAMPLES: u32 = 256;
+
+/// The glossy reflection seen along `dir` off a surface of normal `n`: the mean of the
+/// colour `along` the reflected rays over the GGX distribution of microfacet normals
+/// (alpha = roughness²; tan θ = alpha √(ξ/(1−ξ)), Hammersley points), rays that leave
+/// below the surface left out. It is what the runtime's glossy blur approximates.
+fn glossy(roughness: f64, n: DVec3, dir: DVec3, along: impl Fn(DVec3) -> Vec3) -> Vec3 {
+    let alpha = roughness * roughness;
+    let (t, b) = n.any_orthonormal_pair();
+    let (mut sum, mut count) = (Vec3::ZERO, 0u32);
+    for k in 0..GLOSSY_SAMPLES {
+        let xi = (f64::from(k) + 0.5) / f64::from(GLOSSY_SAMPLES);
+        let phi = std::f64::consts::TAU * f64::from(k.reverse_bits()) / 2f64.powi(32);
+        let tan = alpha * (xi / (1.0 - xi)).sqrt();
+        let h = (n + tan * (phi.cos() * t + phi.sin() * b)).normalize();
+        let r = dir - 2.0 * dir.dot(h) * h;
+        if r.dot(n) > 0.0 {
+            sum += along(r);
+            count += 1;
+        }
+    }
+    if count == 0 { Vec3::ZERO } else { sum / count as f32 }
 }
 
 /// CPU images of one frame (row-major, top row first).
@@ -358,6 +397,9 @@ pub struct Frame {
     /// The depth of the glass panel at glass pixels (what a renderer whose depth pass
     /// writes glass would have in its depth buffer).
     pub glass_depth: Vec<Option<f32>>,
+    /// The glossy reflection at mirror pixels (reflectors with roughness; the exact
+    /// reflection on mirrors): see [`GLOSSY_SAMPLES`].
+    pub glossy_reference: Vec<Vec3>,
 }
 
 impl Frame {
@@ -377,6 +419,7 @@ impl Frame {
             glass_reference: self.glass_reference.clone(),
             glass_on_screen: self.glass_on_screen.clone(),
             glass_depth: self.glass_depth.clone(),
+            glossy_reference: self.glossy_reference.clone(),
         }
     }
 

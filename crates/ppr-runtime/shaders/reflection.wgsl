@@ -8,7 +8,8 @@
 // Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
 // empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
 // project, fetch; a 4-tap march toward the reflecting pixel rejects disoccluded samples;
-// the flat reflection is the fallback).
+// the flat reflection is the fallback), GLOSSY (glossy.wgsl: reflectors with roughness
+// blur their reflection by a footprint set by roughness and reflection distance).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<storage, read> intermediate: array<u32>;
@@ -20,9 +21,12 @@
 @group(0) @binding(7) var depth_tex: texture_2d<f32>;
 // World-space (= camera-relative) shading normals, xyz.
 @group(0) @binding(8) var normal_tex: texture_2d<f32>;
+// The frame's visible glossy reflectors (glossy.wgsl).
+@group(0) @binding(9) var<uniform> glossy: GlossyShapes;
 
 override INDIRECT: bool = false;
 override NORMAL_MAPS: bool = false;
+override GLOSSY: bool = false;
 
 // Reads the intermediate buffer; outside the viewport, and (with indirect dispatch) in
 // a tile that was not cleared this frame, reads as "no data".
@@ -140,6 +144,11 @@ fn main(
     var colour = ppr_reflected_colour(vpos, chosen);
     if (NORMAL_MAPS && colour.a > 0.0) {
         colour = normal_mapped(vpos, chosen, colour);
+    }
+    if (GLOSSY && colour.a > 0.0) {
+        let decoded = ppr_decode(chosen.value, frame.encoding);
+        let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
+        colour = ppr_glossy(vpos, src, colour);
     }
     textureStore(output, vpos, colour);
 }

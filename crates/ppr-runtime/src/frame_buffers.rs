@@ -2,7 +2,7 @@
 
 use wgpu::util::DeviceExt;
 
-use crate::gpu_types::{FrameUniforms, GpuLayer, GpuShape, GpuShapeTest};
+use crate::gpu_types::{FrameUniforms, GpuGlossyShapes, GpuLayer, GpuShape, GpuShapeTest};
 use crate::passes::block_lists::block_lists_size;
 use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
@@ -23,6 +23,8 @@ pub(crate) struct FrameBuffers {
     /// The first [`UNIFORM_TESTS_CAPACITY`] of `tests`, as a uniform buffer.
     pub uniform_tests: wgpu::Buffer,
     pub occluders: wgpu::Buffer,
+    /// The visible glossy reflectors (`GpuGlossyShapes`).
+    pub glossy: wgpu::Buffer,
     pub intermediate: wgpu::Buffer,
     pub active_tiles: wgpu::Buffer,
     pub dispatch_args: wgpu::Buffer,
@@ -78,6 +80,11 @@ impl FrameBuffers {
                 contents: bytemuck::cast_slice(&occluders),
                 usage: storage,
             }),
+            glossy: buffer(
+                "ppr glossy reflectors",
+                std::mem::size_of::<GpuGlossyShapes>() as u64,
+                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            ),
             intermediate: buffer("ppr intermediate buffer", (pixels * 4).next_multiple_of(16), readable),
             active_tiles: buffer(
                 "ppr active tiles",

@@ -23,6 +23,7 @@ pub(crate) enum UploadTarget {
     Tests,
     UniformTests,
     SourceRects,
+    Glossy,
 }
 
 impl UploadTarget {
@@ -36,6 +37,7 @@ impl UploadTarget {
             Self::Tests => &b.tests,
             Self::UniformTests => &b.uniform_tests,
             Self::SourceRects => &b.source_rects,
+            Self::Glossy => &b.glossy,
         }
     }
 }

@@ -109,3 +109,34 @@ pub struct GpuShapeTest {
     pub _pad: [u32; 2],
 }
 const _: () = assert!(std::mem::size_of::<GpuShapeTest>() == 96);
+
+/// Most glossy reflectors one frame blurs (`GLOSSY_CAPACITY` of `glossy.wgsl`): the largest
+/// on screen; the others are reflected as mirrors ([`crate::FramePlan::glossy_dropped`]).
+pub const GLOSSY_CAPACITY: usize = 32;
+
+/// `GlossyShape` of `glossy.wgsl`: a visible glossy reflector, camera-relative.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuGlossyShape {
+    /// Normal, and `-dot(normal, center)`.
+    pub plane: [f32; 4],
+    /// Centre, and the roughness.
+    pub center: [f32; 4],
+    /// Axis u, and the half extent along it.
+    pub axis_u: [f32; 4],
+    /// Axis v, and the half extent along it.
+    pub axis_v: [f32; 4],
+}
+const _: () = assert!(std::mem::size_of::<GpuGlossyShape>() == 64);
+
+/// `GlossyShapes` of `glossy.wgsl`: the uniform the glossy reflection pass reads.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GpuGlossyShapes {
+    pub count: u32,
+    /// The largest footprint radius, pixels.
+    pub max_radius_px: f32,
+    pub _pad: [u32; 2],
+    pub shapes: [GpuGlossyShape; GLOSSY_CAPACITY],
+}
+const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 64 * GLOSSY_CAPACITY);

@@ -18,6 +18,7 @@ pub mod camera;
 pub mod encoding;
 mod frame_buffers;
 mod frame_upload;
+mod glossy;
 #[doc(hidden)]
 pub mod gpu_types;
 #[doc(hidden)]

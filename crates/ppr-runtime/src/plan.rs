@@ -94,6 +94,11 @@ pub struct PlanParams {
     /// Perturb reflections by the frame's shading normals on reflectors with a normal map
     /// (when the frame provides normals).
     pub normal_maps: Choice,
+    /// Reflectors rougher than this are not rendered: their blur would need more taps
+    /// than the glossy reflection takes, so the renderer's fallback (a probe) shows there
+    /// ([`FramePlan::too_rough`] counts them). Up to it, a reflector with roughness is
+    /// blurred by its lobe when [`crate::ReflectionSettings::glossy`] is on.
+    pub max_roughness: f32,
     /// Do not write a reflection where the surface the depth buffer shows at its target
     /// lies in front of the reflector's plane (whatever stands in between). `Auto`: on.
     pub depth_occlusion: Choice,
@@ -113,6 +118,10 @@ pub struct PlanParams {
     pub uniform_tests: Choice,
 }
 
+/// Default [`PlanParams::max_roughness`]: the extractor's own limit for metals (0.5), so
+/// every reflector it writes is rendered.
+pub const DEFAULT_MAX_ROUGHNESS: f32 = 0.5;
+
 /// Most shape tests (visible shapes plus layers) the projection's uniform copy holds: 128 ×
 /// 96 B = 12 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
 pub const UNIFORM_TESTS_CAPACITY: usize = 128;
@@ -130,6 +139,7 @@ impl Default for PlanParams {
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
+            max_roughness: DEFAULT_MAX_ROUGHNESS,
             source_boxes: Choice::Auto,
             depth_occlusion: Choice::Auto,
             occluder_lists: Choice::Auto,
@@ -207,6 +217,15 @@ pub struct FramePlan {
     /// Whether a visible reflector has a normal map (the reflection pass perturbs it when
     /// the frame provides normals).
     pub normal_maps: bool,
+    /// Visible shapes of the main buffer with roughness above 0 whose reflection the
+    /// reflection pass blurs (largest on screen first, at most
+    /// [`crate::gpu_types::GLOSSY_CAPACITY`]).
+    pub glossy: Vec<u32>,
+    /// Visible glossy shapes over that capacity: reflected as mirrors.
+    pub glossy_dropped: usize,
+    /// Shapes rougher than [`PlanParams::max_roughness`]: not rendered, left to the
+    /// renderer's fallback.
+    pub too_rough: usize,
     /// The encoding layout for this viewport.
     pub encoding: EncodingLayout,
 }
@@ -238,6 +257,9 @@ impl FramePlan {
             layer_rect: ScreenRect { min: [0, 0], max: [0, 0] },
             layers_dropped: 0,
             normal_maps: false,
+            glossy: Vec::new(),
+            glossy_dropped: 0,
+            too_rough: 0,
             encoding: EncodingLayout::for_resolution(w.max(1), h.max(1)),
         };
         let layers_on = params.layers.decide(true);
@@ -249,6 +271,10 @@ impl FramePlan {
                 continue;
             }
             // In front means a negative plane distance; NaN (a broken camera) culls too.
+            if s.roughness > params.max_roughness {
+                plan.too_rough += 1;
+                continue;
+            }
             let in_front = s.plane_dist_from(camera.position) < 0.0;
             if !in_front {
                 plan.culled_back_side += 1;
@@ -274,6 +300,7 @@ impl FramePlan {
             }
         }
         plan.allocate_layers(layer_candidates, params);
+        plan.pick_glossy(table);
         plan.normal_maps &= params.normal_maps.decide(true);
         plan.occluder_tests &= params.occluder_lists.decide(false);
         // Sorted by parallel group (then set order): the projection pass's parallel rule
@@ -344,6 +371,20 @@ impl FramePlan {
         }
     }
 
+    /// The visible shapes with roughness, largest on screen first, up to the capacity.
+    fn pick_glossy(&mut self, table: &ShapeTable) {
+        let mut rough: Vec<(u32, u64)> = self
+            .visible
+            .iter()
+            .zip(&self.screen_rects)
+            .filter(|&(&i, _)| table.shapes[i as usize].roughness > 0.0)
+            .map(|(&i, r)| (i, r.area()))
+            .collect();
+        rough.sort_by_key(|&(i, area)| (std::cmp::Reverse(area), i));
+        self.glossy_dropped = rough.len().saturating_sub(crate::gpu_types::GLOSSY_CAPACITY);
+        self.glossy = rough.iter().take(crate::gpu_types::GLOSSY_CAPACITY).map(|&(i, _)| i).collect();
+    }
+
     /// True when no pass runs this frame (nothing is dispatched; no output is written).
     pub fn is_empty(&self) -> bool {
         self.visible.is_empty() && self.layers.is_empty()
@@ -370,11 +411,15 @@ impl FramePlan {
             (false, _) => "projection",
         });
         if has_main {
-            passes.push(match (self.indirect, self.normal_maps) {
-                (true, true) => "reflection (tiles, normal maps)",
-                (true, false) => "reflection (tiles)",
-                (false, true) => "reflection (normal maps)",
-                (false, false) => "reflection",
+            passes.push(match (self.indirect, self.normal_maps, !self.glossy.is_empty()) {
+                (true, true, true) => "reflection (tiles, normal maps, glossy)",
+                (true, true, false) => "reflection (tiles, normal maps)",
+                (true, false, true) => "reflection (tiles, glossy)",
+                (true, false, false) => "reflection (tiles)",
+                (false, true, true) => "reflection (normal maps, glossy)",
+                (false, true, false) => "reflection (normal maps)",
+                (false, false, true) => "reflection (glossy)",
+                (false, false, false) => "reflection",
             });
         }
         if !self.layers.is_empty() {
@@ -451,6 +496,15 @@ impl fmt::Display for FramePlan {
                 } else {
                     String::new()
                 }
+            )?;
+        }
+        if !self.glossy.is_empty() || self.glossy_dropped > 0 || self.too_rough > 0 {
+            writeln!(
+                f,
+                "glossy: {} blurred, {} over capacity (as mirrors), {} too rough (left to the fallback)",
+                self.glossy.len(),
+                self.glossy_dropped,
+                self.too_rough
             )?;
         }
         if self.is_empty() {

@@ -10,13 +10,14 @@ use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::frame_upload::{FrameUpload, UploadTarget};
+use crate::glossy::glossy_shapes;
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
-use crate::passes::reflection::ReflectionBindings;
+use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::upsample::UpsampleBindings;
@@ -325,6 +326,7 @@ impl ReflectionRenderer {
                 plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
             shape_tests(&self.table, &tested, camera.position)
         };
+        let glossy = glossy_shapes(&self.table, &plan.glossy, camera.position, plan.viewport);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         self.upload = Some(FrameUpload::new(
             &self.device,
@@ -340,6 +342,10 @@ impl ReflectionRenderer {
                     if plan.uniform_tests { bytemuck::cast_slice(&tests) } else { &[] },
                 ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
+                (
+                    UploadTarget::Glossy,
+                    if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },
+                ),
             ],
         ));
     }
@@ -521,17 +527,21 @@ impl ReflectionRenderer {
                     tile_flags: &b.tile_flags,
                     depth,
                     normals: normals.unwrap_or(color),
+                    glossy: &b.glossy,
                 },
             );
-            let normal_maps = plan.normal_maps && normals.is_some();
+            let variant = ReflectionVariant {
+                normal_maps: plan.normal_maps && normals.is_some(),
+                glossy: self.settings.glossy && !plan.glossy.is_empty(),
+            };
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),
             });
             if plan.indirect {
-                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, normal_maps);
+                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, variant);
             } else {
-                self.reflection.encode(&mut pass, &bg, plan.viewport, normal_maps);
+                self.reflection.encode(&mut pass, &bg, plan.viewport, variant);
             }
             count(1);
         }

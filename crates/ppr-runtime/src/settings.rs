@@ -48,6 +48,10 @@ pub struct ReflectionSettings {
     /// At what resolution projection and reflection run ([`ResolutionTier`]); the output
     /// is always full size.
     pub resolution: ResolutionTier,
+    /// Blur the reflections of reflectors with roughness by their GGX lobe, over the
+    /// footprint their exact reflection distance gives (sharp near contact, spreading far
+    /// away). Off: every reflector is a mirror.
+    pub glossy: bool,
 }
 
 /// The resolution the PPR passes run at. Reduced tiers downsample the depth (a pass of
@@ -100,6 +104,7 @@ impl ReflectionSettings {
         water_edge_stretch: true,
         border_fade: DEFAULT_BORDER_FADE,
         resolution: ResolutionTier::Full,
+        glossy: true,
     };
     /// Every step off: raw decoded pixel data (alpha 1 wherever found: no fade).
     pub const RAW: Self = Self {
@@ -110,6 +115,7 @@ impl ReflectionSettings {
         water_edge_stretch: false,
         border_fade: 0.0,
         resolution: ResolutionTier::Full,
+        glossy: false,
     };
 
     /// The settings as shader flags.

@@ -19,6 +19,11 @@ pub const TILE_TEST: &str = include_str!("../shaders/tile_test.wgsl");
 /// and [`VIEW`]).
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
 
+/// Glossy reflections: the reflector lookup and the lobe's taps (needs `frame`,
+/// `color_tex`, `linear_sampler`, `depth_tex`, `glossy`, `valid_depth_at`, [`VIEW`] and
+/// [`SHADING`]).
+pub const GLOSSY: &str = include_str!("../shaders/glossy.wgsl");
+
 /// The source of a pass: the shared modules, then `modules`, then the pass itself.
 pub fn source_with(modules: &[&str], pass: &str) -> String {
     let mut s =
@@ -59,7 +64,7 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
         ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
         ("projection", source_with(&[VIEW, TILE_TEST], projection::WGSL)),
-        ("reflection", source_with(&[VIEW, SHADING], reflection::WGSL)),
+        ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
         ("upsample", source_with(&[VIEW], upsample::WGSL)),
@@ -187,5 +192,41 @@ mod tests {
             })
             .expect("ShapeTest");
         assert_eq!(test_size, std::mem::size_of::<GpuShapeTest>());
+    }
+
+    /// The glossy uniform of the reflection pass has its Rust size and capacity.
+    #[test]
+    fn glossy_uniform_matches_rust() {
+        use crate::gpu_types::{GLOSSY_CAPACITY, GpuGlossyShape, GpuGlossyShapes};
+        let source = super::source_with(
+            &[super::VIEW, super::SHADING, super::GLOSSY],
+            crate::passes::reflection::WGSL,
+        );
+        let module =
+            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        let size = |name: &str| {
+            module
+                .types
+                .iter()
+                .find_map(|(_, t)| match &t.inner {
+                    naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
+                        Some(*span as usize)
+                    }
+                    _ => None,
+                })
+                .unwrap_or_else(|| panic!("no struct {name}"))
+        };
+        assert_eq!(size("GlossyShape"), std::mem::size_of::<GpuGlossyShape>());
+        assert_eq!(size("GlossyShapes"), std::mem::size_of::<GpuGlossyShapes>());
+        let capacity = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some("GLOSSY_CAPACITY"))
+            .map(|(_, c)| module.global_expressions[c.init].clone())
+            .expect("GLOSSY_CAPACITY");
+        assert!(
+            matches!(capacity, naga::Expression::Literal(naga::Literal::U32(n)) if n as usize == GLOSSY_CAPACITY),
+            "{capacity:?}"
+        );
     }
 }

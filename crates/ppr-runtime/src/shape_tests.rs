@@ -77,6 +77,7 @@ mod tests {
             half_extents: [1.5, 0.5],
             parallel_group: 3,
             normal_map: false,
+            roughness: 0.0,
         }
     }
 

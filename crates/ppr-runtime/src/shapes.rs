@@ -27,6 +27,8 @@ pub struct ShapeSource {
     pub parallel_group: u32,
     /// The surface has a normal map.
     pub normal_map: bool,
+    /// Perceptual roughness from the set (0: a mirror).
+    pub roughness: f32,
 }
 
 impl ShapeSource {
@@ -71,6 +73,7 @@ impl ShapeTable {
                 half_extents: [r.half_extents.x as f32, r.half_extents.y as f32],
                 parallel_group: r.parallel_group,
                 normal_map: r.normal_map,
+                roughness: r.roughness as f32,
             });
             let start = table.occluder_indices.len() as u32;
             table.occluder_indices.extend(&r.occluders);

@@ -129,6 +129,7 @@ mod tests {
             half_extents: [half, half],
             parallel_group: 0,
             normal_map: false,
+            roughness: 0.0,
         }
     }
 

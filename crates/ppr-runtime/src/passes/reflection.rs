@@ -18,12 +18,29 @@ pub struct ReflectionBindings<'a> {
     pub depth: &'a wgpu::TextureView,
     /// Shading normals (world space, xyz); any float texture when normal maps are off.
     pub normals: &'a wgpu::TextureView,
+    /// The frame's glossy reflectors (`GpuGlossyShapes`).
+    pub glossy: &'a wgpu::Buffer,
+}
+
+/// Which reflection pipeline a frame runs (beside direct or indirect dispatch).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ReflectionVariant {
+    /// Perturb by the frame's shading normals on normal-mapped reflectors.
+    pub normal_maps: bool,
+    /// Blur the reflections of reflectors with roughness (`glossy.wgsl`).
+    pub glossy: bool,
+}
+
+impl ReflectionVariant {
+    fn index(self) -> usize {
+        usize::from(self.normal_maps) | usize::from(self.glossy) << 1
+    }
 }
 
 /// The reflection pass.
 pub struct ReflectionPass {
-    /// Pipelines by (indirect, normal maps).
-    pipelines: [[wgpu::ComputePipeline; 2]; 2],
+    /// Pipelines by indirect, then [`ReflectionVariant::index`].
+    pipelines: [[wgpu::ComputePipeline; 4]; 2],
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -65,21 +82,24 @@ impl ReflectionPass {
                 storage_entry(6, true),
                 loaded_texture_entry(7),
                 loaded_texture_entry(8),
+                uniform_entry(9),
             ],
         });
         let module = crate::shader::module_with(
             device,
             "ppr reflection",
-            &[crate::shader::VIEW, crate::shader::SHADING],
+            &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let pipeline = |indirect: bool, normal_maps: bool| {
-            let label = format!("ppr reflection indirect={indirect} normal_maps={normal_maps}");
-            let constants = [("INDIRECT", flag(indirect)), ("NORMAL_MAPS", flag(normal_maps))];
+        let pipeline = |indirect: bool, index: usize| {
+            let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
+            let label =
+                format!("ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy}");
+            let constants =
+                [("INDIRECT", flag(indirect)), ("NORMAL_MAPS", flag(normal_maps)), ("GLOSSY", flag(glossy))];
             compute_pipeline(device, &label, &layout, &module, "main", &constants)
         };
-        let pipelines =
-            [[pipeline(false, false), pipeline(false, true)], [pipeline(true, false), pipeline(true, true)]];
+        let pipelines = [false, true].map(|indirect| std::array::from_fn(|index| pipeline(indirect, index)));
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -105,6 +125,7 @@ impl ReflectionPass {
                 wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(b.depth) },
                 wgpu::BindGroupEntry { binding: 8, resource: wgpu::BindingResource::TextureView(b.normals) },
+                wgpu::BindGroupEntry { binding: 9, resource: b.glossy.as_entire_binding() },
             ],
         })
     }
@@ -115,10 +136,10 @@ impl ReflectionPass {
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         viewport: [u32; 2],
-        normal_maps: bool,
+        variant: ReflectionVariant,
     ) {
         let (x, y) = tile_groups(viewport);
-        pass.set_pipeline(&self.pipelines[0][usize::from(normal_maps)]);
+        pass.set_pipeline(&self.pipelines[0][variant.index()]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }
@@ -129,9 +150,9 @@ impl ReflectionPass {
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         args: &wgpu::Buffer,
-        normal_maps: bool,
+        variant: ReflectionVariant,
     ) {
-        pass.set_pipeline(&self.pipelines[1][usize::from(normal_maps)]);
+        pass.set_pipeline(&self.pipelines[1][variant.index()]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups_indirect(args, 0);
     }

@@ -1,0 +1,103 @@
+// Glossy reflections (beyond the seed): a reflector with roughness blurs its reflection
+// by a footprint that PPR knows exactly per pixel. The reflected point q and the
+// reflecting point p are both on screen (the decoded offset and the two depths), so the
+// reflection distance |q - p| is exact: near contact the reflection stays sharp, far away
+// it spreads, as a rough mirror's does.
+//
+// The lobe: GGX with alpha = roughness². A microfacet normal tilted by θ turns the
+// reflected ray by 2θ, so the reflected point moves by about 2 tan θ |q - p|; across the
+// plane of incidence the turn shrinks by cos θi (the reflection stretches along the view,
+// as wet streets do). GLOSSY_TAPS samples of that distribution (tan θ = alpha √(ξ/(1−ξ)),
+// the GGX inverse CDF, at stratified ξ and golden-angle azimuths) are read around the
+// reflected point's pixel, each weighted equally (importance sampling), plus the sharp
+// sample. The screen footprint of a world radius at q is its projection at q's distance.
+//
+// Needs `frame`, `color_tex`, `linear_sampler`, `depth_tex`, VIEW, and the uniform
+// `glossy: GlossyShapes` with the frame's visible glossy reflectors.
+
+const GLOSSY_CAPACITY: u32 = 32u;
+const GLOSSY_TAPS: u32 = 12u;
+
+struct GlossyShape {
+    // Camera-relative plane: xyz the normal, w = -dot(normal, center).
+    plane: vec4<f32>,
+    // xyz the camera-relative centre, w the roughness.
+    center: vec4<f32>,
+    // Unit axes, w the half extents.
+    axis_u: vec4<f32>,
+    axis_v: vec4<f32>,
+}
+
+struct GlossyShapes {
+    count: u32,
+    // The largest footprint radius, pixels.
+    max_radius_px: f32,
+    _pad0: u32,
+    _pad1: u32,
+    shapes: array<GlossyShape, GLOSSY_CAPACITY>,
+}
+
+// The roughness of the glossy reflector the camera-relative point `p` lies on, 0 when none.
+fn ppr_glossy_roughness(p: vec3<f32>) -> f32 {
+    let tolerance = 2e-3 * length(p) + 1e-3;
+    for (var i = 0u; i < glossy.count; i++) {
+        let s = glossy.shapes[i];
+        let d = p - s.center.xyz;
+        if (abs(dot(s.plane.xyz, p) + s.plane.w) <= tolerance
+            && abs(dot(d, s.axis_u.xyz)) <= s.axis_u.w + tolerance
+            && abs(dot(d, s.axis_v.xyz)) <= s.axis_v.w + tolerance) {
+            return s.center.w;
+        }
+    }
+    return 0.0;
+}
+
+// The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
+// from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
+// is under a pixel.
+fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
+    let src_px = vec2<i32>(floor(src));
+    let d_here = valid_depth_at(vpos);
+    let d_src = valid_depth_at(src_px);
+    if (d_here < 0.0 || d_src < 0.0) {
+        return sharp;
+    }
+    let p = ppr_unproject(vec2<f32>(vpos) + 0.5, d_here);
+    let roughness = ppr_glossy_roughness(p);
+    if (!(roughness > 0.0)) {
+        return sharp;
+    }
+    let q = ppr_unproject(floor(src) + 0.5, d_src);
+    let v = normalize(p);
+    let to_q = q - p;
+    let reach = length(to_q);
+    let n_flat = normalize(to_q / max(reach, 1e-20) - v);
+    if (!ppr_is_finite3(n_flat) || !ppr_is_finite3(q)) {
+        return sharp;
+    }
+    let alpha = roughness * roughness;
+    // World radius of the median microfacet (tan θ = alpha), projected at q: move q across
+    // its view ray by it and measure on screen.
+    let across = normalize(cross(q, n_flat));
+    let s0 = ppr_project(q);
+    let s1 = ppr_project(q + across * (2.0 * alpha * reach));
+    let radius = min(length(s1.xy - s0.xy), glossy.max_radius_px);
+    if (!(radius >= 0.5) || s0.z == 0.0 || s1.z == 0.0) {
+        return sharp;
+    }
+    // Along: the reflection's screen direction; across it the lobe narrows by cos θi.
+    var along = src - (vec2<f32>(vpos) + 0.5);
+    along = select(vec2<f32>(0.0, 1.0), along / length(along), length(along) > 1e-3);
+    let side = vec2<f32>(-along.y, along.x);
+    let cos_i = clamp(dot(-v, n_flat), 0.05, 1.0);
+    var sum = sharp.rgb;
+    for (var k = 0u; k < GLOSSY_TAPS; k++) {
+        let xi = (f32(k) + 0.5) / f32(GLOSSY_TAPS);
+        let r = sqrt(xi / (1.0 - xi));
+        let phi = f32(k) * 2.39996323;
+        let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
+        let uv = (src + offset) * frame.resolution.zw;
+        sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
+    }
+    return vec4<f32>(sum / f32(GLOSSY_TAPS + 1u), sharp.a);
+}
