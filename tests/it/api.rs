@@ -109,7 +109,9 @@ fn fresh_output() -> wgpu::Texture {
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format: ppr_runtime::OUTPUT_FORMAT,
-        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        usage: wgpu::TextureUsages::STORAGE_BINDING
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
     })
 }
@@ -254,5 +256,98 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
     run(&mut r, &gpu, &cam);
     if r.has_timestamps() {
         assert!(r.read_timings().is_some(), "a frame with passes reports times");
+    }
+}
+
+#[test]
+fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
+    // One renderer, both eyes planned by one prepare_stereo and recorded by one
+    // encode_stereo into the two layers of an array texture; a glossy floor mirror.
+    let mut s = scene();
+    s.roughen("floor mirror", 0.25);
+    let set = ppr_tests::harness::validated(&s.reflector_set());
+    let head = DVec3::new(0.3, 1.6, 2.0);
+    let eyes = [-0.032, 0.032].map(|dx| camera(head + DVec3::new(dx, 0.0, 0.0)));
+    let frames: Vec<GpuFrame> = eyes.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    let g = gpu();
+    for indirect in [Choice::Off, Choice::On] {
+        let mono: Vec<Vec<Vec4>> = (0..2)
+            .map(|k| {
+                let mut r = renderer();
+                r.plan_params.indirect = indirect;
+                r.set_reflectors(&set);
+                r.prepare(&eyes[k], SIZE);
+                let out = fresh_output();
+                let mut encoder = g.device.create_command_encoder(&Default::default());
+                encode_into(&r, &mut encoder, &frames[k], &out);
+                g.queue.submit([encoder.finish()]);
+                read_rgba16f(&out)
+            })
+            .collect();
+        assert!(bits(&mono[0]) != bits(&mono[1]), "the eyes must see different reflections");
+
+        let mut r = renderer();
+        r.plan_params.indirect = indirect;
+        r.set_reflectors(&set);
+        let plans = r.prepare_stereo([&eyes[0], &eyes[1]], SIZE);
+        assert!(plans.iter().all(|p| p.glossy.len() == 1), "{}", plans[0]);
+        let array = g.device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("stereo output"),
+            size: wgpu::Extent3d { width: SIZE[0], height: SIZE[1], depth_or_array_layers: 2 },
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: ppr_runtime::OUTPUT_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            view_formats: &[],
+        });
+        let layer = |k: u32| {
+            array.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2),
+                base_array_layer: k,
+                array_layer_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let outputs = [layer(0), layer(1)];
+        let colors = frames.iter().map(|f| f.color.create_view(&Default::default())).collect::<Vec<_>>();
+        let depths = frames
+            .iter()
+            .map(|f| {
+                f.depth.create_view(&wgpu::TextureViewDescriptor {
+                    aspect: wgpu::TextureAspect::DepthOnly,
+                    ..Default::default()
+                })
+            })
+            .collect::<Vec<_>>();
+        let inputs: Vec<FrameInputs> =
+            (0..2).map(|k| FrameInputs::new(&colors[k], &depths[k], &outputs[k])).collect();
+        let mut encoder = g.device.create_command_encoder(&Default::default());
+        r.encode_stereo(&mut encoder, [&inputs[0], &inputs[1]]);
+        // Each layer into a texture of its own, to read back.
+        let copies = [fresh_output(), fresh_output()];
+        for (k, copy) in copies.iter().enumerate() {
+            encoder.copy_texture_to_texture(
+                wgpu::TexelCopyTextureInfo {
+                    texture: &array,
+                    mip_level: 0,
+                    origin: wgpu::Origin3d { x: 0, y: 0, z: k as u32 },
+                    aspect: wgpu::TextureAspect::All,
+                },
+                copy.as_image_copy(),
+                wgpu::Extent3d { width: SIZE[0], height: SIZE[1], depth_or_array_layers: 1 },
+            );
+        }
+        g.queue.submit([encoder.finish()]);
+        for k in 0..2 {
+            let stereo = read_rgba16f(&copies[k]);
+            let differing = (0..stereo.len())
+                .filter(|&i| {
+                    stereo[i].to_array().map(f32::to_bits) != mono[k][i].to_array().map(f32::to_bits)
+                })
+                .count();
+            eprintln!("indirect {indirect:?}, eye {k}: {differing} pixels differ from the mono frame");
+            assert_eq!(differing, 0, "eye {k}, indirect {indirect:?}");
+        }
     }
 }

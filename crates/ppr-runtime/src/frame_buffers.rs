@@ -43,7 +43,14 @@ pub(crate) struct FrameBuffers {
 }
 
 impl FrameBuffers {
-    pub fn new(device: &wgpu::Device, table: &ShapeTable, plan: &FramePlan, debug: bool) -> Self {
+    /// Buffers that serve every plan of `plans` (views of one viewport: a mono frame's one
+    /// plan, or a stereo frame's two).
+    pub fn new(device: &wgpu::Device, table: &ShapeTable, plans: &[&FramePlan], debug: bool) -> Self {
+        let plan = plans[0];
+        debug_assert!(plans.iter().all(|p| p.viewport == plan.viewport), "one viewport per frame");
+        let layer_pixels = plans.iter().map(|p| p.layer_pixels).max().unwrap_or(0);
+        let super_tiles = plans.iter().any(|p| p.super_tiles);
+        let tile_culling = plans.iter().any(|p| p.tile_culling);
         let [w, h] = plan.viewport;
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         let readable = storage | wgpu::BufferUsages::COPY_SRC;
@@ -99,19 +106,15 @@ impl FrameBuffers {
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
             layers: buffer("ppr layers", (MAX_LAYERS * std::mem::size_of::<GpuLayer>()) as u64, storage),
-            atlas: buffer(
-                "ppr layer atlas",
-                (4 * u64::from(plan.layer_pixels)).next_multiple_of(16),
-                readable,
-            ),
+            atlas: buffer("ppr layer atlas", (4 * u64::from(layer_pixels)).next_multiple_of(16), readable),
             super_lists: buffer(
                 "ppr super-tile lists",
-                if plan.super_tiles { super_lists_size(plan.viewport) } else { 16 },
+                if super_tiles { super_lists_size(plan.viewport) } else { 16 },
                 readable,
             ),
             block_lists: buffer(
                 "ppr block lists",
-                if plan.tile_culling { block_lists_size(plan.viewport) } else { 16 },
+                if tile_culling { block_lists_size(plan.viewport) } else { 16 },
                 readable,
             ),
             viewport: plan.viewport,

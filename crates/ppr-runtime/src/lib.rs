@@ -38,6 +38,7 @@ pub mod shape_tests;
 pub mod shapes;
 #[doc(hidden)]
 pub mod source_box;
+mod stereo;
 #[doc(hidden)]
 pub mod timestamps;
 

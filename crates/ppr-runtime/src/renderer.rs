@@ -150,17 +150,13 @@ pub struct ReflectionRenderer {
     upsample: UpsamplePass,
     /// The reduced tiers' textures (allocated by the first reduced `prepare`).
     reduced: Option<ReducedTargets>,
-    /// The full-size viewport of the last `prepare`, and whether it planned a reduced tier.
-    full_viewport: [u32; 2],
-    reduced_active: bool,
     table: ShapeTable,
     table_dirty: bool,
     buffers: Option<FrameBuffers>,
-    plan: Option<Arc<FramePlan>>,
-    /// What the last `prepare` uploads; `encode` copies it into `buffers`.
-    upload: Option<FrameUpload>,
+    /// What the last `prepare` (one view) or `prepare_stereo` (two) planned and uploads.
+    pub(crate) views: Vec<PreparedView>,
     timer: Option<PassTimer>,
-    dispatches: Cell<u32>,
+    pub(crate) dispatches: Cell<u32>,
     /// Whether the last `encode` had a layer output (`None` before the first).
     layer_output_given: Cell<Option<bool>>,
 }
@@ -183,13 +179,10 @@ impl ReflectionRenderer {
             downsample: DownsamplePass::new(device),
             upsample: UpsamplePass::new(device),
             reduced: None,
-            full_viewport: [0, 0],
-            reduced_active: false,
             table: ShapeTable::default(),
             table_dirty: true,
             buffers: None,
-            plan: None,
-            upload: None,
+            views: Vec::new(),
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             layer_output_given: Cell::new(None),
@@ -220,11 +213,20 @@ impl ReflectionRenderer {
     /// Returns the plan (shared, cheap to keep: the renderer holds the same one until the
     /// next `prepare`).
     pub fn prepare(&mut self, camera: &Camera, viewport: [u32; 2]) -> Arc<FramePlan> {
+        let [plan] = self.prepare_views([camera], viewport);
+        plan
+    }
+
+    /// Plans each view, makes the frame buffers fit every plan, and packs each view's upload.
+    pub(crate) fn prepare_views<const N: usize>(
+        &mut self,
+        cameras: [&Camera; N],
+        viewport: [u32; 2],
+    ) -> [Arc<FramePlan>; N] {
         let tier = self.settings.resolution;
         let planned = tier.reduced(viewport);
-        self.full_viewport = viewport;
-        self.reduced_active = planned != viewport;
-        if self.reduced_active && self.reduced.as_ref().is_none_or(|r| r.size != planned) {
+        let reduced_active = planned != viewport;
+        if reduced_active && self.reduced.as_ref().is_none_or(|r| r.size != planned) {
             self.reduced = Some(ReducedTargets::new(&self.device, planned));
         }
         let mut params = self.plan_params;
@@ -232,22 +234,41 @@ impl ReflectionRenderer {
             // The last encode gave the layers nowhere to go: do not compute them.
             params.layers = Choice::Off;
         }
-        let mut plan = FramePlan::build(&self.table, camera, planned, &params);
-        if let Some(layout) = self.debug.encoding {
-            plan.encoding = layout;
+        let plans = cameras.map(|camera| {
+            let mut plan = FramePlan::build(&self.table, camera, planned, &params);
+            if let Some(layout) = self.debug.encoding {
+                plan.encoding = layout;
+            }
+            if !plan.is_empty() {
+                self.projection.prepare_variant(&self.device, self.variant(&plan));
+            }
+            Arc::new(plan)
+        });
+        let fits = self
+            .buffers
+            .as_ref()
+            .is_some_and(|b| plans.iter().all(|p| b.fits(&self.table, p, self.debug.writes)));
+        if self.table_dirty || !fits {
+            let all: Vec<&FramePlan> = plans.iter().map(|p| p.as_ref()).collect();
+            self.buffers = Some(FrameBuffers::new(&self.device, &self.table, &all, self.debug.writes));
+            self.table_dirty = false;
         }
-        if !plan.is_empty() {
-            self.projection.prepare_variant(&self.device, self.variant(&plan));
-        }
-        self.upload(camera, &plan);
-        let plan = Arc::new(plan);
-        self.plan = Some(Arc::clone(&plan));
-        plan
+        self.views = cameras
+            .iter()
+            .zip(&plans)
+            .map(|(camera, plan)| PreparedView {
+                plan: Arc::clone(plan),
+                upload: self.upload(camera, plan),
+                full_viewport: viewport,
+                reduced_active,
+            })
+            .collect();
+        plans
     }
 
     /// The plan of the last [`Self::prepare`].
     pub fn plan(&self) -> Option<&FramePlan> {
-        self.plan.as_deref()
+        self.views.first().map(|v| v.plan.as_ref())
     }
 
     fn variant(&self, plan: &FramePlan) -> ProjectionVariant {
@@ -266,19 +287,14 @@ impl ReflectionRenderer {
         }
     }
 
-    fn upload(&mut self, camera: &Camera, plan: &FramePlan) {
+    /// What `encode` copies into the frame buffers for this view (`None` for an empty plan:
+    /// nothing is encoded).
+    fn upload(&self, camera: &Camera, plan: &FramePlan) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
         let shapes = self.table.gpu_shapes(camera.position);
-        let fits = self.buffers.as_ref().is_some_and(|b| b.fits(&self.table, plan, self.debug.writes));
-        if self.table_dirty || !fits {
-            self.buffers = Some(FrameBuffers::new(&self.device, &self.table, plan, self.debug.writes));
-            self.table_dirty = false;
-        }
-        let b = self.buffers.as_ref().expect("allocated above");
+        let b = self.buffers.as_ref().expect("prepare_views allocates the buffers");
         if plan.is_empty() {
-            // Nothing is encoded.
-            self.upload = None;
-            return;
+            return None;
         }
 
         let aspect = w as f32 / h.max(1) as f32;
@@ -328,7 +344,7 @@ impl ReflectionRenderer {
         };
         let glossy = glossy_shapes(&self.table, &plan.glossy, camera.position, plan.viewport);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
-        self.upload = Some(FrameUpload::new(
+        Some(FrameUpload::new(
             &self.device,
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
@@ -347,7 +363,7 @@ impl ReflectionRenderer {
                     if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },
                 ),
             ],
-        ));
+        ))
     }
 
     /// Records the last prepared view's passes into `encoder` (nothing when the plan is
@@ -357,8 +373,19 @@ impl ReflectionRenderer {
     /// # Panics
     /// If [`Self::prepare`] was not called first.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, inputs: &FrameInputs<'_>) {
-        let plan = self.plan.as_ref().expect("prepare() before encode()");
+        let view = self.views.first().expect("prepare() before encode()");
         self.dispatches.set(0);
+        self.encode_view(encoder, view, inputs);
+    }
+
+    /// Records one prepared view's passes (its upload's copies first).
+    pub(crate) fn encode_view(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        view: &PreparedView,
+        inputs: &FrameInputs<'_>,
+    ) {
+        let plan = &view.plan;
         self.layer_output_given.set(Some(inputs.layer_output.is_some()));
         if plan.is_empty() {
             return;
@@ -369,7 +396,7 @@ impl ReflectionRenderer {
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
         // A reduced tier runs the passes on its own reduced depth and outputs (normal maps
         // off); the reflection reads the full-size colour.
-        let reduced = if self.reduced_active { self.reduced.as_ref() } else { None };
+        let reduced = if view.reduced_active { self.reduced.as_ref() } else { None };
         let depth = reduced.map_or(inputs.depth, |r| &r.depth.view);
         let color = inputs.color;
         let output = reduced.map_or(inputs.output, |r| &r.output.view);
@@ -378,7 +405,7 @@ impl ReflectionRenderer {
 
         // This prepared frame's uniforms, shapes and lists, copied in here (not at the
         // submit), so that each encode runs with the camera it was prepared for.
-        self.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
+        view.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(
@@ -567,7 +594,7 @@ impl ReflectionRenderer {
             count(1);
         }
         if let Some(r) = reduced {
-            self.encode_upsample(encoder, plan, inputs, r, timestamps(6));
+            self.encode_upsample(encoder, view, inputs, r, timestamps(6));
             count(u32::from(has_main) + u32::from(!plan.layers.is_empty() && inputs.layer_output.is_some()));
         }
         if let Some(t) = &self.timer {
@@ -580,12 +607,13 @@ impl ReflectionRenderer {
     fn encode_upsample(
         &self,
         encoder: &mut wgpu::CommandEncoder,
-        plan: &FramePlan,
+        view: &PreparedView,
         inputs: &FrameInputs<'_>,
         r: &ReducedTargets,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
+        let plan = &view.plan;
         let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
             label: Some("ppr upsample"),
             timestamp_writes,
@@ -600,14 +628,14 @@ impl ReflectionRenderer {
         };
         if !plan.visible.is_empty() {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.output.view, inputs.output));
-            self.upsample.encode(&mut pass, &bg, self.full_viewport, plan.indirect, false);
+            self.upsample.encode(&mut pass, &bg, view.full_viewport, plan.indirect, false);
         }
         if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.layer_output.view, layer_output));
             // The layer rectangle at full size, and a pixel of margin each side.
             let rect = plan.layer_rect;
             let pixels = [0, 1].map(|a| {
-                let scale = f64::from(self.full_viewport[a]) / f64::from(plan.viewport[a]);
+                let scale = f64::from(view.full_viewport[a]) / f64::from(plan.viewport[a]);
                 (f64::from(rect.max[a] - rect.min[a]) * scale).ceil() as u32 + 2
             });
             self.upsample.encode(&mut pass, &bg, pixels, false, true);
@@ -639,12 +667,13 @@ impl ReflectionRenderer {
     /// [`PassTimings::passes`]) the last [`Self::encode`] recorded. A pass recorded but
     /// without a time in [`Self::read_timings`] had timestamps the adapter got wrong.
     pub fn passes_recorded(&self) -> [bool; TIMED_PASSES as usize] {
-        let Some(plan) = self.plan.as_ref().filter(|p| !p.is_empty()) else {
+        let Some(view) = self.views.last().filter(|v| !v.plan.is_empty()) else {
             return [false; TIMED_PASSES as usize];
         };
+        let plan = &view.plan;
         let has_main = !plan.visible.is_empty();
         let layers = !plan.layers.is_empty() && self.layer_output_given.get() == Some(true);
-        let reduced = self.reduced_active;
+        let reduced = view.reduced_active;
         [plan.indirect && has_main, true, true, has_main, layers, reduced, reduced && (has_main || layers)]
     }
 
@@ -672,4 +701,13 @@ impl ReflectionRenderer {
     pub fn active_tiles_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().map(|b| &b.active_tiles)
     }
+}
+
+/// One view's part of a `prepare`: its plan, the upload `encode` copies in before its
+/// passes, and the full-size viewport (the plan's is reduced in the reduced tiers).
+pub(crate) struct PreparedView {
+    pub plan: Arc<FramePlan>,
+    pub upload: Option<FrameUpload>,
+    pub full_viewport: [u32; 2],
+    pub reduced_active: bool,
 }
