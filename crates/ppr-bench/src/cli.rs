@@ -101,6 +101,26 @@ pub struct RuntimeArgs {
     /// reflection and upsample passes' output write.
     #[arg(long)]
     pub write_probe: bool,
+    /// Also run every scene with every reflector at roughness 0.2, glossy on and off (rows
+    /// `<scene> (roughness 0.2, glossy)` and `(…, glossy off)`): what the glossy blur costs.
+    #[arg(long)]
+    pub glossy: bool,
+    /// Also time a stereo frame (one renderer, `prepare_stereo` + `encode_stereo`) against
+    /// two mono frames, on each scene's first camera, at these per-eye sizes (repeat, e.g.
+    /// `--stereo 2064x2208 --stereo 1920x1080`).
+    #[arg(long = "stereo", value_parser = parse_size)]
+    pub stereo: Vec<[u32; 2]>,
+}
+
+/// `WIDTHxHEIGHT`.
+fn parse_size(text: &str) -> Result<[u32; 2], String> {
+    let (w, h) = text.split_once('x').ok_or_else(|| format!("`{text}` is not WIDTHxHEIGHT"))?;
+    let parse = |v: &str| {
+        v.trim().parse::<u32>().map_err(|e| format!("`{text}`: {e}")).and_then(|n| {
+            if (1..=16384).contains(&n) { Ok(n) } else { Err(format!("`{text}`: {n} is outside 1..=16384")) }
+        })
+    };
+    Ok([parse(w)?, parse(h)?])
 }
 
 /// Options of `scaling`.
@@ -313,6 +333,8 @@ where
                 features_off: a.features_off,
                 projection_profile: a.projection_profile,
                 write_probe: a.write_probe,
+                glossy: a.glossy,
+                stereo_sizes: a.stereo.clone(),
             };
             let outcome = run_runtime(&gpu, &cfg, &rc)?;
             write_runtime_report(&cfg.out_dir, &outcome, &command_line)

@@ -36,7 +36,7 @@ impl CacheFlush {
         Self { buffer }
     }
 
-    fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
+    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder) {
         if let Some(b) = &self.buffer {
             encoder.clear_buffer(b, 0, None);
         }

@@ -30,6 +30,7 @@ pub mod run_result;
 pub mod scaling;
 pub mod scene;
 pub mod stats;
+pub mod stereo_probe;
 pub mod suites;
 pub mod technique;
 pub mod technique_spec;

@@ -164,6 +164,33 @@ pub fn write_runtime_report(
         }
         let _ = writeln!(md);
     }
+    if !outcome.stereo.is_empty() {
+        let _ = writeln!(
+            md,
+            "Stereo (`--stereo`): both eyes (64 mm apart) from one renderer (`prepare_stereo` + \
+             `encode_stereo`) against two mono frames (`prepare`, `encode` twice) into one \
+             encoder; medians of encoder timestamps around the PPR commands:\n"
+        );
+        let _ = writeln!(
+            md,
+            "| scene | camera | per eye | stereo ms | two mono ms | stereo / mono pair | frames |\n| --- | --- | --- | ---: | ---: | ---: | ---: |"
+        );
+        for s in &outcome.stereo {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {}x{} | {} | {} | {:.2} | {} |",
+                s.scene,
+                s.camera,
+                s.size[0],
+                s.size[1],
+                ms(s.stereo_ms),
+                ms(s.mono_pair_ms),
+                s.stereo_ms / s.mono_pair_ms,
+                s.frames
+            );
+        }
+        let _ = writeln!(md);
+    }
     md.push_str(&table.render());
     let _ = writeln!(md, "\nPlans:\n");
     for r in &outcome.rows {

@@ -14,6 +14,7 @@ use crate::error::BenchError;
 use crate::frame_loop::FrameLoop;
 use crate::ppr_runner::PprRunner;
 use crate::scene::{BenchScene, SceneOptions, SceneSpec};
+use crate::stereo_probe::{StereoRow, run_stereo_probe};
 use crate::technique::BenchFrame;
 use crate::timing::{TimingSeries, TimingSource};
 use crate::write_probe::{WriteProbeRow, run_write_probe};
@@ -32,7 +33,16 @@ pub struct RuntimeConfig {
     pub projection_profile: bool,
     /// Also time full-screen image writes (`write_probe.rs`) at each resolution.
     pub write_probe: bool,
+    /// Also run every scene with every reflector at roughness [`GLOSSY_PROBE_ROUGHNESS`],
+    /// glossy on and off: what the glossy blur costs.
+    pub glossy: bool,
+    /// Also time a stereo frame against two mono frames (`stereo_probe.rs`) on each scene's
+    /// first camera at these per-eye sizes.
+    pub stereo_sizes: Vec<[u32; 2]>,
 }
+
+/// The roughness every reflector gets in the `--glossy` rows.
+pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
@@ -78,6 +88,8 @@ pub struct RuntimeOutcome {
     pub notes: Vec<String>,
     /// Full-screen write probes, per resolution (with `write_probe`).
     pub write_probe: Vec<(Resolution, Vec<WriteProbeRow>)>,
+    /// Stereo against two mono frames (with `stereo_sizes`).
+    pub stereo: Vec<StereoRow>,
 }
 
 /// Runs the suite.
@@ -109,6 +121,7 @@ pub fn run_runtime(
     let frames = FrameLoop::new(device, cfg);
     let mut rows = Vec::new();
     let mut notes = Vec::new();
+    let mut stereo = Vec::new();
     let options = SceneOptions { max_cameras: rc.max_cameras, ..SceneOptions::default() };
     for text in &rc.scenes {
         let spec = SceneSpec::parse(text, &cfg.repo_root, &cfg.scenes_dir)?;
@@ -121,16 +134,39 @@ pub fn run_runtime(
         };
         notes.extend(scene.notes.iter().map(|n| format!("{}: {n}", scene.name)));
         let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
+        if let Some(cam) = scene.cameras.first() {
+            for &size in &rc.stereo_sizes {
+                eprintln!("runtime: stereo {} {} {}x{} per eye", scene.name, cam.name, size[0], size[1]);
+                let s = (scene.name.as_str(), &scene.level, &scene.reflectors);
+                match run_stereo_probe(device, queue, s, (&cam.name, &cam.camera), size, reps, &frames.flush)
+                {
+                    Some(row) => stereo.push(row),
+                    None => notes.push("stereo: no encoder timestamps on this adapter".to_owned()),
+                }
+            }
+        }
         let tuning = Ablation::None;
-        let mut variants = vec![(String::new(), PlanParams::default(), scene.reflectors.clone(), tuning)];
+        let all = ReflectionSettings::ALL;
+        let mut variants =
+            vec![(String::new(), PlanParams::default(), scene.reflectors.clone(), tuning, all)];
+        if rc.glossy {
+            let mut rough = scene.reflectors.clone();
+            for r in &mut rough.reflectors {
+                r.roughness = GLOSSY_PROBE_ROUGHNESS;
+            }
+            let sharp = ReflectionSettings { glossy: false, ..all };
+            let name = format!(" (roughness {GLOSSY_PROBE_ROUGHNESS}");
+            variants.push((format!("{name}, glossy)"), PlanParams::default(), rough.clone(), tuning, all));
+            variants.push((format!("{name}, glossy off)"), PlanParams::default(), rough, tuning, sharp));
+        }
         if rc.features_off {
             let off = PlanParams { layers: Choice::Off, normal_maps: Choice::Off, ..PlanParams::default() };
-            variants.push((" (features off)".to_owned(), off, scene.reflectors.clone(), tuning));
+            variants.push((" (features off)".to_owned(), off, scene.reflectors.clone(), tuning, all));
             let mut normal_mapped = scene.reflectors.clone();
             for r in &mut normal_mapped.reflectors {
                 r.normal_map = true;
             }
-            variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped, tuning));
+            variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped, tuning, all));
         }
         if rc.projection_profile {
             for (name, source_boxes, ablation) in projection_profile() {
@@ -147,11 +183,11 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), ablation));
+                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), ablation, all));
             }
         }
-        for (suffix, params, reflectors, tuning) in variants {
-            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", ReflectionSettings::ALL, params)?;
+        for (suffix, params, reflectors, tuning, settings) in variants {
+            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", settings, params)?;
             ppr.renderer().debug.projection_ablation = tuning;
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
@@ -188,7 +224,7 @@ pub fn run_runtime(
             }
         }
     }
-    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe })
+    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe, stereo })
 }
 
 /// Reads the last frame's active tiles and intermediate buffer back and counts what the
