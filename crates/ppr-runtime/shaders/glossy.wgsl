@@ -7,7 +7,8 @@
 // The lobe: GGX with alpha = roughness². A microfacet normal tilted by θ turns the
 // reflected ray by 2θ, so the reflected point moves by about 2 tan θ |q - p|; across the
 // plane of incidence the turn shrinks by cos θi (the reflection stretches along the view,
-// as wet streets do). GLOSSY_TAPS samples of that distribution (tan θ = alpha √(ξ/(1−ξ)),
+// as wet streets do). Three samples per pixel of footprint radius (4 to glossy.max_taps) of that
+// distribution (tan θ = alpha √(ξ/(1−ξ)),
 // the GGX inverse CDF, at stratified ξ and golden-angle azimuths) are read around the
 // reflected point's pixel, each weighted equally (importance sampling), plus the sharp
 // sample. The screen footprint of a world radius at q is its projection at q's distance.
@@ -16,7 +17,11 @@
 // `glossy: GlossyShapes` with the frame's visible glossy reflectors.
 
 const GLOSSY_CAPACITY: u32 = 32u;
-const GLOSSY_TAPS: u32 = 12u;
+// Fewest taps, taps per pixel of footprint radius (the most: `glossy.max_taps`).
+const GLOSSY_MIN_TAPS: u32 = 4u;
+const GLOSSY_TAPS_PER_PX: f32 = 3.0;
+// Footprints under this radius are left sharp (the bilinear sample already spans it).
+const GLOSSY_MIN_RADIUS_PX: f32 = 0.5;
 
 struct GlossyShape {
     // Camera-relative plane: xyz the normal, w = -dot(normal, center).
@@ -32,8 +37,9 @@ struct GlossyShapes {
     count: u32,
     // The largest footprint radius, pixels.
     max_radius_px: f32,
-    _pad0: u32,
-    _pad1: u32,
+    // The most taps per pixel.
+    max_taps: u32,
+    _pad: u32,
     shapes: array<GlossyShape, GLOSSY_CAPACITY>,
 }
 
@@ -56,15 +62,18 @@ fn ppr_glossy_roughness(p: vec3<f32>) -> f32 {
 // from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
 // is under a pixel.
 fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
-    let src_px = vec2<i32>(floor(src));
     let d_here = valid_depth_at(vpos);
-    let d_src = valid_depth_at(src_px);
-    if (d_here < 0.0 || d_src < 0.0) {
+    if (d_here < 0.0) {
         return sharp;
     }
+    // Mirrors leave here, before the reflected point's depth is read.
     let p = ppr_unproject(vec2<f32>(vpos) + 0.5, d_here);
     let roughness = ppr_glossy_roughness(p);
     if (!(roughness > 0.0)) {
+        return sharp;
+    }
+    let d_src = valid_depth_at(vec2<i32>(floor(src)));
+    if (d_src < 0.0) {
         return sharp;
     }
     let q = ppr_unproject(floor(src) + 0.5, d_src);
@@ -82,22 +91,24 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     let s0 = ppr_project(q);
     let s1 = ppr_project(q + across * (2.0 * alpha * reach));
     let radius = min(length(s1.xy - s0.xy), glossy.max_radius_px);
-    if (!(radius >= 0.5) || s0.z == 0.0 || s1.z == 0.0) {
+    if (!(radius >= GLOSSY_MIN_RADIUS_PX) || s0.z == 0.0 || s1.z == 0.0) {
         return sharp;
     }
+    // Taps scale with the footprint: a few pixels' blur needs few bilinear taps.
+    let taps = clamp(u32(radius * GLOSSY_TAPS_PER_PX), min(GLOSSY_MIN_TAPS, glossy.max_taps), glossy.max_taps);
     // Along: the reflection's screen direction; across it the lobe narrows by cos θi.
     var along = src - (vec2<f32>(vpos) + 0.5);
     along = select(vec2<f32>(0.0, 1.0), along / length(along), length(along) > 1e-3);
     let side = vec2<f32>(-along.y, along.x);
     let cos_i = clamp(dot(-v, n_flat), 0.05, 1.0);
     var sum = sharp.rgb;
-    for (var k = 0u; k < GLOSSY_TAPS; k++) {
-        let xi = (f32(k) + 0.5) / f32(GLOSSY_TAPS);
+    for (var k = 0u; k < taps; k++) {
+        let xi = (f32(k) + 0.5) / f32(taps);
         let r = sqrt(xi / (1.0 - xi));
         let phi = f32(k) * 2.39996323;
         let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
         let uv = (src + offset) * frame.resolution.zw;
         sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
     }
-    return vec4<f32>(sum / f32(GLOSSY_TAPS + 1u), sharp.a);
+    return vec4<f32>(sum / f32(taps + 1u), sharp.a);
 }

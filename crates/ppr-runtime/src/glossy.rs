@@ -15,7 +15,16 @@ pub const MAX_FOOTPRINT: f32 = 0.25;
 
 /// The shapes `glossy` (indices into `table`, at most [`GLOSSY_CAPACITY`]) as the shader
 /// reads them, relative to `eye`.
-pub fn glossy_shapes(table: &ShapeTable, glossy: &[u32], eye: DVec3, [w, h]: [u32; 2]) -> GpuGlossyShapes {
+/// Default most taps per pixel of the glossy blur ([`crate::DebugOptions::glossy_taps`]).
+pub const GLOSSY_TAPS: u32 = 12;
+
+pub fn glossy_shapes(
+    table: &ShapeTable,
+    glossy: &[u32],
+    eye: DVec3,
+    [w, h]: [u32; 2],
+    max_taps: u32,
+) -> GpuGlossyShapes {
     let mut shapes = [GpuGlossyShape::default(); GLOSSY_CAPACITY];
     for (slot, &i) in shapes.iter_mut().zip(glossy) {
         let s = &table.shapes[i as usize];
@@ -30,7 +39,8 @@ pub fn glossy_shapes(table: &ShapeTable, glossy: &[u32], eye: DVec3, [w, h]: [u3
     GpuGlossyShapes {
         count: glossy.len().min(GLOSSY_CAPACITY) as u32,
         max_radius_px: MAX_FOOTPRINT * w.min(h) as f32,
-        _pad: [0; 2],
+        max_taps: max_taps.max(1),
+        _pad: 0,
         shapes,
     }
 }
@@ -93,7 +103,7 @@ mod tests {
             set.reflectors.push(r);
         }
         let eye = DVec3::new(0.0, 3.0, 2.0);
-        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p.glossy, eye, [320, 180]);
+        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p.glossy, eye, [320, 180], 12);
         assert_eq!(u.count, 2);
         for (slot, &i) in u.shapes.iter().zip(&p.glossy) {
             let expected_center = (set.reflectors[i as usize].center - eye).as_vec3();

@@ -136,7 +136,9 @@ pub struct GpuGlossyShapes {
     pub count: u32,
     /// The largest footprint radius, pixels.
     pub max_radius_px: f32,
-    pub _pad: [u32; 2],
+    /// The most taps per pixel.
+    pub max_taps: u32,
+    pub _pad: u32,
     pub shapes: [GpuGlossyShape; GLOSSY_CAPACITY],
 }
 const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 64 * GLOSSY_CAPACITY);

@@ -109,6 +109,9 @@ pub struct DebugOptions {
     /// Leave parts of the projection pass out, to time the rest (bench only; the image
     /// is wrong with anything but [`Ablation::None`]).
     pub projection_ablation: Ablation,
+    /// The most taps per pixel of the glossy blur instead of the default (12): what the
+    /// blur's cost and accuracy are made of.
+    pub glossy_taps: Option<u32>,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -342,7 +345,8 @@ impl ReflectionRenderer {
                 plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
             shape_tests(&self.table, &tested, camera.position)
         };
-        let glossy = glossy_shapes(&self.table, &plan.glossy, camera.position, plan.viewport);
+        let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
+        let glossy = glossy_shapes(&self.table, &plan.glossy, camera.position, plan.viewport, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &self.device,

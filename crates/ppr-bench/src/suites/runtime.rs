@@ -2,7 +2,7 @@
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
 use ppr_runtime::passes::Ablation;
-use ppr_runtime::{CLEAR_VALUE, Choice, PlanParams, ReflectionSettings};
+use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
@@ -40,6 +40,9 @@ pub struct RuntimeConfig {
     /// first camera at these per-eye sizes.
     pub stereo_sizes: Vec<[u32; 2]>,
 }
+
+/// The most taps per pixel of the extra `--glossy` rows (the default is 12).
+pub const GLOSSY_PROBE_TAPS: [u32; 2] = [4, 8];
 
 /// The roughness every reflector gets in the `--glossy` rows.
 pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
@@ -145,7 +148,7 @@ pub fn run_runtime(
                 }
             }
         }
-        let tuning = Ablation::None;
+        let tuning = DebugOptions::default();
         let all = ReflectionSettings::ALL;
         let mut variants =
             vec![(String::new(), PlanParams::default(), scene.reflectors.clone(), tuning, all)];
@@ -157,6 +160,11 @@ pub fn run_runtime(
             let sharp = ReflectionSettings { glossy: false, ..all };
             let name = format!(" (roughness {GLOSSY_PROBE_ROUGHNESS}");
             variants.push((format!("{name}, glossy)"), PlanParams::default(), rough.clone(), tuning, all));
+            for taps in GLOSSY_PROBE_TAPS {
+                let fewer = DebugOptions { glossy_taps: Some(taps), ..tuning };
+                let label = format!("{name}, glossy, {taps} taps)");
+                variants.push((label, PlanParams::default(), rough.clone(), fewer, all));
+            }
             variants.push((format!("{name}, glossy off)"), PlanParams::default(), rough, tuning, sharp));
         }
         if rc.features_off {
@@ -183,12 +191,13 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), ablation, all));
+                let debug = DebugOptions { projection_ablation: ablation, ..tuning };
+                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, all));
             }
         }
         for (suffix, params, reflectors, tuning, settings) in variants {
             let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", settings, params)?;
-            ppr.renderer().debug.projection_ablation = tuning;
+            ppr.renderer().debug = tuning;
             for cam in &scene.cameras {
                 for &res in &rc.resolutions {
                     let size = res.size();
