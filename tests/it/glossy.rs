@@ -70,10 +70,10 @@ fn a_rough_floor_is_as_close_to_its_glossy_reference_as_a_mirror_to_its_reflecti
         assert!(glossy_psnr.pixels > 3000, "{glossy_psnr:?}");
         // The goal on the lent GPU at 4K is 1 dB. At 160 x 120 on the software adapter a
         // far reflection's lobe spans tens of pixels, partly of content off screen or
-        // hidden that PPR cannot see, and twelve taps stand for it: measured 1.6 dB below
-        // at roughness 0.2 and 4.7 dB at 0.35 (sharp: 11.6 and 15.9 dB below). Bounds:
-        // 2 and 5.5 dB.
-        let bound = if roughness < 0.3 { 2.0 } else { 5.5 };
+        // hidden that PPR cannot see, and 4 to 12 taps (3 per pixel of footprint) stand for
+        // it: measured 2.2 dB below at roughness 0.2 and 4.7 dB at 0.35 (12 taps always:
+        // 1.6 and 4.7; sharp: 11.6 and 15.9 dB below). Bounds: 2.5 and 5.5 dB.
+        let bound = if roughness < 0.3 { 2.5 } else { 5.5 };
         assert!(glossy_psnr.psnr >= mirror_psnr.psnr - bound, "{glossy_psnr:?} vs {mirror_psnr:?}");
         assert!(glossy_psnr.psnr > sharp_psnr.psnr + 5.0, "the blur must beat a mirror: {sharp_psnr:?}");
     }

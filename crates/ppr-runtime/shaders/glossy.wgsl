@@ -31,6 +31,8 @@ struct GlossyShape {
     // Unit axes, w the half extents.
     axis_u: vec4<f32>,
     axis_v: vec4<f32>,
+    // The screen rectangle, pixels: min xy, max xy.
+    rect: vec4<f32>,
 }
 
 struct GlossyShapes {
@@ -43,11 +45,27 @@ struct GlossyShapes {
     shapes: array<GlossyShape, GLOSSY_CAPACITY>,
 }
 
-// The roughness of the glossy reflector the camera-relative point `p` lies on, 0 when none.
-fn ppr_glossy_roughness(p: vec3<f32>) -> f32 {
+// Whether the pixel centre `c` is inside some glossy reflector's screen rectangle (no
+// depth needed: pixels outside every one are mirrors).
+fn ppr_glossy_candidate(c: vec2<f32>) -> bool {
+    for (var i = 0u; i < glossy.count; i++) {
+        let r = glossy.shapes[i].rect;
+        if (all(c >= r.xy) && all(c <= r.zw)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The roughness of the glossy reflector the camera-relative point `p` (at pixel centre `c`)
+// lies on, 0 when none.
+fn ppr_glossy_roughness(p: vec3<f32>, c: vec2<f32>) -> f32 {
     let tolerance = 2e-3 * length(p) + 1e-3;
     for (var i = 0u; i < glossy.count; i++) {
         let s = glossy.shapes[i];
+        if (any(c < s.rect.xy) || any(c > s.rect.zw)) {
+            continue;
+        }
         let d = p - s.center.xyz;
         if (abs(dot(s.plane.xyz, p) + s.plane.w) <= tolerance
             && abs(dot(d, s.axis_u.xyz)) <= s.axis_u.w + tolerance
@@ -62,14 +80,19 @@ fn ppr_glossy_roughness(p: vec3<f32>) -> f32 {
 // from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
 // is under a pixel.
 fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
+    let c = vec2<f32>(vpos) + 0.5;
+    if (!ppr_glossy_candidate(c)) {
+        return sharp;
+    }
     let d_here = valid_depth_at(vpos);
     if (d_here < 0.0) {
         return sharp;
     }
     // Mirrors leave here, before the reflected point's depth is read.
-    let p = ppr_unproject(vec2<f32>(vpos) + 0.5, d_here);
-    let roughness = ppr_glossy_roughness(p);
-    if (!(roughness > 0.0)) {
+    let p = ppr_unproject(c, d_here);
+    let roughness = ppr_glossy_roughness(p, c);
+    // max_taps 0: the lookup only (the bench's cost profile).
+    if (!(roughness > 0.0) || glossy.max_taps == 0u) {
         return sharp;
     }
     let d_src = valid_depth_at(vec2<i32>(floor(src)));
@@ -93,6 +116,10 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     let radius = min(length(s1.xy - s0.xy), glossy.max_radius_px);
     if (!(radius >= GLOSSY_MIN_RADIUS_PX) || s0.z == 0.0 || s1.z == 0.0) {
         return sharp;
+    }
+    // max_taps 1: the footprint without its taps (the bench's cost profile).
+    if (glossy.max_taps == 1u) {
+        return vec4<f32>(sharp.rgb * (1.0 + 1e-30 * radius), sharp.a);
     }
     // Taps scale with the footprint: a few pixels' blur needs few bilinear taps.
     let taps = clamp(u32(radius * GLOSSY_TAPS_PER_PX), min(GLOSSY_MIN_TAPS, glossy.max_taps), glossy.max_taps);

@@ -4,6 +4,7 @@
 use glam::DVec3;
 
 use crate::gpu_types::{GLOSSY_CAPACITY, GpuGlossyShape, GpuGlossyShapes};
+use crate::plan::FramePlan;
 use crate::shapes::ShapeTable;
 
 /// Largest footprint radius of the glossy blur (of its median tap), as a fraction of the
@@ -13,33 +14,34 @@ use crate::shapes::ShapeTable;
 /// measurable.
 pub const MAX_FOOTPRINT: f32 = 0.25;
 
-/// The shapes `glossy` (indices into `table`, at most [`GLOSSY_CAPACITY`]) as the shader
-/// reads them, relative to `eye`.
 /// Default most taps per pixel of the glossy blur ([`crate::DebugOptions::glossy_taps`]).
 pub const GLOSSY_TAPS: u32 = 12;
 
-pub fn glossy_shapes(
-    table: &ShapeTable,
-    glossy: &[u32],
-    eye: DVec3,
-    [w, h]: [u32; 2],
-    max_taps: u32,
-) -> GpuGlossyShapes {
+/// The plan's glossy shapes (at most [`GLOSSY_CAPACITY`]) as the shader reads them,
+/// relative to `eye`, each with its screen rectangle grown by a pixel.
+pub fn glossy_shapes(table: &ShapeTable, plan: &FramePlan, eye: DVec3, max_taps: u32) -> GpuGlossyShapes {
+    let [w, h] = plan.viewport;
+    let glossy = &plan.glossy;
     let mut shapes = [GpuGlossyShape::default(); GLOSSY_CAPACITY];
     for (slot, &i) in shapes.iter_mut().zip(glossy) {
         let s = &table.shapes[i as usize];
+        let rect = plan.visible.iter().position(|&v| v == i).map_or([0.0, 0.0, w as f32, h as f32], |k| {
+            let r = plan.screen_rects[k];
+            [r.min[0] as f32 - 1.0, r.min[1] as f32 - 1.0, r.max[0] as f32 + 1.0, r.max[1] as f32 + 1.0]
+        });
         let center = (s.center - eye).as_vec3();
         *slot = GpuGlossyShape {
             plane: s.normal.extend(-s.normal.dot(center)).to_array(),
             center: center.extend(s.roughness).to_array(),
             axis_u: s.axis_u.extend(s.half_extents[0]).to_array(),
             axis_v: s.axis_v.extend(s.half_extents[1]).to_array(),
+            rect,
         };
     }
     GpuGlossyShapes {
         count: glossy.len().min(GLOSSY_CAPACITY) as u32,
         max_radius_px: MAX_FOOTPRINT * w.min(h) as f32,
-        max_taps: max_taps.max(1),
+        max_taps,
         _pad: 0,
         shapes,
     }
@@ -103,7 +105,7 @@ mod tests {
             set.reflectors.push(r);
         }
         let eye = DVec3::new(0.0, 3.0, 2.0);
-        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p.glossy, eye, [320, 180], 12);
+        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p, eye, 12);
         assert_eq!(u.count, 2);
         for (slot, &i) in u.shapes.iter().zip(&p.glossy) {
             let expected_center = (set.reflectors[i as usize].center - eye).as_vec3();
@@ -112,6 +114,12 @@ mod tests {
             // The centre lies on the plane: n · c + w = 0.
             let n = Vec3::from_slice(&slot.plane[..3]);
             assert!((n.dot(expected_center) + slot.plane[3]).abs() < 1e-6);
+            // The screen rectangle is the plan's, a pixel larger each side.
+            let k = p.visible.iter().position(|&v| v == i).expect("glossy shapes are visible");
+            let r = p.screen_rects[k];
+            let grown =
+                [r.min[0] as f32 - 1.0, r.min[1] as f32 - 1.0, r.max[0] as f32 + 1.0, r.max[1] as f32 + 1.0];
+            assert_eq!(slot.rect, grown);
         }
         assert_eq!(u.max_radius_px, super::MAX_FOOTPRINT * 180.0);
     }

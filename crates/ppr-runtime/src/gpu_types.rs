@@ -126,8 +126,10 @@ pub struct GpuGlossyShape {
     pub axis_u: [f32; 4],
     /// Axis v, and the half extent along it.
     pub axis_v: [f32; 4],
+    /// The screen rectangle in pixels: min x, min y, max x, max y.
+    pub rect: [f32; 4],
 }
-const _: () = assert!(std::mem::size_of::<GpuGlossyShape>() == 64);
+const _: () = assert!(std::mem::size_of::<GpuGlossyShape>() == 80);
 
 /// `GlossyShapes` of `glossy.wgsl`: the uniform the glossy reflection pass reads.
 #[repr(C)]
@@ -141,4 +143,4 @@ pub struct GpuGlossyShapes {
     pub _pad: u32,
     pub shapes: [GpuGlossyShape; GLOSSY_CAPACITY],
 }
-const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 64 * GLOSSY_CAPACITY);
+const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 80 * GLOSSY_CAPACITY);

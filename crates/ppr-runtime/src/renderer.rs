@@ -110,7 +110,8 @@ pub struct DebugOptions {
     /// is wrong with anything but [`Ablation::None`]).
     pub projection_ablation: Ablation,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
-    /// blur's cost and accuracy are made of.
+    /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
+    /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
     pub glossy_taps: Option<u32>,
 }
 
@@ -346,7 +347,7 @@ impl ReflectionRenderer {
             shape_tests(&self.table, &tested, camera.position)
         };
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
-        let glossy = glossy_shapes(&self.table, &plan.glossy, camera.position, plan.viewport, taps);
+        let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &self.device,

@@ -41,8 +41,9 @@ pub struct RuntimeConfig {
     pub stereo_sizes: Vec<[u32; 2]>,
 }
 
-/// The most taps per pixel of the extra `--glossy` rows (the default is 12).
-pub const GLOSSY_PROBE_TAPS: [u32; 2] = [4, 8];
+/// The most taps per pixel of the extra `--glossy` rows (the default is 12; 0: the reflector
+/// lookup only, 1: the footprint without taps; both leave the image sharp).
+pub const GLOSSY_PROBE_TAPS: [u32; 4] = [0, 1, 4, 8];
 
 /// The roughness every reflector gets in the `--glossy` rows.
 pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
