@@ -2,6 +2,7 @@
 
 use ppr_format::{FormatError, ReflectorSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
+use ppr_scene_gpu::layout_entries::unfilterable_texture_entry;
 
 use crate::composite::CompositeParams;
 use crate::previous_frame_feed::{FeedInputs, PREVIOUS_FRAME_COPY, PreviousFrameFeed};
@@ -42,16 +43,7 @@ struct LayerMerge {
 
 impl LayerMerge {
     fn new(device: &wgpu::Device) -> Self {
-        let texture = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let texture = |binding| unfilterable_texture_entry(binding, wgpu::ShaderStages::COMPUTE);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("testbed layer merge"),
             entries: &[
