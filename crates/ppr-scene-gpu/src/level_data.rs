@@ -37,6 +37,22 @@ pub struct Mesh {
     pub primitives: Vec<MeshPrimitive>,
 }
 
+impl Mesh {
+    /// Its primitives, in order.
+    pub fn iter(&self) -> std::slice::Iter<'_, MeshPrimitive> {
+        self.primitives.iter()
+    }
+}
+
+impl<'a> IntoIterator for &'a Mesh {
+    type Item = &'a MeshPrimitive;
+    type IntoIter = std::slice::Iter<'a, MeshPrimitive>;
+
+    fn into_iter(self) -> Self::IntoIter {
+        self.primitives.iter()
+    }
+}
+
 /// An RGBA8 texture whose colour channels are sRGB encoded (a glTF base colour texture).
 #[derive(Clone, Debug, PartialEq)]
 pub struct LevelTexture {

@@ -4,6 +4,7 @@
 //! buffer is cleared every frame (with indirect dispatch only active tiles are).
 
 use ppr_runtime::EncodingLayout;
+use ppr_scene_gpu::layout_entries::{storage_entry, uniform_entry};
 
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
@@ -37,26 +38,8 @@ impl IntermediateView {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("walkthrough intermediate view"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT, false),
+                storage_entry(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
         let pipeline =
