@@ -8,6 +8,8 @@
 //! - [`SceneLayouts`], [`scene_raster`] and `shaders/scene_raster.wgsl`: the bind-group
 //!   layouts, pipelines, render pass and WGSL a scene raster pass is built from;
 //!   [`layout_entries`] for every pass's bind-group layouts;
+//! - [`screen_pass`]: the full-screen triangle of the screen passes;
+//! - [`Lighting`]: the sun and ambient both passes light with;
 //! - [`Target`] and the colour and depth formats the runtime reads;
 //! - [`request_device`]: adapter, device and queue;
 //! - [`camera_spec`]: `--camera` by name or as `eye=...;target=...;fov=...`.
@@ -23,11 +25,13 @@ pub mod layout_entries;
 pub mod level_camera;
 pub mod level_data;
 pub mod level_meshes;
+pub mod lighting;
 mod material_textures;
 pub mod render_target;
 mod scene_import;
 pub mod scene_layouts;
 pub mod scene_raster;
+pub mod screen_pass;
 
 pub use camera_spec::{CameraPick, ProjectionChoice, parse_camera, pick_camera};
 pub use error::{CameraSpecError, GpuInitError};
@@ -35,5 +39,6 @@ pub use gpu_device::{DeviceRequest, GpuDevice, request_device};
 pub use level_camera::LevelCamera;
 pub use level_data::{LevelData, LevelTexture, Material, Mesh, MeshInstance, MeshPrimitive, Vertex};
 pub use level_meshes::{DrawUniform, FaceCulling, LevelMeshes, MaterialUniform, MeshDraw, SurfaceRules};
+pub use lighting::Lighting;
 pub use render_target::{COLOR_FORMAT, DEPTH_FORMAT, Target};
 pub use scene_layouts::{SceneLayouts, uniform_stride};

@@ -4,6 +4,7 @@
 use ppr_scene_gpu::layout_entries::{
     storage_entry, texture_entry, unfilterable_texture_entry, uniform_entry,
 };
+use ppr_scene_gpu::screen_pass::screen_pass_module;
 
 use crate::gbuffer_targets::{COLOR_FORMAT, GBuffer};
 use crate::scene_layouts::uniform_stride;
@@ -32,10 +33,11 @@ pub struct BounceCompositePass {
 impl BounceCompositePass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bounce composite shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/bounce_composite.wgsl").into()),
-        });
+        let shader = screen_pass_module(
+            device,
+            "bounce composite shader",
+            include_str!("../shaders/bounce_composite.wgsl"),
+        );
         let fragment = wgpu::ShaderStages::FRAGMENT;
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("bounce composite layout"),

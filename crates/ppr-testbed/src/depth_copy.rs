@@ -2,6 +2,7 @@
 //! copied to a buffer on every backend (GL cannot copy depth textures to buffers).
 
 use ppr_scene_gpu::layout_entries::unfilterable_texture_entry;
+use ppr_scene_gpu::screen_pass::screen_pass_module;
 
 use crate::gbuffer_targets::Target;
 
@@ -17,10 +18,8 @@ pub struct DepthCopyPass {
 impl DepthCopyPass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("depth copy shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/depth_copy.wgsl").into()),
-        });
+        let shader =
+            screen_pass_module(device, "depth copy shader", include_str!("../shaders/depth_copy.wgsl"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth copy layout"),
             entries: &[unfilterable_texture_entry(0, wgpu::ShaderStages::FRAGMENT)],

@@ -4,6 +4,7 @@
 
 use ppr_runtime::Camera;
 use ppr_scene_gpu::layout_entries::{storage_entry, texture_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::screen_pass_module;
 
 use crate::gbuffer_targets::{GBuffer, Target};
 use crate::mirror_camera::MirroredView;
@@ -173,10 +174,8 @@ pub struct MirrorReference {
 impl MirrorReference {
     /// Builds the resolve pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("reference resolve shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/reference.wgsl").into()),
-        });
+        let shader =
+            screen_pass_module(device, "reference resolve shader", include_str!("../shaders/reference.wgsl"));
         let tex = |binding, sample_type| texture_entry(binding, wgpu::ShaderStages::FRAGMENT, sample_type);
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {

@@ -4,6 +4,7 @@
 //! buffer and the weight.
 
 use ppr_scene_gpu::layout_entries::{unfilterable_texture_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::with_fullscreen_triangle;
 
 use crate::forward_pass::BACKGROUND;
 use crate::frame_targets::FrameTargets;
@@ -65,7 +66,14 @@ impl CompositePass {
                 texture(3),
             ],
         });
-        let pipeline = fullscreen_pipeline(device, "walkthrough composite", WGSL, &layout, format, None);
+        let pipeline = fullscreen_pipeline(
+            device,
+            "walkthrough composite",
+            &with_fullscreen_triangle(WGSL),
+            &layout,
+            format,
+            None,
+        );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("walkthrough composite"),
             size: size_of::<CompositeUniform>() as u64,

@@ -4,7 +4,6 @@
 //! The meshes, bind-group layouts, vertex shader and lighting are `ppr-scene-gpu`'s, shared
 //! with the testbed's G-buffer (so headless frames compare with its frames).
 
-use glam::Vec3;
 use ppr_runtime::{Camera, DepthMode};
 use ppr_scene_gpu::layout_entries::uniform_entry;
 use ppr_scene_gpu::scene_raster::{
@@ -51,23 +50,9 @@ fn drawn_with(draw: &MeshDraw, blend: AlphaBlend, culling: FaceCulling) -> bool 
 /// Linear colour where nothing is drawn (the testbed's, so frames compare).
 pub const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.05, g: 0.07, b: 0.11, a: 1.0 };
 
-/// The light: one sun plus ambient, no shadows.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SceneLight {
-    /// Direction towards the light (normalised when used).
-    pub direction: Vec3,
-    /// Linear intensity (multiplies Lambert's cosine).
-    pub intensity: f32,
-    /// Linear ambient colour.
-    pub ambient: [f32; 3],
-}
-
-impl Default for SceneLight {
-    /// The testbed's default light, so a headless frame can be compared with its frame.
-    fn default() -> Self {
-        Self { direction: Vec3::new(0.35, 1.0, 0.55), intensity: 0.85, ambient: [0.25, 0.25, 0.27] }
-    }
-}
+/// The light: one sun plus ambient, no shadows; `ppr-scene-gpu`'s `Lighting`, whose default
+/// is the testbed's, so a headless frame can be compared with its frame.
+pub use ppr_scene_gpu::Lighting as SceneLight;
 
 /// View uniform (group 0).
 #[repr(C)]
@@ -157,11 +142,11 @@ impl ForwardPass {
     /// Uploads the view: the camera's camera-relative matrix and the light.
     pub fn prepare(&self, queue: &wgpu::Queue, camera: &Camera, size: [u32; 2], light: &SceneLight) {
         let aspect = size[0] as f32 / size[1].max(1) as f32;
-        let l = light.direction.normalize_or(Vec3::Y);
+        let (light, ambient) = light.uniform_vectors();
         let uniform = ViewUniform {
             clip_from_rel: camera.clip_from_relative(aspect).to_cols_array_2d(),
-            light: [l.x, l.y, l.z, light.intensity],
-            ambient: [light.ambient[0], light.ambient[1], light.ambient[2], 0.0],
+            light,
+            ambient,
         };
         queue.write_buffer(&self.view_uniform, 0, bytemuck::bytes_of(&uniform));
     }

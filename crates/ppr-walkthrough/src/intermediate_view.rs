@@ -5,6 +5,7 @@
 
 use ppr_runtime::EncodingLayout;
 use ppr_scene_gpu::layout_entries::{storage_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::with_fullscreen_triangle;
 
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
@@ -42,8 +43,14 @@ impl IntermediateView {
                 storage_entry(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let pipeline =
-            fullscreen_pipeline(device, "walkthrough intermediate view", WGSL, &layout, format, None);
+        let pipeline = fullscreen_pipeline(
+            device,
+            "walkthrough intermediate view",
+            &with_fullscreen_triangle(WGSL),
+            &layout,
+            format,
+            None,
+        );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("walkthrough intermediate view"),
             size: size_of::<IntermediateViewUniform>() as u64,
