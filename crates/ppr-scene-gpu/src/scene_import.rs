@@ -24,43 +24,10 @@ impl LevelData {
     pub fn from_scene(scene: &Scene) -> Self {
         let mut level = LevelData::new();
         level.source_hash = scene.hash.clone();
-        level.textures = scene
-            .textures
-            .iter()
-            .map(|t| LevelTexture {
-                name: t.name.clone(),
-                width: t.width,
-                height: t.height,
-                rgba8: t.rgba8.clone(),
-            })
-            .collect();
+        level.textures = scene.textures.iter().map(level_texture).collect();
         level.materials = scene.materials.clone();
-        level.meshes = scene
-            .meshes
-            .iter()
-            .map(|mesh| Mesh {
-                name: mesh.name.clone(),
-                primitives: mesh
-                    .primitives
-                    .iter()
-                    .map(|p| MeshPrimitive {
-                        vertices: p.vertices(),
-                        indices: p.indices.clone(),
-                        material: p.material,
-                    })
-                    .collect(),
-            })
-            .collect();
-        level.instances = scene
-            .instances
-            .iter()
-            .map(|inst| MeshInstance {
-                node_name: inst.node_name.clone(),
-                mesh: inst.mesh,
-                world: inst.world,
-                reflector_hint: inst.ppr.reflector.or_else(|| scene.meshes.get(inst.mesh)?.ppr.reflector),
-            })
-            .collect();
+        level.meshes = scene.meshes.iter().map(level_mesh).collect();
+        level.instances = scene.instances.iter().map(|inst| mesh_instance(scene, inst)).collect();
         for cam in &scene.cameras {
             match cam.projection {
                 CameraProjection::Perspective { yfov, znear, zfar } => {
@@ -74,5 +41,28 @@ impl LevelData {
         }
         level.warnings.extend(scene.notes.iter().cloned());
         level
+    }
+}
+
+fn level_texture(t: &ppr_level::Texture) -> LevelTexture {
+    LevelTexture { name: t.name.clone(), width: t.width, height: t.height, rgba8: t.rgba8.clone() }
+}
+
+fn level_mesh(mesh: &ppr_level::Mesh) -> Mesh {
+    let primitive = |p: &ppr_level::Primitive| MeshPrimitive {
+        vertices: p.vertices(),
+        indices: p.indices.clone(),
+        material: p.material,
+    };
+    Mesh { name: mesh.name.clone(), primitives: mesh.primitives.iter().map(primitive).collect() }
+}
+
+/// The instance with its `extras.ppr.reflector` hint: its node's, else its mesh's.
+fn mesh_instance(scene: &Scene, inst: &ppr_level::Instance) -> MeshInstance {
+    MeshInstance {
+        node_name: inst.node_name.clone(),
+        mesh: inst.mesh,
+        world: inst.world,
+        reflector_hint: inst.ppr.reflector.or_else(|| scene.meshes.get(inst.mesh)?.ppr.reflector),
     }
 }
