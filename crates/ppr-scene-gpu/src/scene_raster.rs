@@ -117,3 +117,53 @@ pub fn begin_raster_pass<'e>(
         multiview_mask: None,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::SCENE_RASTER_WGSL;
+    use crate::level_meshes::{DrawUniform, MaterialUniform};
+    use crate::screen_pass::with_fullscreen_triangle;
+
+    /// The least a pass declares: group 0's `view` as the shared WGSL reads it.
+    const MINIMAL_PASS: &str = "
+        struct View { clip_from_rel: mat4x4<f32>, light: vec4<f32>, ambient: vec4<f32> }
+        @group(0) @binding(0) var<uniform> view: View;
+        @fragment
+        fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> @location(0) vec4<f32> {
+            return vec4<f32>(lit_colour(base_colour(in.uv).rgb, surface_normal(in, front)), 1.0);
+        }";
+
+    fn validated(source: &str) -> naga::Module {
+        let module =
+            naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
+            .validate(&module)
+            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
+        module
+    }
+
+    fn struct_size(module: &naga::Module, name: &str) -> usize {
+        module
+            .types
+            .iter()
+            .find_map(|(_, t)| match &t.inner {
+                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
+                    Some(*span as usize)
+                }
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no struct {name}"))
+    }
+
+    /// The shared WGSL validates in front of a pass, and its group 1 and 2 structs have the
+    /// sizes of the uniforms `LevelMeshes` writes.
+    #[test]
+    fn shared_wgsl_validates_and_matches_the_rust_uniforms() {
+        let module = validated(&format!("{SCENE_RASTER_WGSL}\n{MINIMAL_PASS}"));
+        assert_eq!(struct_size(&module, "Draw"), size_of::<DrawUniform>());
+        assert_eq!(struct_size(&module, "Material"), size_of::<MaterialUniform>());
+        validated(&with_fullscreen_triangle(
+            "@fragment fn fs_main() -> @location(0) vec4<f32> { return vec4<f32>(1.0); }",
+        ));
+    }
+}
