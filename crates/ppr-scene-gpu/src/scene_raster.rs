@@ -133,26 +133,22 @@ mod tests {
             return vec4<f32>(lit_colour(base_colour(in.uv).rgb, surface_normal(in, front)), 1.0);
         }";
 
+    /// The module of `source`, parsed and validated (naga's message names the line).
     fn validated(source: &str) -> naga::Module {
-        let module =
-            naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
-        naga::valid::Validator::new(naga::valid::ValidationFlags::all(), naga::valid::Capabilities::all())
-            .validate(&module)
-            .unwrap_or_else(|e| panic!("{}", e.emit_to_string(source)));
-        module
+        let checked =
+            naga::front::wgsl::parse_str(source).map_err(|e| e.emit_to_string(source)).and_then(|module| {
+                let flags = naga::valid::ValidationFlags::all();
+                let mut validator = naga::valid::Validator::new(flags, naga::valid::Capabilities::all());
+                validator.validate(&module).map(|_| module).map_err(|e| e.emit_to_string(source))
+            });
+        checked.unwrap_or_else(|message| panic!("{message}"))
     }
 
-    fn struct_size(module: &naga::Module, name: &str) -> usize {
-        module
-            .types
-            .iter()
-            .find_map(|(_, t)| match &t.inner {
-                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
-                    Some(*span as usize)
-                }
-                _ => None,
-            })
-            .unwrap_or_else(|| panic!("no struct {name}"))
+    /// Bytes of the WGSL type `name` (its uniform layout).
+    fn wgsl_size(module: &naga::Module, name: &str) -> usize {
+        let named = module.types.iter().find(|(_, t)| t.name.as_deref() == Some(name));
+        let (_, ty) = named.unwrap_or_else(|| panic!("no type {name}"));
+        ty.inner.size(module.to_ctx()) as usize
     }
 
     /// The shared WGSL validates in front of a pass, and its group 1 and 2 structs have the
@@ -160,8 +156,8 @@ mod tests {
     #[test]
     fn shared_wgsl_validates_and_matches_the_rust_uniforms() {
         let module = validated(&format!("{SCENE_RASTER_WGSL}\n{MINIMAL_PASS}"));
-        assert_eq!(struct_size(&module, "Draw"), size_of::<DrawUniform>());
-        assert_eq!(struct_size(&module, "Material"), size_of::<MaterialUniform>());
+        assert_eq!(wgsl_size(&module, "Draw"), size_of::<DrawUniform>());
+        assert_eq!(wgsl_size(&module, "Material"), size_of::<MaterialUniform>());
         validated(&with_fullscreen_triangle(
             "@fragment fn fs_main() -> @location(0) vec4<f32> { return vec4<f32>(1.0); }",
         ));
