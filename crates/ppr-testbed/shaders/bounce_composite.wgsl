@@ -12,11 +12,7 @@ struct Bounce {
 @group(0) @binding(2) var parent_ids: texture_2d<u32>;
 @group(0) @binding(3) var child_color: texture_2d<f32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
+// `vs_main`: the full-screen triangle of ppr-scene-gpu's fullscreen_triangle.wgsl.
 
 @fragment
 fn fs_main(@builtin(position) frag: vec4<f32>) -> @location(0) vec4<f32> {

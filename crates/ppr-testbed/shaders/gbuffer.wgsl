@@ -1,7 +1,6 @@
 // G-buffer raster of a level (testbed): linear HDR colour, world normal and reflector id.
 //
-// Positions are camera-relative: the per-draw model matrix already has the camera position
-// subtracted (in f64 on the CPU), so nothing here sees large coordinates.
+// Positions are camera-relative (see scene_raster.wgsl).
 // Also used for the mirrored views of the exact reference (mask disabled there).
 
 struct View {
@@ -19,42 +18,12 @@ struct Shape {
     normal: vec4<f32>,
 }
 
-struct MaterialParams {
-    base_color: vec4<f32>,
-    emissive: vec4<f32>,  // w: 1 = unlit
-    params: vec4<f32>,    // roughness, metallic, transmission, textured
-}
-
-struct Draw {
-    model: mat4x4<f32>,
-    normal_matrix: mat4x4<f32>,
-    flags: vec4<u32>,  // x: 1 = reflective surface
-}
-
 @group(0) @binding(0) var<uniform> view: View;
 @group(0) @binding(1) var<storage, read> shapes: array<Shape>;
-@group(1) @binding(0) var<uniform> material: MaterialParams;
-@group(1) @binding(1) var base_texture: texture_2d<f32>;
-@group(1) @binding(2) var base_sampler: sampler;
-@group(2) @binding(0) var<uniform> draw: Draw;
 
-struct VertexOut {
-    @builtin(position) clip: vec4<f32>,
-    @location(0) rel: vec3<f32>,
-    @location(1) normal: vec3<f32>,
-    @location(2) uv: vec2<f32>,
-}
-
-@vertex
-fn vs_main(@location(0) position: vec3<f32>, @location(1) normal: vec3<f32>, @location(2) uv: vec2<f32>) -> VertexOut {
-    var out: VertexOut;
-    let rel = draw.model * vec4<f32>(position, 1.0);
-    out.clip = view.clip_from_rel * rel;
-    out.rel = rel.xyz;
-    out.normal = (draw.normal_matrix * vec4<f32>(normal, 0.0)).xyz;
-    out.uv = uv;
-    return out;
-}
+// Material (group 1: params = roughness, metallic, transmission, textured), Draw (group 2:
+// params.x = 1 for a reflective surface), `vs_main`, `surface_normal`, `base_colour` and
+// `lit_colour` are in ppr-scene-gpu's scene_raster.wgsl, put in front of this file.
 
 struct GBufferOut {
     @location(0) color: vec4<f32>,
@@ -65,7 +34,7 @@ struct GBufferOut {
 // 0 = not on a reflector; i + 1 = on shape i (the first that matches).
 fn reflector_at(rel: vec3<f32>, n: vec3<f32>) -> u32 {
     let count = view.mask.x;
-    if (count == 0u || (view.mask.y == 1u && draw.flags.x == 0u)) {
+    if (count == 0u || (view.mask.y == 1u && draw.params.x == 0u)) {
         return 0u;
     }
     let tolerance = view.tolerance.x + view.tolerance.y * length(rel);
@@ -87,18 +56,10 @@ fn reflector_at(rel: vec3<f32>, n: vec3<f32>) -> u32 {
 
 @fragment
 fn fs_main(in: VertexOut, @builtin(front_facing) front: bool) -> GBufferOut {
-    var n = normalize(in.normal);
-    if (!front) {
-        n = -n;
-    }
-    let base = material.base_color * textureSample(base_texture, base_sampler, in.uv);
-    var rgb = base.rgb;
-    if (material.emissive.w < 0.5) {
-        let lambert = max(dot(n, view.light.xyz), 0.0) * view.light.w;
-        rgb = base.rgb * (view.ambient.rgb + vec3<f32>(lambert)) + material.emissive.rgb;
-    }
+    let n = surface_normal(in, front);
+    let base = base_colour(in.uv);
     var out: GBufferOut;
-    out.color = vec4<f32>(rgb, 1.0);
+    out.color = vec4<f32>(lit_colour(base.rgb, n), 1.0);
     out.normal = vec4<f32>(n, 1.0);
     out.reflector = reflector_at(in.rel, n);
     return out;

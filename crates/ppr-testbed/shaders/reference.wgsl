@@ -28,11 +28,7 @@ struct Resolve {
 @group(0) @binding(6) var mirror_depth: texture_2d<f32>;
 @group(0) @binding(7) var mirror_normal: texture_2d<f32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) index: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((index << 1u) & 2u), f32(index & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
+// `vs_main`: the full-screen triangle of ppr-scene-gpu's fullscreen_triangle.wgsl.
 
 struct ResolveOut {
     @location(0) color: vec4<f32>,

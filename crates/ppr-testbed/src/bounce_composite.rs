@@ -1,6 +1,11 @@
 //! The reference's later bounces on the GPU: scratch G-buffers per bounce, and the pass that
 //! blends a deeper view over its parent where the parent shows the deeper view's plane.
 
+use ppr_scene_gpu::layout_entries::{
+    storage_entry, texture_entry, unfilterable_texture_entry, uniform_entry,
+};
+use ppr_scene_gpu::screen_pass::screen_pass_module;
+
 use crate::gbuffer_targets::{COLOR_FORMAT, GBuffer};
 use crate::scene_layouts::uniform_stride;
 
@@ -28,34 +33,19 @@ pub struct BounceCompositePass {
 impl BounceCompositePass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bounce composite shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/bounce_composite.wgsl").into()),
-        });
+        let shader = screen_pass_module(
+            device,
+            "bounce composite shader",
+            include_str!("../shaders/bounce_composite.wgsl"),
+        );
         let fragment = wgpu::ShaderStages::FRAGMENT;
-        let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: fragment,
-            ty: wgpu::BindingType::Texture {
-                sample_type,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
-        let buffer = |binding, ty, has_dynamic_offset| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: fragment,
-            ty: wgpu::BindingType::Buffer { ty, has_dynamic_offset, min_binding_size: None },
-            count: None,
-        };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("bounce composite layout"),
             entries: &[
-                buffer(0, wgpu::BufferBindingType::Uniform, true),
-                buffer(1, wgpu::BufferBindingType::Storage { read_only: true }, false),
-                tex(2, wgpu::TextureSampleType::Uint),
-                tex(3, wgpu::TextureSampleType::Float { filterable: false }),
+                uniform_entry(0, fragment, true),
+                storage_entry(1, fragment),
+                texture_entry(2, fragment, wgpu::TextureSampleType::Uint),
+                unfilterable_texture_entry(3, fragment),
             ],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

@@ -1,5 +1,7 @@
 //! The composite pass: final frame = scene colour mixed with a reflection over reflector pixels.
 
+use ppr_scene_gpu::layout_entries::{texture_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::screen_pass_module;
 use wgpu::util::DeviceExt;
 
 use crate::gbuffer_targets::{COLOR_FORMAT, Target};
@@ -47,34 +49,14 @@ pub struct CompositePass {
 impl CompositePass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("composite shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/composite.wgsl").into()),
-        });
-        let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let shader =
+            screen_pass_module(device, "composite shader", include_str!("../shaders/composite.wgsl"));
+        let tex = |binding, sample_type| texture_entry(binding, wgpu::ShaderStages::FRAGMENT, sample_type);
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("composite layout"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT, false),
                 tex(1, float),
                 tex(2, float),
                 tex(3, wgpu::TextureSampleType::Uint),

@@ -1,6 +1,9 @@
 //! The depth copy pass: depth values as `u32` bits in an `R32Uint` texture, which can be
 //! copied to a buffer on every backend (GL cannot copy depth textures to buffers).
 
+use ppr_scene_gpu::layout_entries::unfilterable_texture_entry;
+use ppr_scene_gpu::screen_pass::screen_pass_module;
+
 use crate::gbuffer_targets::Target;
 
 /// Format the depth bits are written in.
@@ -15,22 +18,11 @@ pub struct DepthCopyPass {
 impl DepthCopyPass {
     /// Builds the pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("depth copy shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/depth_copy.wgsl").into()),
-        });
+        let shader =
+            screen_pass_module(device, "depth copy shader", include_str!("../shaders/depth_copy.wgsl"));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("depth copy layout"),
-            entries: &[wgpu::BindGroupLayoutEntry {
-                binding: 0,
-                visibility: wgpu::ShaderStages::FRAGMENT,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            }],
+            entries: &[unfilterable_texture_entry(0, wgpu::ShaderStages::FRAGMENT)],
         });
         let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("depth copy pipeline layout"),

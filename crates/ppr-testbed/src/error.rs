@@ -52,3 +52,18 @@ impl From<ppr_format::FormatError> for TestbedError {
         Self::ReflectorSet(Box::new(e))
     }
 }
+
+impl From<ppr_scene_gpu::CameraSpecError> for TestbedError {
+    fn from(e: ppr_scene_gpu::CameraSpecError) -> Self {
+        Self::CameraSpec { text: e.text, reason: e.reason }
+    }
+}
+
+impl From<ppr_scene_gpu::GpuInitError> for TestbedError {
+    fn from(e: ppr_scene_gpu::GpuInitError) -> Self {
+        match e {
+            ppr_scene_gpu::GpuInitError::NoAdapter(reason) => Self::NoAdapter(reason),
+            ppr_scene_gpu::GpuInitError::NoDevice { adapter, reason } => Self::NoDevice { adapter, reason },
+        }
+    }
+}

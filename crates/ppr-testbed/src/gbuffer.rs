@@ -1,17 +1,35 @@
 //! The G-buffer pass: rasterises a level into colour, depth, world normal and reflector id.
 //!
 //! The same pass draws the mirrored views of the exact reference ([`crate::MirrorReference`]);
-//! there the winding flips and the reflector mask is disabled.
+//! there the winding flips and the reflector mask is disabled. Its pipelines, render pass
+//! and shared WGSL are `ppr-scene-gpu`'s `scene_raster`.
 
 use ppr_runtime::DepthMode;
+use ppr_scene_gpu::scene_raster::{
+    RasterPipelineDesc, begin_raster_pass, raster_pipeline, scene_pipeline_layout, scene_raster_module,
+};
+use ppr_scene_gpu::{FaceCulling, LevelMeshes, Material, MeshInstance, SceneLayouts, SurfaceRules};
 
-use crate::gbuffer_targets::{COLOR_FORMAT, DEPTH_FORMAT, GBuffer, NORMAL_FORMAT, REFLECTOR_ID_FORMAT};
-use crate::mesh::{FaceCulling, LevelMeshes};
-use crate::scene_layouts::SceneLayouts;
+use crate::gbuffer_targets::{COLOR_FORMAT, GBuffer, NORMAL_FORMAT, REFLECTOR_ID_FORMAT};
+use crate::level::is_reflective;
 use crate::view::ViewBindings;
 
 const CULLINGS: [FaceCulling; 4] =
     [FaceCulling::BackCcw, FaceCulling::BackCw, FaceCulling::None, FaceCulling::NoneCw];
+
+/// The G-buffer's per-material numbers (roughness, metallic, transmission, 1 if textured)
+/// and per-draw ones (x: 1 if the surface counts as reflective for the reflector mask: its
+/// instance's `extras.ppr.reflector`, else [`is_reflective`]).
+pub const GBUFFER_SURFACES: SurfaceRules =
+    SurfaceRules { material_params: gbuffer_material_params, draw_params: gbuffer_draw_params };
+
+fn gbuffer_material_params(m: &Material) -> [f32; 4] {
+    [m.roughness, m.metallic, m.transmission, if m.base_color_texture.is_some() { 1.0 } else { 0.0 }]
+}
+
+fn gbuffer_draw_params(m: &Material, instance: &MeshInstance) -> [u32; 4] {
+    [u32::from(instance.reflector_hint.unwrap_or_else(|| is_reflective(m))), 0, 0, 0]
+}
 
 /// Whether a view sees the scene directly or through a mirror (which flips the winding).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -61,59 +79,23 @@ fn culling_index(culling: FaceCulling) -> usize {
 impl GBufferPass {
     /// Builds the eight pipelines.
     pub fn new(device: &wgpu::Device, layouts: &SceneLayouts) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("gbuffer shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/gbuffer.wgsl").into()),
-        });
-        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("gbuffer pipeline layout"),
-            bind_group_layouts: &[Some(&layouts.view), Some(&layouts.material), Some(&layouts.draw)],
-            immediate_size: 0,
-        });
+        let module = scene_raster_module(device, "gbuffer shader", include_str!("../shaders/gbuffer.wgsl"));
+        let layout = scene_pipeline_layout(device, "gbuffer pipeline layout", layouts);
+        let targets =
+            [Some(COLOR_FORMAT.into()), Some(NORMAL_FORMAT.into()), Some(REFLECTOR_ID_FORMAT.into())];
         let make = |depth: DepthMode, culling: FaceCulling| {
-            let (front_face, cull_mode) = match culling {
-                FaceCulling::BackCcw => (wgpu::FrontFace::Ccw, Some(wgpu::Face::Back)),
-                FaceCulling::BackCw => (wgpu::FrontFace::Cw, Some(wgpu::Face::Back)),
-                FaceCulling::None => (wgpu::FrontFace::Ccw, None),
-                FaceCulling::NoneCw => (wgpu::FrontFace::Cw, None),
-            };
-            let compare = ppr_runtime::Projection { depth, ..Default::default() }.depth_compare();
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(&format!("gbuffer pipeline ({depth:?} depth, {culling:?})")),
-                layout: Some(&layout),
-                vertex: wgpu::VertexState {
-                    module: &shader,
-                    entry_point: Some("vs_main"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(LevelMeshes::vertex_layout())],
+            raster_pipeline(
+                device,
+                &RasterPipelineDesc {
+                    label: &format!("gbuffer pipeline ({depth:?} depth, {culling:?})"),
+                    layout: &layout,
+                    module: &module,
+                    culling,
+                    depth_compare: ppr_runtime::Projection { depth, ..Default::default() }.depth_compare(),
+                    depth_write: true,
+                    targets: &targets,
                 },
-                primitive: wgpu::PrimitiveState {
-                    topology: wgpu::PrimitiveTopology::TriangleList,
-                    front_face,
-                    cull_mode,
-                    ..Default::default()
-                },
-                depth_stencil: Some(wgpu::DepthStencilState {
-                    format: DEPTH_FORMAT,
-                    depth_write_enabled: Some(true),
-                    depth_compare: Some(compare),
-                    stencil: Default::default(),
-                    bias: Default::default(),
-                }),
-                multisample: Default::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &shader,
-                    entry_point: Some("fs_main"),
-                    compilation_options: Default::default(),
-                    targets: &[
-                        Some(COLOR_FORMAT.into()),
-                        Some(NORMAL_FORMAT.into()),
-                        Some(REFLECTOR_ID_FORMAT.into()),
-                    ],
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
+            )
         };
         let row = |depth| CULLINGS.map(|c| make(depth, c));
         Self { pipelines: [row(DepthMode::Standard), row(DepthMode::Reversed)] }
@@ -130,36 +112,16 @@ impl GBufferPass {
         let t = draw.targets;
         let [r, g, b, a] = draw.background;
         let far = ppr_runtime::Projection { depth: draw.depth, ..Default::default() }.far_depth();
-        let color = |view, clear| {
-            Some(wgpu::RenderPassColorAttachment {
-                view,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear), store: wgpu::StoreOp::Store },
-            })
+        let label = match draw.kind {
+            ViewKind::Direct => "gbuffer pass",
+            ViewKind::Mirrored => "gbuffer pass (mirrored view)",
         };
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some(match draw.kind {
-                ViewKind::Direct => "gbuffer pass",
-                ViewKind::Mirrored => "gbuffer pass (mirrored view)",
-            }),
-            color_attachments: &[
-                color(&t.color.view, wgpu::Color { r, g, b, a }),
-                color(&t.normal.view, wgpu::Color::TRANSPARENT),
-                color(&t.reflector_id.view, wgpu::Color::TRANSPARENT),
-            ],
-            depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &t.depth.view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(far),
-                    store: wgpu::StoreOp::Store,
-                }),
-                stencil_ops: None,
-            }),
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
+        let colours = [
+            (&t.color.view, wgpu::Color { r, g, b, a }),
+            (&t.normal.view, wgpu::Color::TRANSPARENT),
+            (&t.reflector_id.view, wgpu::Color::TRANSPARENT),
+        ];
+        let mut pass = begin_raster_pass(encoder, label, &colours, &t.depth.view, far);
         views.bind(&mut pass, draw.slot);
         for culling in CULLINGS {
             let pass_culling = match draw.kind {
@@ -167,7 +129,7 @@ impl GBufferPass {
                 ViewKind::Mirrored => culling.mirrored(),
             };
             pass.set_pipeline(&self.pipelines[depth_index(draw.depth)][culling_index(pass_culling)]);
-            meshes.record_draws(&mut pass, culling);
+            meshes.record_draws(&mut pass, |d| d.culling == culling);
         }
     }
 }

@@ -1,54 +1,13 @@
 //! The G-buffer textures of one view: colour, depth, world normal and reflector id.
 
-/// Format of the linear HDR colour target (what the runtime reads).
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
-/// Format of the depth target (what the runtime reads).
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// The colour and depth formats (what the runtime reads) and the texture-with-view type
+/// are `ppr-scene-gpu`'s, shared with the walkthrough.
+pub use ppr_scene_gpu::{COLOR_FORMAT, DEPTH_FORMAT, Target};
+
 /// Format of the world-normal target (xyz: unit normal, w: 1 where geometry was drawn).
 pub const NORMAL_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 /// Format of the reflector-id target (0: none, i + 1: reflector i).
 pub const REFLECTOR_ID_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Uint;
-
-/// One texture and its default view.
-pub struct Target {
-    /// The texture.
-    pub texture: wgpu::Texture,
-    /// A view of the whole texture (depth-only for the depth target).
-    pub view: wgpu::TextureView,
-}
-
-impl Target {
-    /// A 2D texture of `size` with the given format and usage.
-    pub fn new(
-        device: &wgpu::Device,
-        label: &str,
-        size: [u32; 2],
-        format: wgpu::TextureFormat,
-        usage: wgpu::TextureUsages,
-    ) -> Self {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        });
-        let aspect = if format.is_depth_stencil_format() {
-            wgpu::TextureAspect::DepthOnly
-        } else {
-            wgpu::TextureAspect::All
-        };
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some(label),
-            aspect,
-            ..Default::default()
-        });
-        Self { texture, view }
-    }
-}
 
 /// The render targets of the scene raster for one view; all can be sampled and copied.
 pub struct GBuffer {

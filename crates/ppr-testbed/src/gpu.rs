@@ -1,4 +1,7 @@
-//! The headless GPU context: instance, adapter, device and queue, with the adapter recorded.
+//! The headless GPU context: instance, adapter, device and queue (opened by
+//! `ppr-scene-gpu`'s `request_device`), with the adapter recorded.
+
+use ppr_scene_gpu::{DeviceRequest, GpuDevice, request_device};
 
 use crate::TestbedError;
 
@@ -32,36 +35,9 @@ impl GpuContext {
     /// [`TestbedError::NoAdapter`] when no adapter exists (tests must fail, not skip), or
     /// [`TestbedError::NoDevice`] when the adapter refuses the device.
     pub fn new_headless() -> Result<Self, TestbedError> {
-        pollster::block_on(Self::new_headless_async())
-    }
-
-    async fn new_headless_async() -> Result<Self, TestbedError> {
         let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let power_preference =
-            wgpu::PowerPreference::from_env().unwrap_or(wgpu::PowerPreference::HighPerformance);
-        let adapter = instance
-            .request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference,
-                force_fallback_adapter: false,
-                compatible_surface: None,
-                apply_limit_buckets: false,
-            })
-            .await
-            .map_err(|e| TestbedError::NoAdapter(e.to_string()))?;
-        let adapter_info = adapter.get_info();
-        let required_features = adapter.features() & OPTIONAL_FEATURES;
-        let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("ppr-testbed device"),
-                required_features,
-                required_limits: adapter.limits(),
-                ..Default::default()
-            })
-            .await
-            .map_err(|e| TestbedError::NoDevice {
-                adapter: adapter_info.name.clone(),
-                reason: e.to_string(),
-            })?;
+        let request = DeviceRequest { label: "ppr-testbed device", optional_features: OPTIONAL_FEATURES };
+        let GpuDevice { adapter, device, queue, adapter_info } = request_device(&instance, None, &request)?;
         Ok(Self { instance, adapter, device, queue, adapter_info })
     }
 

@@ -2,8 +2,10 @@
 
 use ppr_format::{FormatError, ReflectorSet, ValidatedSet};
 use ppr_runtime::{Camera, FrameInputs, ReflectionRenderer, ReflectionSettings, RendererDesc};
+use ppr_scene_gpu::layout_entries::unfilterable_texture_entry;
 
 use crate::composite::CompositeParams;
+use crate::gbuffer_targets::Target;
 use crate::previous_frame_feed::{FeedInputs, PREVIOUS_FRAME_COPY, PreviousFrameFeed};
 use crate::target_clear::clear_target;
 use crate::technique::{ReflectionInputs, ReflectionTechnique};
@@ -42,16 +44,7 @@ struct LayerMerge {
 
 impl LayerMerge {
     fn new(device: &wgpu::Device) -> Self {
-        let texture = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::COMPUTE,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let texture = |binding| unfilterable_texture_entry(binding, wgpu::ShaderStages::COMPUTE);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("testbed layer merge"),
             entries: &[
@@ -152,22 +145,11 @@ impl PprTechnique {
     /// The main and layer targets for a frame of `size`, (re)created when it changes.
     fn layer_targets(&mut self, size: [u32; 2]) -> &LayerTargets {
         if self.layer_targets.as_ref().is_none_or(|t| t.size != size) {
-            let target = |label| {
-                self.device
-                    .create_texture(&wgpu::TextureDescriptor {
-                        label: Some(label),
-                        size: wgpu::Extent3d { width: size[0], height: size[1], depth_or_array_layers: 1 },
-                        mip_level_count: 1,
-                        sample_count: 1,
-                        dimension: wgpu::TextureDimension::D2,
-                        format: ppr_runtime::OUTPUT_FORMAT,
-                        usage: wgpu::TextureUsages::STORAGE_BINDING
-                            | wgpu::TextureUsages::TEXTURE_BINDING
-                            | wgpu::TextureUsages::RENDER_ATTACHMENT,
-                        view_formats: &[],
-                    })
-                    .create_view(&Default::default())
-            };
+            let usage = wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::RENDER_ATTACHMENT;
+            let target =
+                |label| Target::new(&self.device, label, size, ppr_runtime::OUTPUT_FORMAT, usage).view;
             let (main, layer) = (target("testbed ppr main output"), target("testbed ppr layer output"));
             self.layer_targets = Some(LayerTargets { size, main, layer });
         }

@@ -3,6 +3,8 @@
 //! point's position and whether the main view shows that point.
 
 use ppr_runtime::Camera;
+use ppr_scene_gpu::layout_entries::{storage_entry, texture_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::screen_pass_module;
 
 use crate::gbuffer_targets::{GBuffer, Target};
 use crate::mirror_camera::MirroredView;
@@ -172,44 +174,15 @@ pub struct MirrorReference {
 impl MirrorReference {
     /// Builds the resolve pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
-        let shader = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("reference resolve shader"),
-            source: wgpu::ShaderSource::Wgsl(include_str!("../shaders/reference.wgsl").into()),
-        });
-        let tex = |binding, sample_type| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type,
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let shader =
+            screen_pass_module(device, "reference resolve shader", include_str!("../shaders/reference.wgsl"));
+        let tex = |binding, sample_type| texture_entry(binding, wgpu::ShaderStages::FRAGMENT, sample_type);
         let float = wgpu::TextureSampleType::Float { filterable: false };
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("reference resolve layout"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: true,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT, true),
+                storage_entry(1, wgpu::ShaderStages::FRAGMENT),
                 tex(2, wgpu::TextureSampleType::Uint),
                 tex(3, float),
                 tex(4, float),

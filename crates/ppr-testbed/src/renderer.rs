@@ -2,19 +2,19 @@
 
 use ppr_format::ReflectorSet;
 use ppr_runtime::Camera;
+use ppr_scene_gpu::LevelMeshes;
 
 use crate::bounce_composite::{BounceCompositePass, BounceTargets};
 use crate::bounce_plan::{BounceParent, BouncePlan, BounceRoot, BounceScene, plan_bounces};
 use crate::composite::CompositeParams;
-use crate::gbuffer::{GBufferDraw, GBufferPass, ViewKind};
+use crate::gbuffer::{GBUFFER_SURFACES, GBufferDraw, GBufferPass, ViewKind};
 use crate::gbuffer_targets::GBuffer;
 use crate::level::Level;
-use crate::mesh::LevelMeshes;
 use crate::mirror_camera::{MirrorClipping, mirrored_view};
 use crate::mirror_chain::ChainedView;
 use crate::reference::{MirrorReference, OnScreenTolerance, ReferenceBindings, ReferenceTargets};
 use crate::reflector_planes::{ReflectorPlane, group_by_plane, may_be_visible};
-use crate::scene_layouts::SceneLayouts;
+use crate::scene_layouts::{SceneLayouts, gbuffer_layouts};
 use crate::view::{Lighting, ReflectorMaskParams, ReflectorShape, ViewBindings, ViewUniform};
 
 /// Linear background colour of the testbed (what a view shows where nothing is drawn).
@@ -109,11 +109,11 @@ impl LevelRenderer {
     /// # Panics
     /// If `level` breaks the invariants of [`Level::validate`].
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, level: &Level, reflectors: &ReflectorSet) -> Self {
-        let layouts = SceneLayouts::new(device);
+        let layouts = gbuffer_layouts(device);
         let gbuffer_pass = GBufferPass::new(device, &layouts);
         let reference_pass = MirrorReference::new(device);
         let bounce_pass = BounceCompositePass::new(device);
-        let meshes = LevelMeshes::new(device, queue, &layouts, level);
+        let meshes = LevelMeshes::new(device, queue, &layouts, level, &GBUFFER_SURFACES);
         let views = ViewBindings::new(device, &layouts, 1, 1);
         let mut renderer = Self {
             layouts,

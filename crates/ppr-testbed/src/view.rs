@@ -1,27 +1,14 @@
 //! Per-view GPU data of the scene raster: view uniforms in dynamic slots (the main view and
 //! one per mirrored view) and the reflector shapes, camera-relative.
 
-use glam::{DVec3, Mat4, Vec3};
+use glam::{DVec3, Mat4};
 use ppr_format::ReflectorSet;
 
 use crate::scene_layouts::{SceneLayouts, uniform_stride};
 
-/// Lighting of the G-buffer pass: one directional light plus ambient, no shadows.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Lighting {
-    /// Direction towards the light (world space, normalised when used).
-    pub direction: Vec3,
-    /// Linear intensity of the light (multiplies Lambert's cosine).
-    pub intensity: f32,
-    /// Linear ambient colour added to the light.
-    pub ambient: [f32; 3],
-}
-
-impl Default for Lighting {
-    fn default() -> Self {
-        Self { direction: Vec3::new(0.35, 1.0, 0.55), intensity: 0.85, ambient: [0.25, 0.25, 0.27] }
-    }
-}
+/// Lighting of the G-buffer pass: one directional light plus ambient, no shadows
+/// (`ppr-scene-gpu`'s, the walkthrough's too).
+pub use ppr_scene_gpu::Lighting;
 
 /// How reflector pixels are recognised in the G-buffer pass (see [`ViewUniform::mask`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,11 +61,11 @@ impl ViewUniform {
         mask: &ReflectorMaskParams,
         shape_count: u32,
     ) -> Self {
-        let l = lighting.direction.normalize_or(Vec3::Y);
+        let (light, ambient) = lighting.uniform_vectors();
         Self {
             clip_from_rel: clip_from_rel.to_cols_array_2d(),
-            light: [l.x, l.y, l.z, lighting.intensity],
-            ambient: [lighting.ambient[0], lighting.ambient[1], lighting.ambient[2], 0.0],
+            light,
+            ambient,
             mask: [shape_count, u32::from(mask.require_reflective_material), 0, 0],
             tolerance: [mask.plane_tolerance, mask.plane_tolerance_per_metre, mask.min_normal_cos, 0.0],
         }

@@ -27,12 +27,7 @@ struct Composite {
 @group(0) @binding(2) var reflection: texture_2d<f32>;
 @group(0) @binding(3) var reflection_weight: texture_2d<f32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    // One triangle covering the screen.
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
+// `vs_main`: the full-screen triangle of ppr-scene-gpu's fullscreen_triangle.wgsl.
 
 // Narkowicz's fit of the ACES filmic curve.
 fn tonemap(x: vec3<f32>) -> vec3<f32> {

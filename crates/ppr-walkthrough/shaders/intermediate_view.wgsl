@@ -16,11 +16,7 @@ struct IntermediateView {
 @group(0) @binding(0) var<uniform> params: IntermediateView;
 @group(0) @binding(1) var<storage, read> intermediate: array<u32>;
 
-@vertex
-fn vs_main(@builtin(vertex_index) i: u32) -> @builtin(position) vec4<f32> {
-    let uv = vec2<f32>(f32((i << 1u) & 2u), f32(i & 2u));
-    return vec4<f32>(uv * 2.0 - 1.0, 0.0, 1.0);
-}
+// `vs_main`: the full-screen triangle of ppr-scene-gpu's fullscreen_triangle.wgsl.
 
 // Packing basis (minor, major) -> screen space, as ppr_to_screen.
 fn to_screen(v: vec2<f32>, basis: u32) -> vec2<f32> {

@@ -1,36 +1,21 @@
 //! The `--camera` argument: a camera of the level by name, or
-//! `"eye=x,y,z;target=x,y,z;fov=60"` (optionally `up=`, `near=`, `far=`), as `ppr-render`
-//! takes it, so a headless frame and the testbed's frame can be asked for the same view.
+//! `"eye=x,y,z;target=x,y,z;fov=60"` (optionally `up=`, `near=`, `far=`), read by
+//! `ppr-scene-gpu`'s `camera_spec` as `ppr-render` reads it, so a headless frame and the
+//! testbed's frame can be asked for the same view; a level without cameras is seen whole.
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::Result;
 use glam::{DVec3, Vec3};
-use ppr_runtime::{Camera, DepthMode, Projection};
+use ppr_runtime::{Camera, Projection};
+use ppr_scene_gpu::CameraPick;
+/// Depth convention and far plane applied to whichever camera is picked, and the parser of
+/// `eye=...;target=...;fov=...`.
+pub use ppr_scene_gpu::{ProjectionChoice, parse_camera};
 
 use crate::gltf_level::{LevelCamera, LevelData};
 
-/// Depth convention and far plane, applied to whichever camera is picked.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ProjectionChoice {
-    pub depth: DepthMode,
-    /// Replace the far plane by an infinite one.
-    pub infinite_far: bool,
-}
-
 /// The runtime camera of a level camera, with its field of view and near/far planes.
 pub fn level_camera(camera: &LevelCamera, choice: ProjectionChoice) -> Camera {
-    let (position, rotation) = camera.position_rotation();
-    let far = if choice.infinite_far { None } else { camera.zfar };
-    Camera {
-        position,
-        rotation,
-        projection: Projection {
-            fov_y: camera.yfov,
-            near: camera.znear,
-            far,
-            depth: choice.depth,
-            matrix: None,
-        },
-    }
+    camera.to_runtime_camera_f64(choice)
 }
 
 /// The camera `spec` names: `None` is the level's first camera (or a view of the whole
@@ -39,17 +24,11 @@ pub fn level_camera(camera: &LevelCamera, choice: ProjectionChoice) -> Camera {
 /// # Errors
 /// An unknown name (the error lists the level's cameras) or text that does not parse.
 pub fn pick_camera(level: &LevelData, spec: Option<&str>, choice: ProjectionChoice) -> Result<Camera> {
-    match spec {
-        None => Ok(level
-            .cameras
-            .first()
-            .map_or_else(|| overview_camera(level, choice), |c| level_camera(c, choice))),
-        Some(text) if text.contains('=') => parse_camera(text, choice),
-        Some(name) => level.camera(name).map(|c| level_camera(c, choice)).ok_or_else(|| {
-            let names: Vec<&str> = level.cameras.iter().map(|c| c.name.as_str()).collect();
-            anyhow!("no camera {name:?} in the level (it has: {})", names.join(", "))
-        }),
-    }
+    Ok(match ppr_scene_gpu::pick_camera(level, spec, choice)? {
+        CameraPick::Level(camera) => level_camera(camera, choice),
+        CameraPick::Described(camera) => camera,
+        CameraPick::None => overview_camera(level, choice),
+    })
 }
 
 /// A camera outside the level's bounds looking at their centre.
@@ -67,56 +46,10 @@ pub fn overview_camera(level: &LevelData, choice: ProjectionChoice) -> Camera {
     Camera::look_at(eye, centre, Vec3::Y, projection)
 }
 
-/// Parses `"eye=x,y,z;target=x,y,z;fov=60"` (degrees; `up`, `near`, `far` optional).
-///
-/// # Errors
-/// A missing or malformed key, a degenerate view or projection.
-pub fn parse_camera(text: &str, choice: ProjectionChoice) -> Result<Camera> {
-    let mut eye = None;
-    let mut target = None;
-    let mut up = Vec3::Y;
-    let mut projection = Projection { depth: choice.depth, ..Projection::default() };
-    for part in text.split(';').map(str::trim).filter(|p| !p.is_empty()) {
-        let (key, value) = part.split_once('=').ok_or_else(|| anyhow!("`{part}` is not key=value"))?;
-        let number = |v: &str| v.trim().parse::<f64>().with_context(|| format!("`{key}`: {v:?}"));
-        let vector = |v: &str| -> Result<DVec3> {
-            let xs = v.split(',').map(number).collect::<Result<Vec<_>>>()?;
-            match xs.as_slice() {
-                [x, y, z] => Ok(DVec3::new(*x, *y, *z)),
-                _ => bail!("`{key}` needs three numbers x,y,z"),
-            }
-        };
-        match key.trim() {
-            "eye" => eye = Some(vector(value)?),
-            "target" => target = Some(vector(value)?),
-            "up" => up = vector(value)?.as_vec3(),
-            "fov" => projection.fov_y = (number(value)? as f32).to_radians(),
-            "near" => projection.near = number(value)? as f32,
-            "far" => projection.far = Some(number(value)? as f32),
-            other => bail!("unknown key `{other}` (expected eye, target, up, fov, near, far)"),
-        }
-    }
-    if choice.infinite_far {
-        projection.far = None;
-    }
-    let eye = eye.ok_or_else(|| anyhow!("camera {text:?}: `eye` is missing"))?;
-    let target = target.ok_or_else(|| anyhow!("camera {text:?}: `target` is missing"))?;
-    if (target - eye).length() < 1e-9 {
-        bail!("camera {text:?}: `eye` and `target` are the same point");
-    }
-    if !(projection.fov_y > 0.0 && projection.fov_y < std::f32::consts::PI) {
-        bail!("camera {text:?}: `fov` must be in (0, 180) degrees");
-    }
-    if !(projection.near > 0.0 && projection.near.is_finite())
-        || projection.far.is_some_and(|f| f <= projection.near)
-    {
-        bail!("camera {text:?}: `near` must be positive and below `far`");
-    }
-    Ok(Camera::look_at(eye, target, up, projection))
-}
-
 #[cfg(test)]
 mod tests {
+    use ppr_runtime::DepthMode;
+
     use super::*;
 
     #[test]

@@ -3,6 +3,9 @@
 //! swapchain image or the screenshot target). Also the debug views of the reflection
 //! buffer and the weight.
 
+use ppr_scene_gpu::layout_entries::{unfilterable_texture_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::with_fullscreen_triangle;
+
 use crate::forward_pass::BACKGROUND;
 use crate::frame_targets::FrameTargets;
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
@@ -53,35 +56,24 @@ pub struct CompositePass {
 impl CompositePass {
     /// Builds the pipeline for outputs of `format` (sRGB or not: encoded accordingly).
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, format: wgpu::TextureFormat) -> Self {
-        let texture = |binding| wgpu::BindGroupLayoutEntry {
-            binding,
-            visibility: wgpu::ShaderStages::FRAGMENT,
-            ty: wgpu::BindingType::Texture {
-                sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                view_dimension: wgpu::TextureViewDimension::D2,
-                multisampled: false,
-            },
-            count: None,
-        };
+        let texture = |binding| unfilterable_texture_entry(binding, wgpu::ShaderStages::FRAGMENT);
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("walkthrough composite"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT, false),
                 texture(1),
                 texture(2),
                 texture(3),
             ],
         });
-        let pipeline = fullscreen_pipeline(device, "walkthrough composite", WGSL, &layout, format, None);
+        let pipeline = fullscreen_pipeline(
+            device,
+            "walkthrough composite",
+            &with_fullscreen_triangle(WGSL),
+            &layout,
+            format,
+            None,
+        );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("walkthrough composite"),
             size: size_of::<CompositeUniform>() as u64,

@@ -8,49 +8,12 @@
 //! | `depth` | `Depth32Float` | forward pass | PPR (classify, projection) |
 //! | `reflection` | `Rgba16Float`, storage | PPR reflection pass | composite |
 
-/// Format of the lit scene colour (what PPR reflects).
-pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
+/// The lit scene colour's format (what PPR reflects), the depth format PPR reads, and a
+/// texture with its view: `ppr-scene-gpu`'s, the testbed's G-buffer's too.
+pub use ppr_scene_gpu::{COLOR_FORMAT, DEPTH_FORMAT, Target};
+
 /// Format of the per-pixel reflection weight.
 pub const WEIGHT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R8Unorm;
-/// Format of the depth buffer PPR reads.
-pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
-
-/// A texture and its default view.
-pub struct Target {
-    pub texture: wgpu::Texture,
-    pub view: wgpu::TextureView,
-}
-
-impl Target {
-    fn new(
-        device: &wgpu::Device,
-        label: &str,
-        [width, height]: [u32; 2],
-        format: wgpu::TextureFormat,
-        usage: wgpu::TextureUsages,
-    ) -> Self {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some(label),
-            size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format,
-            usage,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&wgpu::TextureViewDescriptor {
-            label: Some(label),
-            aspect: if format.has_depth_aspect() {
-                wgpu::TextureAspect::DepthOnly
-            } else {
-                wgpu::TextureAspect::All
-            },
-            ..Default::default()
-        });
-        Self { texture, view }
-    }
-}
 
 /// Every per-view texture of a frame.
 pub struct FrameTargets {

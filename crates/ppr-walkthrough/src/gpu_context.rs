@@ -1,9 +1,11 @@
-//! Instance, adapter, device and queue, with the device-lost callback and an error handler
+//! Instance, adapter, device and queue (opened by `ppr-scene-gpu`'s `request_device`), with
+//! the device-lost callback and an error handler
 //! that reports instead of panicking, so a lost device is recreated rather than fatal.
 
 use std::sync::{Arc, Mutex};
 
-use anyhow::{Context, Result};
+use anyhow::{Result, anyhow};
+use ppr_scene_gpu::{DeviceRequest, GpuDevice, GpuInitError, request_device};
 
 /// Features used when the adapter has them (never required): per-pass GPU times.
 const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY;
@@ -59,31 +61,18 @@ impl GpuContext {
     /// # Errors
     /// No adapter, or the adapter refuses the device.
     pub fn new(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Self> {
-        pollster::block_on(Self::new_async(instance, surface))
-    }
-
-    async fn new_async(instance: &wgpu::Instance, surface: Option<&wgpu::Surface<'_>>) -> Result<Self> {
-        let power_preference =
-            wgpu::PowerPreference::from_env().unwrap_or(wgpu::PowerPreference::HighPerformance);
-        let adapter = instance
-            .request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference,
-                force_fallback_adapter: false,
-                compatible_surface: surface,
-                apply_limit_buckets: false,
-            })
-            .await
-            .context("no GPU adapter (on a machine without a GPU, install Mesa's llvmpipe: libegl-mesa0)")?;
-        let adapter_info = adapter.get_info();
-        let (device, queue) = adapter
-            .request_device(&wgpu::DeviceDescriptor {
-                label: Some("ppr-walkthrough device"),
-                required_features: adapter.features() & OPTIONAL_FEATURES,
-                required_limits: adapter.limits(),
-                ..Default::default()
-            })
-            .await
-            .with_context(|| format!("{}: cannot create a device", adapter_info.name))?;
+        let request = DeviceRequest { label: "ppr-walkthrough device", optional_features: OPTIONAL_FEATURES };
+        let GpuDevice { adapter, device, queue, adapter_info } = request_device(instance, surface, &request)
+            .map_err(|e| match e {
+                GpuInitError::NoAdapter(_) => {
+                    anyhow!(
+                        "no GPU adapter (on a machine without a GPU, install Mesa's llvmpipe: libegl-mesa0)"
+                    )
+                }
+                GpuInitError::NoDevice { adapter, reason } => {
+                    anyhow!("{adapter}: cannot create a device: {reason}")
+                }
+            })?;
 
         let reports = Arc::new(Mutex::new(DeviceReports::default()));
         let lost = Arc::clone(&reports);

@@ -82,7 +82,8 @@ impl HeadlessSession {
 /// [`BadInput`] when the level does not load or the set is missing, invalid or refused
 /// (another level's); otherwise the camera, no adapter, a readback or the PNG failing.
 pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
-    let level = LevelData::load(&args.level).map_err(|e| BadInput(format!("{e:#}")))?;
+    let level =
+        LevelData::load(&args.level).map_err(|e| BadInput(format!("{:#}", anyhow::Error::from(e))))?;
     let camera = pick_camera(&level, args.camera.as_deref(), args.projection())?;
     let set_path = args.set_path();
     let watcher = ReflectorSetWatcher::start(&set_path);

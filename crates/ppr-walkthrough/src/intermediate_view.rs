@@ -4,6 +4,8 @@
 //! buffer is cleared every frame (with indirect dispatch only active tiles are).
 
 use ppr_runtime::EncodingLayout;
+use ppr_scene_gpu::layout_entries::{storage_entry, uniform_entry};
+use ppr_scene_gpu::screen_pass::with_fullscreen_triangle;
 
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 
@@ -37,30 +39,18 @@ impl IntermediateView {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("walkthrough intermediate view"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Storage { read_only: true },
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::FRAGMENT, false),
+                storage_entry(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
-        let pipeline =
-            fullscreen_pipeline(device, "walkthrough intermediate view", WGSL, &layout, format, None);
+        let pipeline = fullscreen_pipeline(
+            device,
+            "walkthrough intermediate view",
+            &with_fullscreen_triangle(WGSL),
+            &layout,
+            format,
+            None,
+        );
         let uniform = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("walkthrough intermediate view"),
             size: size_of::<IntermediateViewUniform>() as u64,

@@ -4,8 +4,9 @@
 //! Start with [`walkthrough_renderer`]: the game's own forward pass, then the runtime's two
 //! calls per frame (`prepare`, `encode`), then the game's composite. Around it:
 //!
-//! - [`gltf_level`], [`level_meshes`], [`forward_pass`]: the level rendered the way a game
-//!   would (camera-relative draws, one sun, a reflection weight per pixel);
+//! - [`gltf_level`], [`forward_pass`]: the level rendered the way a game would
+//!   (camera-relative draws, one sun, a reflection weight per pixel), on `ppr-scene-gpu`'s
+//!   level, GPU meshes and raster pieces (shared with the testbed);
 //! - [`composite_pass`], [`intermediate_view`], [`overlay_pass`]: the image on screen, the
 //!   debug view of PPR's intermediate buffer, and the status text ([`status_line`],
 //!   [`overlay_text`], [`bitmap_font`]);
@@ -15,8 +16,9 @@
 //!   [`gpu_context`] (device-lost callback, recovery); [`headless`] for tests and CI, which
 //!   refuses a missing or refused set with [`bad_input::EXIT_BAD_INPUT`].
 //!
-//! Architecture invariant: from this workspace it uses only `ppr-runtime` and
-//! `ppr-format`, like a game.
+//! Architecture invariant: for reflections it uses only `ppr-runtime` and `ppr-format`,
+//! like a game; its level and raster pieces come from `ppr-level` and `ppr-scene-gpu`
+//! (standing in for a game's own loader and renderer), never from the testbed.
 
 pub mod bad_input;
 pub mod bitmap_font;
@@ -25,7 +27,6 @@ pub mod cli;
 pub mod composite_pass;
 pub mod controls;
 pub mod fly_camera;
-pub mod forward_layouts;
 pub mod forward_pass;
 pub mod frame_clock;
 pub mod frame_targets;
@@ -36,7 +37,6 @@ pub mod headless;
 pub mod hot_reload;
 pub mod intermediate_view;
 pub mod level_match;
-pub mod level_meshes;
 pub mod offscreen_target;
 pub mod overlay_pass;
 pub mod overlay_text;

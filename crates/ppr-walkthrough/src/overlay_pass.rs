@@ -1,6 +1,8 @@
 //! Draws the on-screen text image ([`crate::overlay_text::TextImage`]) over the frame.
 //! The texture is re-uploaded only when the text changes.
 
+use ppr_scene_gpu::layout_entries::{unfilterable_texture_entry, uniform_entry};
+
 use crate::fullscreen_pipeline::{begin_output_pass, fullscreen_pipeline};
 use crate::overlay_text::TextImage;
 
@@ -34,26 +36,8 @@ impl OverlayPass {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("walkthrough overlay"),
             entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::VERTEX_FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, false),
+                unfilterable_texture_entry(1, wgpu::ShaderStages::FRAGMENT),
             ],
         });
         let pipeline = fullscreen_pipeline(

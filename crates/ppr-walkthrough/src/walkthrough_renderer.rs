@@ -19,12 +19,12 @@ use std::sync::Arc;
 
 use ppr_format::{FormatError, ReflectorSet, ValidatedSet};
 use ppr_runtime::{Camera, Choice, DepthMode, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc};
+use ppr_scene_gpu::LevelMeshes;
 
-use crate::forward_pass::{ForwardPass, SceneLight};
+use crate::forward_pass::{FORWARD_SURFACES, ForwardPass, SceneLight};
 use crate::frame_targets::FrameTargets;
 use crate::fullscreen_pipeline::begin_output_pass;
 use crate::gltf_level::LevelData;
-use crate::level_meshes::LevelMeshes;
 use crate::previous_frame::PreviousFrame;
 use crate::screen_passes::{ScreenInputs, ScreenPasses};
 use crate::view_mode::ViewMode;
@@ -60,7 +60,7 @@ impl WalkthroughRenderer {
         depth: DepthMode,
     ) -> Result<Self, FormatError> {
         let forward = ForwardPass::new(device, depth);
-        let meshes = LevelMeshes::new(device, queue, &forward.layouts, level);
+        let meshes = LevelMeshes::new(device, queue, &forward.layouts, level, &FORWARD_SURFACES);
         let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc { timestamps: true });
         // Glass panels and water planes as separate layers need `FrameInputs::layer_output`
         // and a composite that knows their surfaces; this walkthrough keeps to the main

@@ -43,7 +43,8 @@ pub const START_SPEED: f64 = 2.0;
 /// # Errors
 /// Loading the level or the camera, no event loop, or a fatal GPU error at start-up.
 pub fn run_window(args: Args) -> Result<()> {
-    let level = LevelData::load(&args.level).map_err(|e| BadInput(format!("{e:#}")))?;
+    let level =
+        LevelData::load(&args.level).map_err(|e| BadInput(format!("{:#}", anyhow::Error::from(e))))?;
     let camera = pick_camera(&level, args.camera.as_deref(), args.projection())?;
     let sets = ReflectorSetState::new("not read yet").with_level_match(args.level_match(&level.source_hash));
     let event_loop = EventLoop::new().context("cannot open a window (no display?); try --headless")?;

@@ -1,15 +1,19 @@
-//! A level uploaded to the GPU: one vertex and one index buffer, material bind groups, and
-//! per-draw camera-relative transforms rewritten every frame.
+//! A level uploaded to the GPU: one vertex and one index buffer, a bind group per material
+//! (`material_textures.rs`), and per-draw uniforms in one buffer with dynamic offsets,
+//! rewritten each frame camera-relative (`world - camera`, in `f64`).
 
 use std::ops::Range;
 
 use glam::{DMat3, DMat4, DVec3, Mat4};
+use ppr_level::AlphaMode;
 use wgpu::util::DeviceExt;
 
-use crate::level::{Level, LevelTexture, Vertex, is_reflective};
+use crate::level_data::{LevelData, Material, MeshInstance, Vertex};
+use crate::material_textures::material_bind_groups;
 use crate::scene_layouts::{SceneLayouts, uniform_stride};
 
-/// Per-draw uniform (group 2): camera-relative model matrix, normal matrix and flags.
+/// Per-draw uniform (group 2): camera-relative model matrix, normal matrix and the pass's
+/// own numbers.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct DrawUniform {
@@ -17,8 +21,8 @@ pub struct DrawUniform {
     pub model: [[f32; 4]; 4],
     /// World-from-object for normals: inverse transpose of the linear part (w column unused).
     pub normal_matrix: [[f32; 4]; 4],
-    /// x: 1 if the surface counts as reflective for the reflector mask; y, z, w: 0.
-    pub flags: [u32; 4],
+    /// What [`SurfaceRules::draw_params`] gives the draw (`scene_raster.wgsl`'s `Draw.params`).
+    pub params: [u32; 4],
 }
 const _: () = assert!(size_of::<DrawUniform>() == 144);
 
@@ -30,10 +34,20 @@ pub struct MaterialUniform {
     pub base_color: [f32; 4],
     /// Linear emissive colour; w is 1 for unlit materials.
     pub emissive: [f32; 4],
-    /// Roughness, metallic, transmission, 1 if textured.
+    /// What [`SurfaceRules::material_params`] gives the material.
     pub params: [f32; 4],
 }
 const _: () = assert!(size_of::<MaterialUniform>() == 48);
+
+/// The numbers a pass reads per material and per draw besides the shared ones: its rules
+/// for which surfaces reflect and how they are shaded.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceRules {
+    /// `MaterialUniform::params` of a material.
+    pub material_params: fn(&Material) -> [f32; 4],
+    /// `DrawUniform::params` of a draw: its material on its instance.
+    pub draw_params: fn(&Material, &MeshInstance) -> [u32; 4],
+}
 
 /// How a draw's triangles are culled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -62,6 +76,22 @@ impl FaceCulling {
             Self::NoneCw => Self::None,
         }
     }
+
+    /// The pipeline's front face and cull mode.
+    pub fn primitive_state(self) -> wgpu::PrimitiveState {
+        let (front_face, cull_mode) = match self {
+            Self::BackCcw => (wgpu::FrontFace::Ccw, Some(wgpu::Face::Back)),
+            Self::BackCw => (wgpu::FrontFace::Cw, Some(wgpu::Face::Back)),
+            Self::None => (wgpu::FrontFace::Ccw, None),
+            Self::NoneCw => (wgpu::FrontFace::Cw, None),
+        };
+        wgpu::PrimitiveState {
+            topology: wgpu::PrimitiveTopology::TriangleList,
+            front_face,
+            cull_mode,
+            ..Default::default()
+        }
+    }
 }
 
 /// One indexed draw: a primitive of an instance.
@@ -75,6 +105,8 @@ pub struct MeshDraw {
     pub slot: u32,
     /// Culling and winding of the draw (unmirrored view).
     pub culling: FaceCulling,
+    /// Whether the material's alpha mode is `BLEND` (a pass may draw these apart).
+    pub blended: bool,
 }
 
 /// A level's GPU resources.
@@ -84,20 +116,26 @@ pub struct LevelMeshes {
     draws: Vec<MeshDraw>,
     /// World transform of each draw (its instance's), kept in f64 for the per-frame update.
     draw_worlds: Vec<DMat4>,
-    draw_flags: Vec<[u32; 4]>,
+    draw_params: Vec<[u32; 4]>,
     draw_buffer: wgpu::Buffer,
     draw_stride: u64,
     draw_bind_group: wgpu::BindGroup,
     material_bind_groups: Vec<wgpu::BindGroup>,
-    _textures: Vec<wgpu::Texture>,
 }
 
 impl LevelMeshes {
-    /// Uploads geometry, materials and textures (with CPU-made mip chains).
+    /// Uploads geometry, materials and textures (with CPU-made mip chains); `rules` gives
+    /// the pass's own numbers per material and draw.
     ///
     /// # Panics
-    /// If the level breaks the invariants of [`Level::validate`].
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, layouts: &SceneLayouts, level: &Level) -> Self {
+    /// If the level breaks the invariants of [`LevelData::validate`].
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layouts: &SceneLayouts,
+        level: &LevelData,
+        rules: &SurfaceRules,
+    ) -> Self {
         let mut vertices: Vec<Vertex> = Vec::new();
         let mut indices: Vec<u32> = Vec::new();
         // Each mesh's primitives are uploaded once; instances share them.
@@ -115,7 +153,7 @@ impl LevelMeshes {
         }
         let mut draws = Vec::new();
         let mut draw_worlds = Vec::new();
-        let mut draw_flags = Vec::new();
+        let mut draw_params = Vec::new();
         for inst in &level.instances {
             for (range, material) in &prim_ranges[inst.mesh] {
                 let m = &level.materials[*material];
@@ -125,11 +163,11 @@ impl LevelMeshes {
                     (false, false) => FaceCulling::BackCcw,
                     (false, true) => FaceCulling::BackCw,
                 };
-                let reflective = inst.reflector_hint.unwrap_or_else(|| is_reflective(m));
                 let slot = u32::try_from(draws.len()).expect("fewer than 2^32 draws");
-                draws.push(MeshDraw { indices: range.clone(), material: *material, slot, culling });
+                let blended = matches!(m.alpha_mode, AlphaMode::Blend);
+                draws.push(MeshDraw { indices: range.clone(), material: *material, slot, culling, blended });
                 draw_worlds.push(inst.world);
-                draw_flags.push([u32::from(reflective), 0, 0, 0]);
+                draw_params.push((rules.draw_params)(m, inst));
             }
         }
         if vertices.is_empty() {
@@ -167,26 +205,25 @@ impl LevelMeshes {
                 }),
             }],
         });
-        let (material_bind_groups, textures) = upload_materials(device, queue, layouts, level);
+        let material_bind_groups = material_bind_groups(device, queue, layouts, level, rules.material_params);
         Self {
             vertex_buffer,
             index_buffer,
             draws,
             draw_worlds,
-            draw_flags,
+            draw_params,
             draw_buffer,
             draw_stride,
             draw_bind_group,
             material_bind_groups,
-            _textures: textures,
         }
     }
 
     /// Rewrites every draw's model matrix relative to `camera_position` (f64, then f32).
     pub fn update_camera(&self, queue: &wgpu::Queue, camera_position: DVec3) {
         let mut bytes = vec![0u8; self.draw_stride as usize * self.draws.len()];
-        for (k, (world, flags)) in self.draw_worlds.iter().zip(&self.draw_flags).enumerate() {
-            let u = draw_uniform(world, camera_position, *flags);
+        for (k, (world, params)) in self.draw_worlds.iter().zip(&self.draw_params).enumerate() {
+            let u = draw_uniform(world, camera_position, *params);
             let at = k * self.draw_stride as usize;
             bytes[at..at + size_of::<DrawUniform>()].copy_from_slice(bytemuck::bytes_of(&u));
         }
@@ -200,11 +237,11 @@ impl LevelMeshes {
         &self.draws
     }
 
-    /// Records every draw of the given culling into `pass` (pipeline and group 0 already set).
-    pub fn record_draws(&self, pass: &mut wgpu::RenderPass<'_>, culling: FaceCulling) {
+    /// Records every draw `keep` accepts into `pass` (pipeline and group 0 already set).
+    pub fn record_draws(&self, pass: &mut wgpu::RenderPass<'_>, keep: impl Fn(&MeshDraw) -> bool) {
         pass.set_vertex_buffer(0, self.vertex_buffer.slice(..));
         pass.set_index_buffer(self.index_buffer.slice(..), wgpu::IndexFormat::Uint32);
-        for d in self.draws.iter().filter(|d| d.culling == culling) {
+        for d in self.draws.iter().filter(|d| keep(d)) {
             let offset =
                 u32::try_from(u64::from(d.slot) * self.draw_stride).expect("draw buffer under 4 GiB");
             pass.set_bind_group(1, &self.material_bind_groups[d.material], &[]);
@@ -213,7 +250,7 @@ impl LevelMeshes {
         }
     }
 
-    /// The vertex buffer layout of [`Vertex`].
+    /// The vertex buffer layout of [`Vertex`] (locations 0 position, 1 normal, 2 UV).
     pub fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
         const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
             wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
@@ -229,7 +266,7 @@ impl LevelMeshes {
 ///
 /// The translation is subtracted in f64 before rounding, so objects far from the origin
 /// keep their precision near the camera.
-pub fn draw_uniform(world: &DMat4, camera_position: DVec3, flags: [u32; 4]) -> DrawUniform {
+pub fn draw_uniform(world: &DMat4, camera_position: DVec3, params: [u32; 4]) -> DrawUniform {
     let mut rel = *world;
     rel.w_axis = (world.w_axis.truncate() - camera_position).extend(1.0);
     let linear = DMat3::from_mat4(*world);
@@ -237,96 +274,6 @@ pub fn draw_uniform(world: &DMat4, camera_position: DVec3, flags: [u32; 4]) -> D
     DrawUniform {
         model: rel.as_mat4().to_cols_array_2d(),
         normal_matrix: Mat4::from_mat3(normal.as_mat3()).to_cols_array_2d(),
-        flags,
+        params,
     }
-}
-
-fn upload_materials(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    layouts: &SceneLayouts,
-    level: &Level,
-) -> (Vec<wgpu::BindGroup>, Vec<wgpu::Texture>) {
-    let white = LevelTexture { name: "white".into(), width: 1, height: 1, rgba8: vec![255; 4] };
-    let mut textures: Vec<wgpu::Texture> =
-        level.textures.iter().map(|t| upload_texture(device, queue, t)).collect();
-    textures.push(upload_texture(device, queue, &white));
-    let views: Vec<wgpu::TextureView> = textures.iter().map(|t| t.create_view(&Default::default())).collect();
-    let white_view = views.last().expect("the white texture was just pushed");
-    let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-        label: Some("level meshes: base colour sampler"),
-        address_mode_u: wgpu::AddressMode::Repeat,
-        address_mode_v: wgpu::AddressMode::Repeat,
-        mag_filter: wgpu::FilterMode::Linear,
-        min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: wgpu::MipmapFilterMode::Linear,
-        ..Default::default()
-    });
-    let groups = level
-        .materials
-        .iter()
-        .map(|m| {
-            let uniform = MaterialUniform {
-                base_color: m.base_color,
-                emissive: [m.emissive[0], m.emissive[1], m.emissive[2], if m.unlit { 1.0 } else { 0.0 }],
-                params: [
-                    m.roughness,
-                    m.metallic,
-                    m.transmission,
-                    if m.base_color_texture.is_some() { 1.0 } else { 0.0 },
-                ],
-            };
-            let buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("level meshes: material uniform"),
-                contents: bytemuck::bytes_of(&uniform),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let view = m.base_color_texture.map_or(white_view, |t| &views[t]);
-            device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("level meshes: material bind group"),
-                layout: &layouts.material,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(view) },
-                    wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
-                ],
-            })
-        })
-        .collect();
-    (groups, textures)
-}
-
-/// Uploads an sRGB RGBA8 texture with a full mip chain (box-filtered on the CPU, in sRGB space).
-fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, texture: &LevelTexture) -> wgpu::Texture {
-    let (w, h) = (texture.width.max(1), texture.height.max(1));
-    let mip_count = 32 - w.max(h).leading_zeros();
-    let gpu = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("level meshes: base colour texture"),
-        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
-        mip_level_count: mip_count,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: wgpu::TextureFormat::Rgba8UnormSrgb,
-        usage: wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST,
-        view_formats: &[],
-    });
-    let mut level_image = image::RgbaImage::from_raw(w, h, texture.rgba8.clone())
-        .unwrap_or_else(|| image::RgbaImage::from_pixel(w, h, image::Rgba([255, 0, 255, 255])));
-    for mip in 0..mip_count {
-        let (mw, mh) = level_image.dimensions();
-        queue.write_texture(
-            wgpu::TexelCopyTextureInfo {
-                texture: &gpu,
-                mip_level: mip,
-                origin: wgpu::Origin3d::ZERO,
-                aspect: wgpu::TextureAspect::All,
-            },
-            level_image.as_raw(),
-            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * mw), rows_per_image: Some(mh) },
-            wgpu::Extent3d { width: mw, height: mh, depth_or_array_layers: 1 },
-        );
-        let (nw, nh) = ((mw / 2).max(1), (mh / 2).max(1));
-        level_image = image::imageops::resize(&level_image, nw, nh, image::imageops::FilterType::Triangle);
-    }
-    gpu
 }
