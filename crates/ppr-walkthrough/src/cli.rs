@@ -58,6 +58,14 @@ pub struct Args {
     /// Start with anti-bleeding off.
     #[arg(long)]
     pub no_anti_bleed: bool,
+    /// Start with glossy reflections off (key G): reflectors with roughness reflect as
+    /// mirrors.
+    #[arg(long)]
+    pub no_glossy: bool,
+    /// Render both eyes of a headset side by side (64 mm apart, each half the width), PPR
+    /// for both from one renderer (`prepare_stereo` + `encode_stereo`).
+    #[arg(long)]
+    pub stereo: bool,
     /// Start feeding PPR the previous frame's composite as its colour input (key P): a
     /// mirror seen in a mirror gains one bounce per frame.
     #[arg(long)]
@@ -113,6 +121,7 @@ impl Args {
             holes: !self.no_holes,
             filtering: !self.no_filter,
             anti_bleeding: !self.no_anti_bleed,
+            glossy: !self.no_glossy,
             resolution: self.tier,
             ..ppr_runtime::ReflectionSettings::ALL
         }

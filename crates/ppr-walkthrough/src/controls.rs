@@ -10,6 +10,8 @@ pub enum Action {
     ToggleHoles,
     ToggleFiltering,
     ToggleAntiBleeding,
+    /// Blur the reflections of reflectors with roughness (glossy) or show them as mirrors.
+    ToggleGlossy,
     /// Feed the previous frame's composite to PPR as its colour input.
     TogglePreviousFrame,
     NextView,
@@ -25,6 +27,7 @@ pub fn action(key: KeyCode) -> Option<Action> {
         KeyCode::KeyH => Action::ToggleHoles,
         KeyCode::KeyF => Action::ToggleFiltering,
         KeyCode::KeyB => Action::ToggleAntiBleeding,
+        KeyCode::KeyG => Action::ToggleGlossy,
         KeyCode::KeyP => Action::TogglePreviousFrame,
         KeyCode::KeyV => Action::NextView,
         KeyCode::KeyC => Action::NextCamera,
@@ -59,6 +62,7 @@ mod tests {
         assert_eq!(action(KeyCode::KeyH), Some(Action::ToggleHoles));
         assert_eq!(action(KeyCode::KeyB), Some(Action::ToggleAntiBleeding));
         assert_eq!(action(KeyCode::KeyP), Some(Action::TogglePreviousFrame));
+        assert_eq!(action(KeyCode::KeyG), Some(Action::ToggleGlossy));
         assert_eq!(action(KeyCode::KeyW), None);
         let mut keys = MoveKeys::default();
         assert!(update_move_keys(&mut keys, KeyCode::KeyW, true));

@@ -144,7 +144,12 @@ pub fn run_headless(args: &Args) -> Result<HeadlessFrame> {
         let text = rasterise(&lines, scale_for_width(args.size[0]), args.size[0].saturating_sub(16));
         session.screen.overlay.set_text(&session.ctx.device, &session.ctx.queue, text);
         let outputs = [(&session.screen, &session.target.view)];
-        plan = Some(session.renderer.render(&camera, args.size, args.view, &outputs));
+        plan = Some(if args.stereo {
+            let [left, _] = session.renderer.render_stereo(&camera, args.size, args.view, &outputs);
+            left
+        } else {
+            session.renderer.render(&camera, args.size, args.view, &outputs)
+        });
         timings = session.renderer.ppr.read_timings();
         frame_ms = Some(started.elapsed().as_secs_f64() * 1e3);
         if args.lose_device_at == Some(frame) {

@@ -44,6 +44,7 @@ pub mod previous_frame;
 pub mod reflectivity;
 pub mod screen_passes;
 pub mod status_line;
+pub mod stereo_frame;
 pub mod surface_state;
 pub mod texture_readback;
 pub mod view_mode;

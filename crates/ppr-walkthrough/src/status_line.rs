@@ -127,10 +127,11 @@ pub fn status_lines(s: &StatusInputs<'_>) -> Vec<TextLine> {
     let st = s.settings;
     lines.push(TextLine::new(
         format!(
-            "[H] holes {}  [F] filtering {}  [B] anti-bleeding {}  [V] view: {}{}",
+            "[H] holes {}  [F] filtering {}  [B] anti-bleeding {}  [G] glossy {}  [V] view: {}{}",
             on_off(st.holes),
             on_off(st.filtering),
             on_off(st.anti_bleeding),
+            on_off(st.glossy),
             s.view.label(),
             if s.keys { format!("  speed {:.2} m/s", s.speed) } else { String::new() }
         ),

@@ -31,19 +31,22 @@ use crate::view_mode::ViewMode;
 
 /// The level, its passes and PPR on one device.
 pub struct WalkthroughRenderer {
-    device: wgpu::Device,
-    queue: wgpu::Queue,
-    meshes: LevelMeshes,
-    forward: ForwardPass,
+    pub(crate) device: wgpu::Device,
+    pub(crate) queue: wgpu::Queue,
+    pub(crate) meshes: LevelMeshes,
+    pub(crate) forward: ForwardPass,
     /// PPR: settings (holes, filtering, anti-bleeding) and plan parameters are public.
     pub ppr: ReflectionRenderer,
     /// The sun of the forward pass.
     pub light: SceneLight,
-    targets: Option<FrameTargets>,
+    /// The (left eye's, with `render_stereo`) frame targets.
+    pub(crate) targets: Option<FrameTargets>,
+    /// The right eye's targets and each eye's composited image (`stereo_frame.rs`).
+    pub(crate) stereo: Option<crate::stereo_frame::StereoTargets>,
     /// PPR reads the previous frame's composite as its colour (one more bounce per frame
     /// in a mirror seen in a mirror); the first frame after switching on reads the scene.
     pub feed_previous_frame: bool,
-    previous: Option<PreviousFrame>,
+    pub(crate) previous: Option<PreviousFrame>,
 }
 
 impl WalkthroughRenderer {
@@ -78,6 +81,7 @@ impl WalkthroughRenderer {
             ppr,
             light: SceneLight::default(),
             targets: None,
+            stereo: None,
             feed_previous_frame: false,
             previous: None,
         })

@@ -109,6 +109,14 @@ impl WindowSession {
         let caps = surface.get_capabilities(&ctx.adapter);
         config.format = caps.formats.iter().copied().find(|f| f.is_srgb()).unwrap_or(config.format);
         config.present_mode = wgpu::PresentMode::AutoVsync;
+        // Stereo copies each eye into its half of the swapchain image.
+        if args.stereo {
+            anyhow::ensure!(
+                caps.usages.contains(wgpu::TextureUsages::COPY_DST),
+                "--stereo: this window's surface cannot be copied into (no COPY_DST usage); use the headless mode"
+            );
+            config.usage |= wgpu::TextureUsages::COPY_DST;
+        }
         let mut renderer =
             WalkthroughRenderer::new(&ctx.device, &ctx.queue, level, sets.set(), args.projection().depth)?;
         renderer.ppr.settings = settings;
@@ -199,6 +207,7 @@ impl WalkthroughApp {
             Action::ToggleHoles => self.settings.holes = !self.settings.holes,
             Action::ToggleFiltering => self.settings.filtering = !self.settings.filtering,
             Action::ToggleAntiBleeding => self.settings.anti_bleeding = !self.settings.anti_bleeding,
+            Action::ToggleGlossy => self.settings.glossy = !self.settings.glossy,
             // Kept in `args`, so that a session rebuilt after a device loss keeps it.
             Action::TogglePreviousFrame => self.args.feed_previous_frame = !self.args.feed_previous_frame,
             Action::NextView => self.view = self.view.next(),
@@ -296,7 +305,12 @@ impl WalkthroughApp {
             outputs.push((passes, &target.view));
         }
         let camera = self.fly.camera();
-        self.plan = Some(session.renderer.render(&camera, size, self.view, &outputs));
+        self.plan = Some(if self.args.stereo {
+            let [left, _] = session.renderer.render_stereo(&camera, size, self.view, &outputs);
+            left
+        } else {
+            session.renderer.render(&camera, size, self.view, &outputs)
+        });
         if self.timings_read.elapsed() >= TIMINGS_EVERY {
             self.timings = session.renderer.ppr.read_timings();
             self.timings_read = Instant::now();

@@ -12,3 +12,4 @@ mod headless_vs_testbed;
 mod hot_reload;
 mod previous_frame;
 mod shared_scenes;
+mod stereo;
