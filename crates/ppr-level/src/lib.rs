@@ -34,8 +34,9 @@
 //! view (sparse only) may not describe more bytes than the file's buffers hold; buffer
 //! URIs must be relative paths inside the level's folder (no absolute path, no `..`, no
 //! scheme) to regular files, and only `byteLength` bytes are read; the node tree is walked
-//! without recursion, refusing cycles and trees deeper than [`MAX_NODE_DEPTH`]. Every
-//! error names the file and the field ([`LoadError`]).
+//! without recursion, refusing cycles and trees deeper than [`MAX_NODE_DEPTH`]; what the
+//! nodes place (instances, triangles, vertices) is counted as they are read, against
+//! [`LoadParams::max_triangles`]. Every error names the file and the field ([`LoadError`]).
 //!
 //! Normals: a primitive without `NORMAL` gets flat normals, as the glTF specification
 //! asks (§3.7.2.1): its triangles are unwelded so each corner carries its face's normal.
