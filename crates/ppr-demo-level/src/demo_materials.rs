@@ -42,7 +42,7 @@ impl DemoMaterials {
                 // BLEND with a low alpha is a fallback for renderers without the extension.
                 base_color: [0.92, 0.96, 1.0, 0.25],
                 transmission: Some(1.0),
-                alpha_mode: Some("BLEND"),
+                alpha_mode: gltf::json::material::AlphaMode::Blend,
                 double_sided: true,
                 ..MaterialSpec::opaque("glass", [1.0, 1.0, 1.0], 0.0, 0.0)
             }),

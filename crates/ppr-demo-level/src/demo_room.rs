@@ -9,10 +9,10 @@ use glam::{DVec2, DVec3};
 
 use crate::demo_materials::DemoMaterials;
 use crate::exact_trig::{rotation_x_degrees, rotation_y_degrees, sin_cos_degrees};
-use crate::gltf_document::{PprExtras, PprOverride};
 use crate::ground_truth::{NonReflectorSpec, ReflectorKind, ReflectorSpec};
 use crate::level_builder::{LevelBuilder, NodeId, NodeSpec, NodeTransform};
 use crate::mesh_data::{BoxFace, MeshData};
+use crate::ppr_extras::{PprExtras, PprOverride};
 
 /// Room interior: x in `[-ROOM_HALF_X, ROOM_HALF_X]`, z in `[-ROOM_HALF_Z, ROOM_HALF_Z]`.
 pub const ROOM_HALF_X: f64 = 8.0;

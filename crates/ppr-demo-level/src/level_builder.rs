@@ -1,11 +1,15 @@
-//! `LevelBuilder`: collects textures, materials, meshes, nodes and cameras, packs the binary buffer and writes the glTF document.
+//! `LevelBuilder`: collects textures, materials, meshes, nodes and cameras, packs the binary buffer and writes the glTF document (`gltf::json`'s types, serialised by serde).
+
+use std::collections::BTreeMap;
 
 use glam::{DMat4, DQuat, DVec3};
+use gltf::json;
+use gltf::json::validation::{Checked, USize64};
 
 use crate::exact_trig::look_at_rotation;
-use crate::gltf_document as gltf;
 use crate::mesh_data::MeshData;
 use crate::png_encoder::{RgbImage, png_bytes};
+use crate::ppr_extras::PprExtras;
 
 /// Index of a texture of the level.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,8 +38,8 @@ pub struct MaterialSpec {
     pub roughness: f32,
     /// `KHR_materials_transmission`'s `transmissionFactor`, if any.
     pub transmission: Option<f32>,
-    /// glTF `alphaMode` (`None`: OPAQUE).
-    pub alpha_mode: Option<&'static str>,
+    /// glTF `alphaMode`.
+    pub alpha_mode: json::material::AlphaMode,
     pub double_sided: bool,
 }
 
@@ -49,7 +53,7 @@ impl MaterialSpec {
             metallic,
             roughness,
             transmission: None,
-            alpha_mode: None,
+            alpha_mode: json::material::AlphaMode::Opaque,
             double_sided: false,
         }
     }
@@ -100,7 +104,7 @@ pub struct NodeSpec {
     pub parent: Option<NodeId>,
     pub mesh: Option<MeshId>,
     pub transform: NodeTransform,
-    pub extras: Option<gltf::PprExtras>,
+    pub extras: Option<PprExtras>,
 }
 
 impl NodeSpec {
@@ -119,7 +123,7 @@ impl NodeSpec {
         Self { name, parent, mesh: Some(mesh), transform, extras: None }
     }
 
-    pub fn with_extras(self, extras: gltf::PprExtras) -> Self {
+    pub fn with_extras(self, extras: PprExtras) -> Self {
         Self { extras: Some(extras), ..self }
     }
 }
@@ -139,23 +143,45 @@ struct StoredMesh {
 pub struct StoredGeometry {
     pub positions: Vec<[f32; 3]>,
     pub indices: Vec<u32>,
-    attributes: gltf::Attributes,
+    attributes: Attributes,
     indices_accessor: usize,
+}
+
+/// The accessors of a geometry's vertex attributes.
+#[derive(Clone, Copy, Debug)]
+struct Attributes {
+    position: usize,
+    normal: usize,
+    texcoord_0: usize,
+}
+
+impl Attributes {
+    fn to_gltf(self) -> BTreeMap<Checked<json::mesh::Semantic>, json::Index<json::Accessor>> {
+        use json::mesh::Semantic;
+        [
+            (Semantic::Positions, self.position),
+            (Semantic::Normals, self.normal),
+            (Semantic::TexCoords(0), self.texcoord_0),
+        ]
+        .into_iter()
+        .map(|(semantic, accessor)| (Checked::Valid(semantic), index(accessor)))
+        .collect()
+    }
 }
 
 /// Builds the glTF document and its binary buffer.
 #[derive(Default)]
 pub struct LevelBuilder {
     bin: Vec<u8>,
-    buffer_views: Vec<gltf::BufferView>,
-    accessors: Vec<gltf::Accessor>,
-    images: Vec<gltf::Image>,
-    textures: Vec<gltf::Texture>,
+    buffer_views: Vec<json::buffer::View>,
+    accessors: Vec<json::Accessor>,
+    images: Vec<json::Image>,
+    textures: Vec<json::Texture>,
     materials: Vec<MaterialSpec>,
     geometries: Vec<StoredGeometry>,
     meshes: Vec<StoredMesh>,
     nodes: Vec<StoredNode>,
-    cameras: Vec<gltf::Camera>,
+    cameras: Vec<json::Camera>,
 }
 
 const SAMPLER_LINEAR_REPEAT: usize = 0;
@@ -169,11 +195,20 @@ impl LevelBuilder {
     /// repeating) that samples it.
     pub fn add_texture(&mut self, name: &'static str, image: &RgbImage) -> TextureId {
         let view = self.push_view(&png_bytes(image), None);
-        self.images.push(gltf::Image { name: name.to_owned(), buffer_view: view, mime_type: "image/png" });
-        self.textures.push(gltf::Texture {
-            name: name.to_owned(),
-            sampler: SAMPLER_LINEAR_REPEAT,
-            source: self.images.len() - 1,
+        self.images.push(json::Image {
+            name: Some(name.to_owned()),
+            buffer_view: Some(index(view)),
+            mime_type: Some(json::image::MimeType("image/png".to_owned())),
+            uri: None,
+            extensions: None,
+            extras: None,
+        });
+        self.textures.push(json::Texture {
+            name: Some(name.to_owned()),
+            sampler: Some(index(SAMPLER_LINEAR_REPEAT)),
+            source: index(self.images.len() - 1),
+            extensions: None,
+            extras: None,
         });
         TextureId(self.textures.len() - 1)
     }
@@ -199,34 +234,36 @@ impl LevelBuilder {
                 max[k] = max[k].max(p[k]);
             }
         }
-        let position =
-            self.push_f32_accessor(positions.as_flattened(), "VEC3", Some((min.to_vec(), max.to_vec())));
-        let normal = self.push_f32_accessor(normals.as_flattened(), "VEC3", None);
-        let texcoord_0 = self.push_f32_accessor(uvs.as_flattened(), "VEC2", None);
+        let position = self.push_f32_accessor(
+            positions.as_flattened(),
+            json::accessor::Type::Vec3,
+            Some((min.to_vec(), max.to_vec())),
+        );
+        let normal = self.push_f32_accessor(normals.as_flattened(), json::accessor::Type::Vec3, None);
+        let texcoord_0 = self.push_f32_accessor(uvs.as_flattened(), json::accessor::Type::Vec2, None);
 
         let fits_u16 = positions.len() <= usize::from(u16::MAX);
-        let (bytes, component_type): (Vec<u8>, u32) = if fits_u16 {
+        let (bytes, component_type) = if fits_u16 {
             let short =
                 |i: &u32| u16::try_from(*i).expect("checked: fewer than 65535 vertices").to_le_bytes();
-            (mesh.indices.iter().flat_map(short).collect(), gltf::COMPONENT_U16)
+            (mesh.indices.iter().flat_map(short).collect::<Vec<u8>>(), json::accessor::ComponentType::U16)
         } else {
-            (mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect(), gltf::COMPONENT_U32)
+            (mesh.indices.iter().flat_map(|i| i.to_le_bytes()).collect(), json::accessor::ComponentType::U32)
         };
-        let view = self.push_view(&bytes, Some(gltf::TARGET_ELEMENT_ARRAY_BUFFER));
-        self.accessors.push(gltf::Accessor {
-            buffer_view: view,
+        let view = self.push_view(&bytes, Some(json::buffer::Target::ElementArrayBuffer));
+        self.accessors.push(accessor(
+            view,
             component_type,
-            count: mesh.indices.len(),
-            kind: "SCALAR",
-            min: None,
-            max: None,
-        });
+            mesh.indices.len(),
+            json::accessor::Type::Scalar,
+            None,
+        ));
         let indices_accessor = self.accessors.len() - 1;
 
         self.geometries.push(StoredGeometry {
             positions,
             indices: mesh.indices.clone(),
-            attributes: gltf::Attributes { position, normal, texcoord_0 },
+            attributes: Attributes { position, normal, texcoord_0 },
             indices_accessor,
         });
         GeometryId(self.geometries.len() - 1)
@@ -249,10 +286,20 @@ impl LevelBuilder {
 
     /// A root node `name` holding a perspective camera at `eye` looking at `target`.
     pub fn add_camera(&mut self, name: &'static str, eye: DVec3, target: DVec3, yfov_radians: f32) -> NodeId {
-        self.cameras.push(gltf::Camera {
-            name: name.to_owned(),
-            kind: "perspective",
-            perspective: gltf::Perspective { yfov: yfov_radians, znear: 0.05, zfar: 200.0 },
+        self.cameras.push(json::Camera {
+            name: Some(name.to_owned()),
+            type_: Checked::Valid(json::camera::Type::Perspective),
+            perspective: Some(json::camera::Perspective {
+                aspect_ratio: None,
+                yfov: yfov_radians,
+                zfar: Some(200.0),
+                znear: 0.05,
+                extensions: None,
+                extras: None,
+            }),
+            orthographic: None,
+            extensions: None,
+            extras: None,
         });
         let transform = NodeTransform::at(eye).with_rotation(look_at_rotation(eye, target));
         let node = self.add_node(NodeSpec::group(name, None, transform));
@@ -289,65 +336,95 @@ impl LevelBuilder {
     }
 
     /// The glTF JSON document and the binary buffer it refers to.
-    pub fn to_document(&self, scene_name: &str) -> (gltf::Document, Vec<u8>) {
+    pub fn to_document(&self, scene_name: &str) -> (json::Root, Vec<u8>) {
         let mut bin = self.bin.clone();
         bin.resize(bin.len().next_multiple_of(4), 0);
         let uses_transmission = self.materials.iter().any(|m| m.transmission.is_some());
-        let document = gltf::Document {
-            asset: gltf::Asset {
-                version: "2.0",
-                generator: "ppr-demo-level (cargo run -p ppr-demo-level)",
-                copyright: "PPR toolkit contributors, MIT OR Apache-2.0",
+        let document = json::Root {
+            asset: json::Asset {
+                version: "2.0".to_owned(),
+                generator: Some("ppr-demo-level (cargo run -p ppr-demo-level)".to_owned()),
+                copyright: Some("PPR toolkit contributors, MIT OR Apache-2.0".to_owned()),
+                ..json::Asset::default()
             },
-            extensions_used: if uses_transmission { vec!["KHR_materials_transmission"] } else { Vec::new() },
-            scene: 0,
-            scenes: vec![gltf::Scene {
-                name: scene_name.to_owned(),
-                nodes: (0..self.nodes.len()).filter(|&i| self.nodes[i].spec.parent.is_none()).collect(),
+            extensions_used: if uses_transmission {
+                vec!["KHR_materials_transmission".to_owned()]
+            } else {
+                Vec::new()
+            },
+            scene: Some(index(0)),
+            scenes: vec![json::Scene {
+                name: Some(scene_name.to_owned()),
+                nodes: (0..self.nodes.len())
+                    .filter(|&i| self.nodes[i].spec.parent.is_none())
+                    .map(index)
+                    .collect(),
+                extensions: None,
+                extras: None,
             }],
             nodes: self.nodes.iter().map(stored_node_to_gltf).collect(),
             meshes: self
                 .meshes
                 .iter()
-                .map(|mesh| gltf::Mesh {
-                    name: mesh.name.to_owned(),
+                .map(|mesh| json::Mesh {
+                    name: Some(mesh.name.to_owned()),
                     primitives: mesh
                         .primitives
                         .iter()
-                        .map(|(geometry, material)| gltf::Primitive {
-                            attributes: self.geometries[geometry.0].attributes,
-                            indices: self.geometries[geometry.0].indices_accessor,
-                            material: material.0,
+                        .map(|(geometry, material)| json::mesh::Primitive {
+                            attributes: self.geometries[geometry.0].attributes.to_gltf(),
+                            indices: Some(index(self.geometries[geometry.0].indices_accessor)),
+                            material: Some(index(material.0)),
+                            mode: Checked::Valid(json::mesh::Mode::Triangles),
+                            targets: None,
+                            extensions: None,
+                            extras: None,
                         })
                         .collect(),
+                    weights: None,
+                    extensions: None,
+                    extras: None,
                 })
                 .collect(),
             materials: self.materials.iter().map(material_to_gltf).collect(),
             cameras: self.cameras.clone(),
             textures: self.textures.clone(),
             images: self.images.clone(),
-            samplers: vec![gltf::Sampler {
-                name: "linear_repeat".to_owned(),
-                mag_filter: 9729, // LINEAR
-                min_filter: 9987, // LINEAR_MIPMAP_LINEAR
-                wrap_s: 10497,    // REPEAT
-                wrap_t: 10497,
+            samplers: vec![json::texture::Sampler {
+                name: Some("linear_repeat".to_owned()),
+                mag_filter: Some(Checked::Valid(json::texture::MagFilter::Linear)),
+                min_filter: Some(Checked::Valid(json::texture::MinFilter::LinearMipmapLinear)),
+                wrap_s: Checked::Valid(json::texture::WrappingMode::Repeat),
+                wrap_t: Checked::Valid(json::texture::WrappingMode::Repeat),
+                extensions: None,
+                extras: None,
             }],
             accessors: self.accessors.clone(),
             buffer_views: self.buffer_views.clone(),
-            buffers: vec![gltf::Buffer { byte_length: bin.len() }],
+            buffers: vec![json::Buffer {
+                byte_length: USize64::from(bin.len()),
+                name: None,
+                uri: None,
+                extensions: None,
+                extras: None,
+            }],
+            ..json::Root::default()
         };
         (document, bin)
     }
 
     /// Appends `bytes` to the buffer (4-byte aligned) as a new buffer view.
-    fn push_view(&mut self, bytes: &[u8], target: Option<u32>) -> usize {
+    fn push_view(&mut self, bytes: &[u8], target: Option<json::buffer::Target>) -> usize {
         self.bin.resize(self.bin.len().next_multiple_of(4), 0);
-        self.buffer_views.push(gltf::BufferView {
-            buffer: 0,
-            byte_offset: self.bin.len(),
-            byte_length: bytes.len(),
-            target,
+        self.buffer_views.push(json::buffer::View {
+            buffer: index(0),
+            byte_offset: Some(USize64::from(self.bin.len())),
+            byte_length: USize64::from(bytes.len()),
+            byte_stride: None,
+            target: target.map(Checked::Valid),
+            name: None,
+            extensions: None,
+            extras: None,
         });
         self.bin.extend_from_slice(bytes);
         self.buffer_views.len() - 1
@@ -356,58 +433,93 @@ impl LevelBuilder {
     fn push_f32_accessor(
         &mut self,
         values: &[f32],
-        kind: &'static str,
+        kind: json::accessor::Type,
         bounds: Option<(Vec<f32>, Vec<f32>)>,
     ) -> usize {
-        let components = if kind == "VEC3" { 3 } else { 2 };
         let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_le_bytes()).collect();
-        let view = self.push_view(&bytes, Some(gltf::TARGET_ARRAY_BUFFER));
-        let (min, max) = bounds.unzip();
-        self.accessors.push(gltf::Accessor {
-            buffer_view: view,
-            component_type: gltf::COMPONENT_F32,
-            count: values.len() / components,
-            kind,
-            min,
-            max,
-        });
+        let view = self.push_view(&bytes, Some(json::buffer::Target::ArrayBuffer));
+        let count = values.len() / kind.multiplicity();
+        self.accessors.push(accessor(view, json::accessor::ComponentType::F32, count, kind, bounds));
         self.accessors.len() - 1
     }
 }
 
-fn stored_node_to_gltf(node: &StoredNode) -> gltf::Node {
+/// glTF's index of the `i`-th element of its array.
+fn index<T>(i: usize) -> json::Index<T> {
+    json::Index::new(u32::try_from(i).expect("the demo level has far fewer than 2^32 of anything"))
+}
+
+/// A tightly packed accessor of the whole buffer view `view`, with `min` and `max` when
+/// given.
+fn accessor(
+    view: usize,
+    component_type: json::accessor::ComponentType,
+    count: usize,
+    kind: json::accessor::Type,
+    bounds: Option<(Vec<f32>, Vec<f32>)>,
+) -> json::Accessor {
+    let (min, max) =
+        bounds.map(|(lo, hi)| (serde_json::Value::from(lo), serde_json::Value::from(hi))).unzip();
+    json::Accessor {
+        buffer_view: Some(index(view)),
+        byte_offset: None,
+        count: USize64::from(count),
+        component_type: Checked::Valid(json::accessor::GenericComponentType(component_type)),
+        type_: Checked::Valid(kind),
+        min,
+        max,
+        name: None,
+        normalized: false,
+        sparse: None,
+        extensions: None,
+        extras: None,
+    }
+}
+
+fn stored_node_to_gltf(node: &StoredNode) -> json::Node {
     let transform = node.spec.transform;
     let translation = round_f32(transform.translation.to_array());
     let rotation = round_f32(transform.rotation.to_array());
     let scale = round_f32(transform.scale.to_array());
-    gltf::Node {
-        name: node.spec.name.to_owned(),
-        children: node.children.clone(),
-        mesh: node.spec.mesh.map(|MeshId(i)| i),
-        camera: node.camera,
+    json::Node {
+        name: Some(node.spec.name.to_owned()),
+        children: (!node.children.is_empty()).then(|| node.children.iter().copied().map(index).collect()),
+        mesh: node.spec.mesh.map(|MeshId(i)| index(i)),
+        camera: node.camera.map(index),
         translation: (translation != [0.0; 3]).then_some(translation),
-        rotation: (rotation != [0.0, 0.0, 0.0, 1.0]).then_some(rotation),
+        rotation: (rotation != [0.0, 0.0, 0.0, 1.0]).then_some(json::scene::UnitQuaternion(rotation)),
         scale: (scale != [1.0; 3]).then_some(scale),
-        extras: node.spec.extras.clone(),
+        extras: node.spec.extras.as_ref().map(PprExtras::to_raw),
+        ..json::Node::default()
     }
 }
 
-fn material_to_gltf(material: &MaterialSpec) -> gltf::Material {
-    gltf::Material {
-        name: material.name.to_owned(),
-        pbr_metallic_roughness: gltf::PbrMetallicRoughness {
-            base_color_factor: material.base_color,
-            base_color_texture: material
-                .base_color_texture
-                .map(|TextureId(index)| gltf::TextureInfo { index }),
-            metallic_factor: material.metallic,
-            roughness_factor: material.roughness,
+fn material_to_gltf(material: &MaterialSpec) -> json::Material {
+    json::Material {
+        name: Some(material.name.to_owned()),
+        pbr_metallic_roughness: json::material::PbrMetallicRoughness {
+            base_color_factor: json::material::PbrBaseColorFactor(material.base_color),
+            base_color_texture: material.base_color_texture.map(|TextureId(i)| json::texture::Info {
+                index: index(i),
+                tex_coord: 0,
+                extensions: None,
+                extras: None,
+            }),
+            metallic_factor: json::material::StrengthFactor(material.metallic),
+            roughness_factor: json::material::StrengthFactor(material.roughness),
+            ..json::material::PbrMetallicRoughness::default()
         },
-        alpha_mode: material.alpha_mode,
+        alpha_mode: Checked::Valid(material.alpha_mode),
         double_sided: material.double_sided,
-        extensions: material.transmission.map(|transmission_factor| gltf::MaterialExtensions {
-            transmission: gltf::Transmission { transmission_factor },
+        extensions: material.transmission.map(|factor| json::extensions::material::Material {
+            transmission: Some(json::extensions::material::Transmission {
+                transmission_factor: json::extensions::material::TransmissionFactor(factor),
+                transmission_texture: None,
+                extras: None,
+            }),
+            ..json::extensions::material::Material::default()
         }),
+        ..json::Material::default()
     }
 }
 

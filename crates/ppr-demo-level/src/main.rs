@@ -45,12 +45,12 @@ mod demo_materials;
 mod demo_room;
 mod exact_trig;
 mod generated_level;
-mod gltf_document;
 mod ground_truth;
 mod json_layout;
 mod level_builder;
 mod mesh_data;
 mod png_encoder;
+mod ppr_extras;
 mod procedural_textures;
 mod rectangle_fit;
 

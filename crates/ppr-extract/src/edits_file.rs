@@ -74,7 +74,18 @@ pub fn load_edits(set_path: &Path, set: &ReflectorSet) -> Result<Option<ManualEd
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => return Err(fail(format!("cannot read: {e}"))),
     };
-    let file = EditsFile::from_json_str(&text).map_err(fail)?;
+    parse_edits(&path, &text, set).map(Some)
+}
+
+/// Parses the text of an edits file (`path` only names it in errors) against `set`, as
+/// [`load_edits`] does once it has read the file.
+///
+/// # Errors
+/// [`EditsError::File`] naming `path` and what is wrong (not JSON, another format or
+/// version, an invalid reflector).
+pub fn parse_edits(path: &Path, text: &str, set: &ReflectorSet) -> Result<ManualEdits, EditsError> {
+    let fail = |reason: String| EditsError::File { path: path.to_owned(), reason };
+    let file = EditsFile::from_json_str(text).map_err(fail)?;
     let mut replacements = Vec::with_capacity(file.replacements.len());
     for (i, r) in file.replacements.into_iter().enumerate() {
         let mut created = Vec::with_capacity(r.created.len());
@@ -93,7 +104,7 @@ pub fn load_edits(set_path: &Path, set: &ReflectorSet) -> Result<Option<ManualEd
         replacements.iter().flat_map(|r| r.created.iter().map(|(c, _)| c.id)).collect();
     let edited =
         file.edited.into_iter().filter(|id| set.by_id(*id).is_some() || created.contains(id)).collect();
-    Ok(Some(ManualEdits { edited, replacements }))
+    Ok(ManualEdits { edited, replacements })
 }
 
 impl From<&ManualEdits> for EditsFile {

@@ -210,23 +210,16 @@ impl GltfBuilder {
         self.json["buffers"] = json!([b]);
     }
 
-    /// The `.glb` bytes.
+    /// The `.glb` bytes, packed by `gltf::binary::Glb` (chunks padded to 4 bytes).
     pub fn glb(mut self) -> Vec<u8> {
         self.finish_buffers(None);
-        let mut json = serde_json::to_vec(&self.json).expect("a serde_json::Value always serialises");
-        while !json.len().is_multiple_of(4) {
-            json.push(b' ');
-        }
-        let mut out = b"glTF".to_vec();
-        out.extend(2u32.to_le_bytes());
-        out.extend(((12 + 8 + json.len() + 8 + self.bin.len()) as u32).to_le_bytes());
-        out.extend((json.len() as u32).to_le_bytes());
-        out.extend(0x4E4F534Au32.to_le_bytes());
-        out.extend(&json);
-        out.extend((self.bin.len() as u32).to_le_bytes());
-        out.extend(0x004E4942u32.to_le_bytes());
-        out.extend(&self.bin);
-        out
+        let json = serde_json::to_vec(&self.json).expect("a serde_json::Value always serialises");
+        let glb = gltf::binary::Glb {
+            header: gltf::binary::Header { magic: *b"glTF", version: 2, length: 0 },
+            json: json.into(),
+            bin: Some(self.bin.into()),
+        };
+        glb.to_vec().expect("a level built in code is far below the 4 GiB a .glb can hold")
     }
 
     /// Writes `<dir>/<stem>.gltf` and `<dir>/<stem>.bin`; returns the `.gltf` path.

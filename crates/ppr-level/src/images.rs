@@ -43,7 +43,7 @@ pub(crate) fn read_base_color_textures(
             continue;
         }
         let name = display_name(image.name(), index);
-        match decode(&image, data, base_dir) {
+        match decode(doc, &image, data, base_dir) {
             Ok((width, height, rgba8)) => {
                 textures.push(Texture { name, width, height, rgba8 });
                 texture_of_image.insert(index, textures.len() - 1);
@@ -54,15 +54,29 @@ pub(crate) fn read_base_color_textures(
     (textures, texture_of_image)
 }
 
+/// Decodes `image` of `doc` to RGBA8: `(width, height, texels)`.
+///
+/// The image's JSON is read here rather than through `gltf::Image::source`, which panics on
+/// an image with neither `uri` nor `bufferView`, or a `bufferView` without `mimeType` (the
+/// format is guessed from the bytes, so `mimeType` is not needed).
 pub(crate) fn decode(
+    doc: &gltf::Document,
     image: &gltf::Image,
     data: &BufferData,
     base_dir: &Path,
 ) -> Result<(u32, u32, Vec<u8>), String> {
+    let json = doc.as_json().images.get(image.index()).ok_or("the image does not exist")?;
     let owned;
-    let bytes: &[u8] = match image.source() {
-        gltf::image::Source::View { view, .. } => data.view(&view).map_err(|e| e.to_string())?.bytes,
-        gltf::image::Source::Uri { uri, .. } => match uri::resolve(uri, base_dir)? {
+    let bytes: &[u8] = match (json.buffer_view, json.uri.as_deref()) {
+        (Some(view), _) => {
+            let view = doc
+                .views()
+                .nth(view.value())
+                .ok_or_else(|| format!("`bufferView` {} does not exist", view.value()))?;
+            data.view(&view).map_err(|e| e.to_string())?.bytes
+        }
+        (None, None) => return Err("it has neither `uri` nor `bufferView`".to_owned()),
+        (None, Some(uri)) => match uri::resolve(uri, base_dir)? {
             UriTarget::Data(b) => {
                 owned = b;
                 &owned

@@ -153,23 +153,7 @@ impl Level {
     /// [`LoadError::TooLarge`] past [`MAX_LEVEL_TRIANGLES`]; the position errors of
     /// [`Scene::world_positions`].
     pub fn from_scene(scene: &Scene) -> Result<Self, LoadError> {
-        let path = std::path::Path::new(&scene.path);
-        let mut total = 0usize;
-        for inst in &scene.instances {
-            let mesh = scene.meshes.get(inst.mesh).ok_or_else(|| {
-                scene.broken(format!("instance of node {} names mesh {}", inst.node, inst.mesh))
-            })?;
-            total = mesh.primitives.iter().fold(total, |t, p| t.saturating_add(p.indices.len() / 3));
-        }
-        if total > MAX_LEVEL_TRIANGLES {
-            return Err(LoadError::TooLarge {
-                path: path.to_owned(),
-                field: "nodes".into(),
-                reason: format!(
-                    "the scene places {total} triangles, more than the {MAX_LEVEL_TRIANGLES} a level may hold"
-                ),
-            });
-        }
+        let total = scene.placed_triangles(MAX_LEVEL_TRIANGLES)?;
         let mut level = Level {
             path: scene.path.clone(),
             hash: scene.hash.clone(),

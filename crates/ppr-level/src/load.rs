@@ -7,7 +7,7 @@ use std::path::Path;
 
 use crate::buffers::BufferData;
 use crate::scene_reader::SceneReader;
-use crate::{Level, LoadError, Scene, container, images, materials, roughness_maps};
+use crate::{Level, LoadError, MAX_LEVEL_TRIANGLES, Scene, container, images, materials, roughness_maps};
 
 /// Extensions that change how geometry is stored and that this crate decodes.
 const GEOMETRY_EXTENSIONS: &[&str] =
@@ -50,22 +50,33 @@ pub enum TextureLoading {
 }
 
 /// How a level is loaded.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LoadParams {
     /// Whether textures are decoded.
     pub textures: TextureLoading,
+    /// The most triangles the scene's instances may place in all (and three times as many
+    /// vertices), checked before any instance is transformed: [`MAX_LEVEL_TRIANGLES`] by
+    /// default (a [`Level`] of that size takes about 1.3 GB). A tool that must stay in less
+    /// memory (the fuzzer) sets less.
+    pub max_triangles: usize,
+}
+
+impl Default for LoadParams {
+    fn default() -> Self {
+        Self { textures: TextureLoading::default(), max_triangles: MAX_LEVEL_TRIANGLES }
+    }
 }
 
 impl LoadParams {
     /// Everything a renderer draws, textures included.
     pub fn render() -> Self {
-        Self { textures: TextureLoading::Decode }
+        Self { textures: TextureLoading::Decode, ..Self::default() }
     }
 
     /// Geometry, material factors and roughness maps: what the extractor reads, so that
     /// its reflectors' roughness does not depend on which tool extracted them.
     pub fn geometry() -> Self {
-        Self { textures: TextureLoading::RoughnessOnly }
+        Self { textures: TextureLoading::RoughnessOnly, ..Self::default() }
     }
 }
 
@@ -124,7 +135,8 @@ pub fn load_scene_from_bytes(
     };
     scene.materials = materials::read_materials(path, &doc, &texture_of_image, &roughness_maps)?;
     let default_material = scene.materials.len() - 1;
-    SceneReader { path, doc: &doc, data: &data, default_material }.read(&mut scene)?;
+    let max_triangles = params.max_triangles.min(MAX_LEVEL_TRIANGLES);
+    SceneReader { path, doc: &doc, data: &data, default_material, max_triangles }.read(&mut scene)?;
     scene.check_world_positions()?;
     Ok(scene)
 }

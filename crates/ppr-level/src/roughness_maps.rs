@@ -109,7 +109,7 @@ pub(crate) fn read_roughness_maps(
         }
         let image = texture.source();
         let name = display_name(image.name(), image.index());
-        match decode(&image, data, base_dir) {
+        match decode(doc, &image, data, base_dir) {
             Ok((width, height, rgba8)) if width > 0 && height > 0 => {
                 let sampler = texture.sampler();
                 let map = RoughnessMap {

@@ -238,6 +238,38 @@ impl Scene {
         (lo.x <= hi.x).then_some((lo, hi))
     }
 
+    /// The triangles the instances place in all (each instance counts its mesh's
+    /// triangles), checked against `max_triangles`, as are the vertices they place
+    /// (`3 × max_triangles`), so that neither a node hierarchy that lists a node under many
+    /// parents nor GPU instancing makes a small file place more than that.
+    ///
+    /// # Errors
+    /// [`LoadError::TooLarge`] naming `nodes` and the count; [`LoadError::Invalid`] for an
+    /// instance whose mesh does not exist.
+    pub fn placed_triangles(&self, max_triangles: usize) -> Result<usize, LoadError> {
+        let (mut triangles, mut vertices) = (0usize, 0usize);
+        for inst in &self.instances {
+            let mesh = self.meshes.get(inst.mesh).ok_or_else(|| {
+                self.broken(format!("instance of node {} names mesh {}", inst.node, inst.mesh))
+            })?;
+            for prim in &mesh.primitives {
+                triangles = triangles.saturating_add(prim.indices.len() / 3);
+                vertices = vertices.saturating_add(prim.positions.len());
+            }
+            if triangles > max_triangles || vertices > max_triangles.saturating_mul(3) {
+                return Err(LoadError::TooLarge {
+                    path: Path::new(&self.path).to_owned(),
+                    field: "nodes".into(),
+                    reason: format!(
+                        "the scene places more than {max_triangles} triangles or {} vertices, the most a level may hold",
+                        max_triangles.saturating_mul(3)
+                    ),
+                });
+            }
+        }
+        Ok(triangles)
+    }
+
     pub(crate) fn broken(&self, reason: String) -> LoadError {
         LoadError::Invalid { path: Path::new(&self.path).to_owned(), field: "(scene)".into(), reason }
     }

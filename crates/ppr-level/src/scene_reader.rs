@@ -21,6 +21,62 @@ pub(crate) struct SceneReader<'a> {
     pub data: &'a BufferData,
     /// Index of the glTF default material in the scene's material list.
     pub default_material: usize,
+    /// [`crate::LoadParams::max_triangles`].
+    pub max_triangles: usize,
+}
+
+/// What the instances placed so far add up to: each node visit and each of its
+/// `EXT_mesh_gpu_instancing` instances is one instance carrying its mesh's triangles and
+/// vertices, and its own memory (its node's name is copied into each). Checked before each
+/// node's instances are made, so that the work and memory of a scene stay within
+/// `max_triangles` (and the bytes of that many [`crate::LevelTriangle`]s) however its nodes
+/// multiply.
+#[derive(Default)]
+struct Placed {
+    instances: usize,
+    triangles: usize,
+    vertices: usize,
+    bytes: usize,
+}
+
+impl Placed {
+    fn add(
+        &mut self,
+        reader: &SceneReader,
+        mesh: &Mesh,
+        (copies, name_len): (usize, usize),
+        node: usize,
+    ) -> Result<(), LoadError> {
+        let (triangles, vertices) = mesh.primitives.iter().fold((0usize, 0usize), |(t, v), p| {
+            (t.saturating_add(p.indices.len() / 3), v.saturating_add(p.positions.len()))
+        });
+        self.instances = self.instances.saturating_add(copies);
+        self.triangles = self.triangles.saturating_add(triangles.saturating_mul(copies));
+        self.vertices = self.vertices.saturating_add(vertices.saturating_mul(copies));
+        let one = size_of::<Instance>().saturating_add(name_len);
+        self.bytes = self.bytes.saturating_add(one.saturating_mul(copies));
+        let max = reader.max_triangles;
+        let max_bytes = max.saturating_mul(size_of::<crate::LevelTriangle>());
+        if self.instances > max
+            || self.triangles > max
+            || self.vertices > max.saturating_mul(3)
+            || self.bytes > max_bytes
+        {
+            return Err(LoadError::TooLarge {
+                path: reader.path.to_owned(),
+                field: format!("nodes[{node}]"),
+                reason: format!(
+                    "with this node the scene places {} instances ({} bytes), {} triangles and {} vertices: more than the {max} instances and triangles, {} vertices and {max_bytes} bytes a level may hold",
+                    self.instances,
+                    self.bytes,
+                    self.triangles,
+                    self.vertices,
+                    max.saturating_mul(3)
+                ),
+            });
+        }
+        Ok(())
+    }
 }
 
 /// A glTF mesh read once: its triangle primitives and where it lives in the scene.
@@ -39,6 +95,7 @@ impl SceneReader<'_> {
             PrimitiveReader { path: self.path, data: self.data, default_material: self.default_material };
         let mut meshes: HashMap<usize, ReadMesh> = HashMap::new();
         let mut skipped_primitives = 0usize;
+        let mut placed = Placed::default();
         for i in order {
             let node = &nodes[i];
             let node_name = display_name(node.name(), i);
@@ -90,6 +147,7 @@ impl SceneReader<'_> {
             };
             match node.skin() {
                 Some(skin) if read.geometry.iter().any(|g| g.skin.is_some()) => {
+                    placed.add(self, &scene.meshes[read.scene_mesh], (1, node_name.len()), i)?;
                     let joints = self.joint_matrices(&skin, &worlds)?;
                     let baked = self.bake_skinned(&read.geometry, &joints, worlds[i], i)?;
                     let source = &scene.meshes[read.scene_mesh];
@@ -97,7 +155,9 @@ impl SceneReader<'_> {
                     scene.instances.push(instance(scene.meshes.len() - 1, DMat4::IDENTITY, 0));
                 }
                 _ => {
-                    for (k, world) in self.gpu_instances(node, worlds[i])?.into_iter().enumerate() {
+                    let worlds = self.gpu_instances(node, worlds[i])?;
+                    placed.add(self, &scene.meshes[read.scene_mesh], (worlds.len(), node_name.len()), i)?;
+                    for (k, world) in worlds.into_iter().enumerate() {
                         scene.instances.push(instance(read.scene_mesh, world, k));
                     }
                 }

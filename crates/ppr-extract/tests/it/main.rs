@@ -3,6 +3,7 @@
 mod checks;
 mod cli;
 mod demo_level;
+mod fuzz_corpus;
 mod level_size;
 mod loading;
 mod manual_edits;

@@ -42,7 +42,8 @@ fn the_roughness_map_and_uvs_reach_the_level() {
     assert_eq!(geometry.uvs.len(), geometry.triangles.len());
     // The node mirrors x: corners b and c swap, and their UVs with them.
     assert_eq!(geometry.uvs[0], [[0.0, 0.0], [2.0, 2.0], [0.0, 2.0]]);
-    let skipped = level(textured_floor(), LoadParams { textures: TextureLoading::Skip });
+    let skipped =
+        level(textured_floor(), LoadParams { textures: TextureLoading::Skip, ..LoadParams::default() });
     assert!(skipped.materials[0].roughness_map.is_none() && skipped.uvs.is_empty());
 }
 
