@@ -5,7 +5,9 @@ use crate::procedural_textures;
 
 /// Every material of the level, added to a builder.
 ///
-/// Reflective: `mirror`, `puddle`, `glass`, `water`, `polished_marble`. Everything else has
+/// Reflective: `mirror`, `puddle`, `glass`, `water`, `polished_marble`, and two glossy ones
+/// that blur their reflection: `brushed_metal` (metallic, roughness 0.3) and `rough_water`
+/// (roughness 0.15). Everything else has
 /// roughness ≥ 0.5, metallic 0 and no transmission, except `lacquered_wood` (roughness
 /// 0.2), whose node is marked `{"ppr": {"reflector": false}}`.
 pub struct DemoMaterials {
@@ -14,6 +16,8 @@ pub struct DemoMaterials {
     pub glass: MaterialId,
     pub water: MaterialId,
     pub polished_marble: MaterialId,
+    pub brushed_metal: MaterialId,
+    pub rough_water: MaterialId,
     pub floor_tiles: MaterialId,
     pub brick_wall: MaterialId,
     pub stone: MaterialId,
@@ -48,6 +52,8 @@ impl DemoMaterials {
             }),
             water: add(MaterialSpec::opaque("water", [0.04, 0.12, 0.16], 0.0, 0.02)),
             polished_marble: add(MaterialSpec::opaque("polished_marble", [0.82, 0.8, 0.76], 0.0, 0.05)),
+            brushed_metal: add(MaterialSpec::opaque("brushed_metal", [0.78, 0.78, 0.8], 1.0, 0.3)),
+            rough_water: add(MaterialSpec::opaque("rough_water", [0.04, 0.12, 0.16], 0.0, 0.15)),
             floor_tiles: add(MaterialSpec {
                 base_color_texture: Some(floor_texture),
                 ..MaterialSpec::opaque("floor_tiles", [1.0, 1.0, 1.0], 0.0, 0.9)

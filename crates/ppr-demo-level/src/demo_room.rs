@@ -40,6 +40,7 @@ pub fn build_demo_room() -> DemoRoom {
     add_water_basin(&mut room, &materials);
     add_pond(&mut room, &materials);
     add_polished_floor(&mut room, &materials);
+    add_brushed_metal_panel(&mut room, &materials);
     add_puddles(&mut room, &materials);
     add_props(&mut room, &materials);
     add_table(&mut room, &materials);
@@ -229,7 +230,8 @@ fn add_water_basin(room: &mut DemoRoom, materials: &DemoMaterials) {
 
 /// A low stone-rimmed pond (outer 2.4 × 1.8 m, rim 0.18 m high) between the stairs and
 /// `puddle_c`, centred at (-4.6, 0, -2.35), holding a 2.0 × 1.4 m water surface at
-/// y = 0.12: a second water plane at another height than the basin's.
+/// y = 0.12: a second water plane at another height than the basin's, and a rough one
+/// (`rough_water`, roughness 0.15: its reflection blurs with distance).
 fn add_pond(room: &mut DemoRoom, materials: &DemoMaterials) {
     let b = &mut room.builder;
     let rim = MeshData::merged(&[
@@ -242,7 +244,7 @@ fn add_pond(room: &mut DemoRoom, materials: &DemoMaterials) {
     let rim_geometry = b.add_geometry(&rim);
     let rim_mesh = b.add_mesh("pond_rim", &[(rim_geometry, materials.stone)]);
     let water_geometry = b.add_geometry(&water);
-    let water_mesh = b.add_mesh("pond_water", &[(water_geometry, materials.water)]);
+    let water_mesh = b.add_mesh("pond_water", &[(water_geometry, materials.rough_water)]);
     let group =
         b.add_node(NodeSpec::group("stone_pond", None, NodeTransform::at(DVec3::new(-4.6, 0.0, -2.35))));
     b.add_node(NodeSpec::instance("pond_rim", Some(group), rim_mesh, NodeTransform::IDENTITY));
@@ -409,6 +411,25 @@ fn add_table(room: &mut DemoRoom, materials: &DemoMaterials) {
         primitive: 0,
         reason: "glossy material (roughness 0.2) but the node's extras say {\"ppr\": {\"reflector\": false}}",
     });
+}
+
+/// A 1.6 × 0.9 m brushed-metal floor panel (metallic, roughness 0.3) centred at
+/// (1.0, 0.003, 1.85), marked a reflector: a glossy reflection in front of the cameras.
+fn add_brushed_metal_panel(room: &mut DemoRoom, materials: &DemoMaterials) {
+    let b = &mut room.builder;
+    let panel = MeshData::quad(DVec3::new(-0.8, 0.0, -0.45), DVec3::Z * 0.9, DVec3::X * 1.6, 1.0);
+    let geometry = b.add_geometry(&panel);
+    let mesh = b.add_mesh("brushed_metal_panel", &[(geometry, materials.brushed_metal)]);
+    let node = b.add_node(
+        NodeSpec::instance(
+            "brushed_metal_panel",
+            None,
+            mesh,
+            NodeTransform::at(DVec3::new(1.0, 0.003, 1.85)),
+        )
+        .with_extras(PprExtras { ppr: PprOverride { reflector: true, kind: None } }),
+    );
+    room.reflector(node, 0, ReflectorKind::Opaque);
 }
 
 /// Default viewpoints for the other tools (60° vertical field of view).

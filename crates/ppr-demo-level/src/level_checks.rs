@@ -20,7 +20,7 @@ static IMPORTED: LazyLock<(gltf::Document, Vec<gltf::buffer::Data>, Vec<gltf::im
 static EXPECTED: LazyLock<Value> =
     LazyLock::new(|| serde_json::from_str(&LEVEL.expected_json).expect("the ground truth is JSON"));
 
-const NODE_NAMES: [&str; 44] = [
+const NODE_NAMES: [&str; 45] = [
     "room",
     "room_floor",
     "room_walls",
@@ -46,6 +46,7 @@ const NODE_NAMES: [&str; 44] = [
     "pond_rim",
     "pond_water",
     "polished_floor",
+    "brushed_metal_panel",
     "puddles",
     "puddle_a",
     "puddle_b",
@@ -250,7 +251,7 @@ fn steps_instance_one_mesh() {
 
 #[test]
 fn materials_are_reflective_or_clearly_rough() {
-    let reflective = ["mirror", "puddle", "glass", "water", "polished_marble"];
+    let reflective = ["mirror", "puddle", "glass", "water", "polished_marble", "brushed_metal", "rough_water"];
     for material in document().materials() {
         let name = material.name().expect("named");
         let pbr = material.pbr_metallic_roughness();
@@ -262,6 +263,9 @@ fn materials_are_reflective_or_clearly_rough() {
             "glass" => assert_eq!((metallic, roughness, transmission), (0.0, 0.0, Some(1.0))),
             "polished_marble" => assert_eq!((metallic, roughness), (0.0, 0.05)),
             "water" => assert!(roughness < 0.1),
+            // Glossy: reflective, with a blurred reflection.
+            "brushed_metal" => assert_eq!((metallic, roughness), (1.0, 0.3)),
+            "rough_water" => assert_eq!((metallic, roughness), (0.0, 0.15)),
             "lacquered_wood" => assert_eq!(roughness, 0.2),
             _ => assert!(
                 !reflective.contains(&name) && metallic == 0.0 && roughness >= 0.5 && transmission.is_none(),
@@ -274,7 +278,7 @@ fn materials_are_reflective_or_clearly_rough() {
 }
 
 #[test]
-fn only_water_and_table_top_carry_ppr_extras() {
+fn only_water_table_top_and_metal_panel_carry_ppr_extras() {
     for node in document().nodes() {
         let extras: Option<Value> =
             node.extras().as_ref().map(|raw| serde_json::from_str(raw.get()).expect("extras are JSON"));
@@ -283,6 +287,7 @@ fn only_water_and_table_top_carry_ppr_extras() {
                 Some(serde_json::json!({"ppr": {"reflector": true, "kind": "water"}}))
             }
             Some("table_top") => Some(serde_json::json!({"ppr": {"reflector": false}})),
+            Some("brushed_metal_panel") => Some(serde_json::json!({"ppr": {"reflector": true}})),
             _ => None,
         };
         assert_eq!(extras, expected, "{:?}", node.name());
@@ -377,6 +382,7 @@ fn ground_truth_matches_the_geometry_read_back() {
             "water_surface",
             "pond_water",
             "polished_floor",
+            "brushed_metal_panel",
             "puddle_a",
             "puddle_b",
             "puddle_c"
@@ -420,7 +426,7 @@ fn ground_truth_matches_the_geometry_read_back() {
 fn reflective_words_name_only_reflective_nodes_and_meshes() {
     // Name-driven extractors treat every triangle under such a name as a candidate.
     let words = ["mirror", "glass", "water", "puddle", "chrome", "polished"];
-    let reflective = ["mirror", "puddle", "glass", "water", "polished_marble"];
+    let reflective = ["mirror", "puddle", "glass", "water", "polished_marble", "rough_water"];
     for node in document().nodes() {
         let Some(mesh) = node.mesh() else { continue };
         let names = [node.name().expect("named"), mesh.name().expect("named")];
