@@ -242,7 +242,7 @@ fn background_open_and_reextract_through_the_state() {
     let level = state.level.as_ref().expect("level");
     assert!(level.render.is_some() && level.extract.is_some());
     let count = state.set().expect("extracted").reflectors.len();
-    assert_eq!(count, 15);
+    assert_eq!(count, 16);
     assert!(state.is_dirty(), "a fresh extraction is not saved yet");
 
     let mirror = id_named(state.doc.as_ref().expect("doc"), "mirror on mirror_wall");
@@ -252,10 +252,10 @@ fn background_open_and_reextract_through_the_state() {
     assert!(state.reextract().is_err(), "one job at a time");
     assert!(state.wait_for_job(Duration::from_secs(120)));
     let set = state.set().expect("set");
-    assert_eq!(set.reflectors.len(), 14, "no split: the floor is one rectangle");
+    assert_eq!(set.reflectors.len(), 15, "no split: the floor is one rectangle");
     assert_eq!(set.by_id(mirror).map(|r| r.name.as_str()), Some("kept"));
     state.undo();
-    assert_eq!(state.set().expect("set").reflectors.len(), 15, "re-extraction is one undo step");
+    assert_eq!(state.set().expect("set").reflectors.len(), 16, "re-extraction is one undo step");
 
     // Bad parameters are refused before anything starts.
     state.params.distance_tolerance_m = -1.0;
@@ -364,11 +364,11 @@ fn opening_a_level_with_a_saved_set_skips_extraction() {
     doc.set.save(&path).expect("saved");
     let mut state = InspectorState::default();
     state.open_level(&demo_level_path(), Some(&path));
-    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "the set is the file's");
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(15), "the set is the file's");
     assert!(!state.is_dirty());
     assert!(state.wait_for_job(Duration::from_secs(120)));
     assert!(state.level.as_ref().is_some_and(|l| l.render.is_some() && l.extract.is_some()));
-    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "no extraction replaced it");
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(15), "no extraction replaced it");
     assert_eq!(state.default_set_path(), Some(path));
 }
 
@@ -443,7 +443,7 @@ fn a_set_of_another_level_opens_with_a_warning_naming_both_files() {
     state.open_level(&demo_level_path(), Some(&path));
     assert!(state.wait_for_job(Duration::from_secs(120)));
     assert_eq!(mismatch_warnings(&state), 1, "{:?}", state.messages.entries());
-    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(14), "the artist may go on");
+    assert_eq!(state.set().map(|s| s.reflectors.len()), Some(15), "the artist may go on");
 
     // The level loaded, then the set opened: warned at once.
     state.open_set(&path);

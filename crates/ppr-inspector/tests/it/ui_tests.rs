@@ -85,7 +85,7 @@ fn open_select_edit_undo_redo_save_reload() {
     harness.get_by_label("Open level").click();
     harness.run_ok();
     wait_for_extraction(&mut harness);
-    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(15));
+    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(16));
     assert!(harness.state().viewport.has_frame(), "a preview was rendered");
     snapshot(&mut harness, &mut snapshots, "inspector/opened", &[]);
 
@@ -155,7 +155,7 @@ fn open_select_edit_undo_redo_save_reload() {
     harness.run();
     assert_eq!(selected(&harness).id, mirror.id);
     // The temporary directory's name is in the status line: mask it.
-    let status = harness.get_by_label_contains("loaded 15 reflectors from").rect();
+    let status = harness.get_by_label_contains("loaded 16 reflectors from").rect();
     let status = egui::Rect::from_min_max(status.min, egui::pos2(SIZE.x, status.max.y));
     snapshot(&mut harness, &mut snapshots, "inspector/reloaded", &[status]);
     snapshots.unwrap();
@@ -183,7 +183,7 @@ fn unsaved_changes_guard_asks_before_opening() {
     harness.run_ok();
     assert!(harness.state().state.job.is_some() || harness.state().state.doc.is_some());
     wait_for_extraction(&mut harness);
-    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(15));
+    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(16));
 }
 
 /// A file dropped on the window (what eframe hands the app).
@@ -206,7 +206,7 @@ fn dropping_a_level_then_a_set_opens_them() {
     harness.input_mut().dropped_files.push(std::sync::Arc::new(DroppedPath(DEMO_LEVEL.into())));
     harness.step();
     wait_for_extraction(&mut harness);
-    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(15));
+    assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(16));
 
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join("dropped.ppr.json");
@@ -333,7 +333,7 @@ fn reextract_from_the_panel_keeps_a_rename() {
     wait_for_extraction(&mut harness);
     let state = &harness.state().state;
     let set = state.set().expect("set");
-    assert_eq!(set.reflectors.len(), 14, "without splits the floor is one rectangle");
+    assert_eq!(set.reflectors.len(), 15, "without splits the floor is one rectangle");
     assert_eq!(set.by_id(water).map(|r| r.name.as_str()), Some("pond"), "the rename was kept");
     assert_eq!(state.selection, Some(water));
     assert_eq!(state.history.undo_len(), 2, "rename, re-extract");
