@@ -246,7 +246,7 @@ impl Scene {
     /// # Errors
     /// [`LoadError::TooLarge`] naming `nodes` and the count; [`LoadError::Invalid`] for an
     /// instance whose mesh does not exist.
-    pub fn placed_triangles(&self, max_triangles: usize) -> Result<usize, LoadError> {
+    pub(crate) fn placed_triangles(&self, max_triangles: usize) -> Result<usize, LoadError> {
         let (mut triangles, mut vertices) = (0usize, 0usize);
         for inst in &self.instances {
             let mesh = self.meshes.get(inst.mesh).ok_or_else(|| {
