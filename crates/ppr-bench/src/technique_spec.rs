@@ -64,12 +64,13 @@ pub const DEFAULT_TECHNIQUES: [&str; 13] = [
 ];
 
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `fade=`, `replace-far=`,
-/// `tier=` and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
+/// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 7] =
-    ["culling", "indirect", "fade", "replace-far", "tier", "bounces", "reference-bounces"];
+const PPR_KEYS: [&str; 8] =
+    ["culling", "indirect", "fade", "replace-far", "tier", "glossy", "bounces", "reference-bounces"];
 
 /// Largest `bounces=` (each bounce is a frame of PPR and, in the reference, a level of
 /// mirrored views).
@@ -162,7 +163,7 @@ impl TechniqueSpec {
             }
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
-                "culling" | "indirect" | "replace-far" => {
+                "culling" | "indirect" | "replace-far" | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -276,6 +277,9 @@ pub fn ppr_settings(
     if let Some(v) = spec.param("tier") {
         settings.resolution = parse_tier(v).map_err(BenchError::Spec)?;
     }
+    if let Some(v) = spec.param("glossy") {
+        settings.glossy = parse_choice(v).map_err(BenchError::Spec)? != Choice::Off;
+    }
     let mut params = base;
     if let Some(v) = spec.param("culling") {
         params.tile_culling = parse_choice(v).map_err(BenchError::Spec)?;
@@ -367,6 +371,10 @@ mod tests {
         assert_eq!(s.name, "ppr");
         assert_eq!(s.label(), "ppr culling=off indirect=on");
         assert_eq!(s.to_string(), "ppr:culling=off,indirect=on");
+        let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
+        let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
+        assert!(!settings.glossy);
+        assert!("ppr:glossy=blurry".parse::<TechniqueSpec>().is_err());
         assert!("nope".parse::<TechniqueSpec>().is_err());
         assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
         assert!("exact:steps=3".parse::<TechniqueSpec>().is_err());

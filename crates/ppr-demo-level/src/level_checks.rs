@@ -251,7 +251,8 @@ fn steps_instance_one_mesh() {
 
 #[test]
 fn materials_are_reflective_or_clearly_rough() {
-    let reflective = ["mirror", "puddle", "glass", "water", "polished_marble", "brushed_metal", "rough_water"];
+    let reflective =
+        ["mirror", "puddle", "glass", "water", "polished_marble", "brushed_metal", "rough_water"];
     for material in document().materials() {
         let name = material.name().expect("named");
         let pbr = material.pbr_metallic_roughness();
