@@ -214,8 +214,19 @@ fn layers_are_planned_only_while_the_frame_gives_them_an_output() {
     let depth = gpu.depth.create_view(&wgpu::TextureViewDescriptor { aspect, ..Default::default() });
     let output = gpu.output.create_view(&Default::default());
     let layer_output = gpu.layer_output.create_view(&Default::default());
-    let frame_with = |r: &mut ppr_runtime::ReflectionRenderer, layers: bool| {
-        let plan = r.prepare(&cam, SIZE);
+    // A frame seen by `camera`, with a layer output never, always, or only when the plan
+    // has layers (as the testbed passes it).
+    #[derive(Clone, Copy, PartialEq)]
+    enum Given {
+        Never,
+        Always,
+        WhenPlanned,
+    }
+    let away =
+        Camera::look_at(DVec3::new(0.3, 1.9, 2.8), DVec3::new(0.3, 1.9, 8.0), Vec3::Y, Projection::default());
+    let frame_seen = |r: &mut ppr_runtime::ReflectionRenderer, camera: &Camera, given: Given| {
+        let plan = r.prepare(camera, SIZE);
+        let layers = given == Given::Always || (given == Given::WhenPlanned && !plan.layers.is_empty());
         let mut encoder = g.device.create_command_encoder(&Default::default());
         let inputs = FrameInputs {
             layer_output: layers.then_some(&layer_output),
@@ -225,12 +236,21 @@ fn layers_are_planned_only_while_the_frame_gives_them_an_output() {
         g.queue.submit([encoder.finish()]);
         (plan.layers.len(), plan.visible.len())
     };
+    let frame_with = |r: &mut ppr_runtime::ReflectionRenderer, layers: bool| {
+        frame_seen(r, &cam, if layers { Given::Always } else { Given::Never })
+    };
     // First frame: the renderer cannot know yet, and plans the layer.
     assert_eq!(frame_with(&mut r, false), (1, 0));
     // Then: no layer output seen, the lake is an ordinary reflector of the main buffer.
     assert_eq!(frame_with(&mut r, false), (0, 1));
     assert_eq!(frame_with(&mut r, true), (0, 1), "planned before this encode gave the output");
     assert_eq!(frame_with(&mut r, true), (1, 0), "the layer output is back");
+    // A renderer that passes the output only when the plan has layers keeps them, also
+    // through frames where no layer is in view.
+    assert_eq!(frame_seen(&mut r, &away, Given::WhenPlanned), (0, 0), "looking away");
+    assert_eq!(frame_seen(&mut r, &cam, Given::WhenPlanned), (1, 0));
+    assert_eq!(frame_seen(&mut r, &away, Given::WhenPlanned), (0, 0));
+    assert_eq!(frame_seen(&mut r, &cam, Given::WhenPlanned), (1, 0));
     // `On` plans them whatever the frame gives.
     r.plan_params.layers = Choice::On;
     assert_eq!(frame_with(&mut r, false), (1, 0));

@@ -28,3 +28,22 @@ pub fn level_files(dir: &Path) -> Vec<PathBuf> {
     out.sort();
     out
 }
+
+/// The shared third-party scenes (`shared/scenes/` beside the repository, as CI has it) as
+/// a crate of the workspace finds them from its manifest folder
+/// (`env!("CARGO_MANIFEST_DIR")`, two levels below the repository).
+///
+/// # Errors
+/// When the folder holds fewer than `at_least` levels (missing, or not checked out), a
+/// message naming the folder and what was found.
+pub fn shared_scene_files(crate_dir: &Path, at_least: usize) -> Result<Vec<PathBuf>, String> {
+    let dir = crate_dir.join("../../../shared/scenes");
+    let files = level_files(&dir);
+    if files.len() < at_least {
+        return Err(format!(
+            "the shared scenes are missing from {} (found {files:?}, want at least {at_least})",
+            dir.display()
+        ));
+    }
+    Ok(files)
+}

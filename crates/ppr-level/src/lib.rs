@@ -68,7 +68,7 @@ mod uri;
 pub use error::LoadError;
 pub use extras::ReflectorOverride;
 pub use level::{Level, LevelTriangle, MaterialInfo, TriangleSource};
-pub use level_files::level_files;
+pub use level_files::{level_files, shared_scene_files};
 pub use load::{
     LoadParams, TextureLoading, can_read_extension, load_level, load_level_from_bytes, load_scene,
     load_scene_from_bytes,

@@ -85,8 +85,8 @@ pub struct PlanParams {
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
-    /// `Auto`: on, unless the renderer's last encode had no layer output
-    /// ([`crate::FrameInputs::layer_output`]), which plans them off.
+    /// `Auto`: on, unless the renderer's last frame with layers had no layer output
+    /// ([`crate::FrameInputs::layer_output`]) and no later frame gave one: then off.
     pub layers: Choice,
     /// The water planes most present on screen that get a layer each; the others go into
     /// the main buffer.

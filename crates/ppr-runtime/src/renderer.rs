@@ -67,8 +67,9 @@ impl Default for RendererDesc {
 /// - `layer_output`: like `output`, for the reflections of glass panels and water planes
 ///   (the nearest one the view ray hits in front of the depth buffer); written over the
 ///   plan's `layer_rect` when it has layers. With [`PlanParams::layers`] at `Auto`, a
-///   renderer whose last `encode` had no layer output plans no layers (only the first
-///   frame computes them for nothing); `Off` never plans them.
+///   renderer whose last frame with layers had no layer output plans no layers until an
+///   `encode` gives one (only that first frame computes them for nothing); passing one
+///   only when the plan has layers keeps them; `Off` never plans them.
 /// - `normals`: the shading normals (world space, xyz in any float format, e.g.
 ///   `Rgba16Float`), `TEXTURE_BINDING`; reflectors with `normal_map` are perturbed by them.
 pub struct FrameInputs<'a> {
@@ -161,7 +162,8 @@ pub struct ReflectionRenderer {
     pub(crate) views: Vec<PreparedView>,
     timer: Option<PassTimer>,
     pub(crate) dispatches: Cell<u32>,
-    /// Whether the last `encode` had a layer output (`None` before the first).
+    /// Whether the frames want layers: the last `encode` that gave a layer output, or had
+    /// layers without one (`None` before either).
     layer_output_given: Cell<Option<bool>>,
 }
 
@@ -391,7 +393,14 @@ impl ReflectionRenderer {
         inputs: &FrameInputs<'_>,
     ) {
         let plan = &view.plan;
-        self.layer_output_given.set(Some(inputs.layer_output.is_some()));
+        // What the frame says about a layer output: one given says "wanted"; none given
+        // while the plan has layers says "nowhere to go"; none given without layers (a
+        // renderer that passes one only when the plan has layers) says nothing.
+        match (inputs.layer_output.is_some(), plan.layers.is_empty()) {
+            (true, _) => self.layer_output_given.set(Some(true)),
+            (false, false) => self.layer_output_given.set(Some(false)),
+            (false, true) => {}
+        }
         if plan.is_empty() {
             return;
         }

@@ -4,6 +4,7 @@
 use anyhow::Result;
 use image::RgbaImage;
 
+use crate::frame_targets::Target;
 use crate::texture_readback::read_rgba8;
 
 /// Format of offscreen frames (what a PNG holds).
@@ -17,20 +18,12 @@ pub struct OffscreenTarget {
 
 impl OffscreenTarget {
     pub fn new(device: &wgpu::Device, [width, height]: [u32; 2]) -> Self {
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
-            label: Some("walkthrough offscreen frame"),
-            size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 },
-            mip_level_count: 1,
-            sample_count: 1,
-            dimension: wgpu::TextureDimension::D2,
-            format: OFFSCREEN_FORMAT,
-            // COPY_DST: stereo frames copy each eye into its half.
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
-                | wgpu::TextureUsages::COPY_SRC
-                | wgpu::TextureUsages::COPY_DST,
-            view_formats: &[],
-        });
-        let view = texture.create_view(&Default::default());
+        // COPY_DST: stereo frames copy each eye into its half.
+        use wgpu::TextureUsages as U;
+        let usage = U::RENDER_ATTACHMENT | U::COPY_SRC | U::COPY_DST;
+        let size = [width.max(1), height.max(1)];
+        let Target { texture, view } =
+            Target::new(device, "walkthrough offscreen frame", size, OFFSCREEN_FORMAT, usage);
         Self { texture, view }
     }
 

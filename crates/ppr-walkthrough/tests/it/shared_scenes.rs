@@ -7,9 +7,8 @@ use ppr_walkthrough::gltf_level::LevelData;
 
 #[test]
 fn every_shared_scene_opens() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/scenes");
-    let files = ppr_level::level_files(&dir);
-    assert!(files.len() >= 5, "the shared scenes are missing from {}: {files:?}", dir.display());
+    let files =
+        ppr_level::shared_scene_files(Path::new(env!("CARGO_MANIFEST_DIR")), 5).expect("shared scenes");
     for path in files {
         let level = LevelData::load(&path).unwrap_or_else(|e| panic!("{}: {e:#}", path.display()));
         let drawn: usize = level
