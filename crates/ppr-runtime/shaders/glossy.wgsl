@@ -45,46 +45,52 @@ struct GlossyShapes {
     shapes: array<GlossyShape, GLOSSY_CAPACITY>,
 }
 
-// The nearest glossy reflector the view ray through the pixel centre `c` hits from its
-// reflecting side: xyz the camera-relative point hit, w its roughness (0: none). No depth
-// is read: a pixel of something standing in front of the reflector gets the reflector's
-// roughness too, harmlessly (its reflection is not composited: it is not reflective).
-fn ppr_glossy_surface(c: vec2<f32>) -> vec4<f32> {
-    // A point on the ray (any depth in the clip range will do): the direction.
-    let dir = normalize(ppr_unproject(c, 0.5));
-    var best = vec4<f32>(0.0);
-    var nearest = 3.4e38;
+// Whether the pixel centre `c` is inside some glossy reflector's screen rectangle (no
+// depth needed: pixels outside every one are mirrors).
+fn ppr_glossy_candidate(c: vec2<f32>) -> bool {
+    for (var i = 0u; i < glossy.count; i++) {
+        let r = glossy.shapes[i].rect;
+        if (all(c >= r.xy) && all(c <= r.zw)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The roughness of the glossy reflector the camera-relative point `p` (at pixel centre `c`)
+// lies on, 0 when none.
+fn ppr_glossy_roughness(p: vec3<f32>, c: vec2<f32>) -> f32 {
+    let tolerance = 2e-3 * length(p) + 1e-3;
     for (var i = 0u; i < glossy.count; i++) {
         let s = glossy.shapes[i];
         if (any(c < s.rect.xy) || any(c > s.rect.zw)) {
             continue;
         }
-        let facing = dot(s.plane.xyz, dir);
-        if (!(facing < 0.0)) {
-            continue;
-        }
-        let t = -s.plane.w / facing;
-        let x = dir * t;
-        let d = x - s.center.xyz;
-        let margin = 1e-3 * t;
-        if (t > 0.0 && t < nearest
-            && abs(dot(d, s.axis_u.xyz)) <= s.axis_u.w + margin
-            && abs(dot(d, s.axis_v.xyz)) <= s.axis_v.w + margin) {
-            nearest = t;
-            best = vec4<f32>(x, s.center.w);
+        let d = p - s.center.xyz;
+        if (abs(dot(s.plane.xyz, p) + s.plane.w) <= tolerance
+            && abs(dot(d, s.axis_u.xyz)) <= s.axis_u.w + tolerance
+            && abs(dot(d, s.axis_v.xyz)) <= s.axis_v.w + tolerance) {
+            return s.center.w;
         }
     }
-    return best;
+    return 0.0;
 }
 
 // The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
 // from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
 // is under a pixel.
 fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
-    // Mirrors leave here, before any depth is read.
-    let surface = ppr_glossy_surface(vec2<f32>(vpos) + 0.5);
-    let p = surface.xyz;
-    let roughness = surface.w;
+    let c = vec2<f32>(vpos) + 0.5;
+    if (!ppr_glossy_candidate(c)) {
+        return sharp;
+    }
+    let d_here = valid_depth_at(vpos);
+    if (d_here < 0.0) {
+        return sharp;
+    }
+    // Mirrors leave here, before the reflected point's depth is read.
+    let p = ppr_unproject(c, d_here);
+    let roughness = ppr_glossy_roughness(p, c);
     // max_taps 0: the lookup only (the bench's cost profile).
     if (!(roughness > 0.0) || glossy.max_taps == 0u) {
         return sharp;
