@@ -39,6 +39,7 @@ pub mod shapes;
 pub mod source_box;
 #[doc(hidden)]
 pub mod timestamps;
+mod wgpu_compat;
 
 pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};

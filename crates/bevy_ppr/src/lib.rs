@@ -1,0 +1,1 @@
+//! Pixel-projected reflections in Bevy 0.19.
