@@ -1,0 +1,54 @@
+//! The demo room as the example and the headless test set it up: the glTF scene, the
+//! testbed's light, and one of the level's glTF cameras made the PPR camera.
+
+use bevy::camera::Camera3d;
+use bevy::core_pipeline::tonemapping::Tonemapping;
+use bevy::gltf::GltfAssetLabel;
+use bevy::light::{DirectionalLight, GlobalAmbientLight};
+use bevy::prelude::*;
+use bevy_ppr::{PprCamera, PprReflectorSet};
+
+/// Where the workspace keeps `demo_room.glb` (and the main command writes its set).
+pub const ASSETS: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../assets");
+
+/// `ppr-testbed`'s light (`Lighting::default`): towards the light, before normalising.
+const LIGHT_TOWARDS: Vec3 = Vec3::new(0.35, 1.0, 0.55);
+
+/// Bevy's default exposure (EV100 9.7) divides by about 998.5: these give the testbed's
+/// Lambert intensity 0.85 and ambient 0.25 on a diffuse surface, roughly (Bevy's PBR adds
+/// specular and its own diffuse term).
+const LUX_PER_UNIT: f32 = 998.5 * std::f32::consts::PI;
+
+/// Which glTF camera renders, and with which set.
+#[derive(Resource, Clone)]
+pub struct DemoRoom {
+    /// A camera node of `demo_room.glb` (`cam_overview`, `cam_mirror`, `cam_steps`).
+    pub camera: String,
+    pub set: Handle<PprReflectorSet>,
+}
+
+/// Spawns the level and the light.
+pub fn spawn_room(mut commands: Commands, assets: Res<AssetServer>) {
+    commands.spawn(SceneRoot(assets.load(GltfAssetLabel::Scene(0).from_asset("demo_room.glb"))));
+    commands.spawn((
+        DirectionalLight { illuminance: 0.85 * LUX_PER_UNIT, shadow_maps_enabled: false, ..default() },
+        Transform::from_translation(LIGHT_TOWARDS).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.insert_resource(GlobalAmbientLight { brightness: 0.25 * 998.5, ..default() });
+}
+
+/// As the level's cameras appear: the chosen one becomes the PPR camera (linear output,
+/// as `ppr-render` writes it), the others are switched off.
+pub fn adopt_gltf_camera(
+    mut commands: Commands,
+    room: Res<DemoRoom>,
+    mut cameras: Query<(Entity, &Name, &mut Camera), Added<Camera3d>>,
+) {
+    for (entity, name, mut camera) in &mut cameras {
+        let chosen = name.as_str() == room.camera;
+        camera.is_active = chosen;
+        if chosen {
+            commands.entity(entity).insert((PprCamera::new(room.set.clone()), Tonemapping::None));
+        }
+    }
+}
