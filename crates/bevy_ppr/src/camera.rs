@@ -1,8 +1,8 @@
 //! `PprCamera`: the component that turns pixel-projected reflections on for one camera.
 
+use bevy::asset::Handle;
 use bevy::camera::{Camera3d, Hdr};
 use bevy::ecs::prelude::*;
-use bevy::asset::Handle;
 use bevy::render::render_resource::TextureUsages;
 use bevy::render::view::Msaa;
 use ppr_runtime::ReflectionSettings;

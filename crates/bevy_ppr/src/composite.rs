@@ -1,135 +1,111 @@
-//! `CompositePass`: blends the runtime's output over the camera's main texture.
+//! `CompositePipeline`: blends the runtime's output over the camera's main texture, through
+//! Bevy's pipeline cache and fullscreen vertex shader.
 
-use wgpu::util::DeviceExt;
+use bevy::asset::{Assets, Handle};
+use bevy::core_pipeline::FullscreenShader;
+use bevy::ecs::prelude::*;
+use bevy::render::render_resource::binding_types::{texture_2d, uniform_buffer_sized};
+use bevy::render::render_resource::{
+    BindGroup, BindGroupEntries, BindGroupLayoutDescriptor, BindGroupLayoutEntries, BlendComponent,
+    BlendFactor, BlendOperation, BlendState, BufferInitDescriptor, BufferUsages, CachedRenderPipelineId,
+    ColorTargetState, ColorWrites, FragmentState, PipelineCache, RenderPipeline, RenderPipelineDescriptor,
+    ShaderStages, TextureSampleType, TextureView,
+};
+use bevy::render::renderer::RenderDevice;
+use bevy::render::view::ViewTarget;
+use bevy::shader::Shader;
 
 /// The composite's WGSL.
-pub const WGSL: &str = include_str!("../shaders/composite.wgsl");
+const WGSL: &str = include_str!("../shaders/composite.wgsl");
 
-/// Fullscreen triangle that mixes the reflection into the target by its confidence.
-pub(crate) struct CompositePass {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    format: wgpu::TextureFormat,
+/// Colour: `src × weight + dst × (1 − weight)`, the weight in the source's alpha; the
+/// target keeps its alpha.
+const BLEND: BlendState = BlendState {
+    color: BlendComponent {
+        src_factor: BlendFactor::SrcAlpha,
+        dst_factor: BlendFactor::OneMinusSrcAlpha,
+        operation: BlendOperation::Add,
+    },
+    alpha: BlendComponent {
+        src_factor: BlendFactor::Zero,
+        dst_factor: BlendFactor::One,
+        operation: BlendOperation::Add,
+    },
+};
+
+/// The composite shader, added to the main world's shaders by the plugin.
+#[derive(Resource, Clone)]
+pub(crate) struct CompositeShader(pub Handle<Shader>);
+
+impl CompositeShader {
+    pub fn add(shaders: &mut Assets<Shader>) -> Self {
+        Self(shaders.add(Shader::from_wgsl(WGSL, "bevy_ppr/shaders/composite.wgsl")))
+    }
 }
 
-impl CompositePass {
-    /// Builds the pipeline for a target of `format` (the camera's main texture).
-    pub fn new(device: &wgpu::Device, format: wgpu::TextureFormat) -> Self {
-        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
-            label: Some("bevy_ppr composite"),
-            source: wgpu::ShaderSource::Wgsl(WGSL.into()),
-        });
-        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-            label: Some("bevy_ppr composite"),
-            entries: &[
-                wgpu::BindGroupLayoutEntry {
-                    binding: 0,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 1,
-                    visibility: wgpu::ShaderStages::FRAGMENT,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: false },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-            ],
-        });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some("bevy_ppr composite"),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let blend = wgpu::BlendState {
-            color: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::SrcAlpha,
-                dst_factor: wgpu::BlendFactor::OneMinusSrcAlpha,
-                operation: wgpu::BlendOperation::Add,
-            },
-            // The target keeps its alpha.
-            alpha: wgpu::BlendComponent {
-                src_factor: wgpu::BlendFactor::Zero,
-                dst_factor: wgpu::BlendFactor::One,
-                operation: wgpu::BlendOperation::Add,
-            },
-        };
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("bevy_ppr composite"),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &module,
-                entry_point: Some("vs_main"),
-                compilation_options: Default::default(),
-                buffers: &[],
-            },
-            fragment: Some(wgpu::FragmentState {
-                module: &module,
-                entry_point: Some("fs_main"),
-                compilation_options: Default::default(),
-                targets: &[Some(wgpu::ColorTargetState {
-                    format,
-                    blend: Some(blend),
-                    write_mask: wgpu::ColorWrites::ALL,
-                })],
-            }),
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: None,
-            multisample: wgpu::MultisampleState::default(),
-            multiview_mask: None,
-            cache: None,
-        });
-        Self { pipeline, layout, format }
-    }
+/// The pipeline (queued once, for HDR views) and its bind-group layout.
+#[derive(Resource)]
+pub(crate) struct CompositePipeline {
+    layout: BindGroupLayoutDescriptor,
+    pipeline: CachedRenderPipelineId,
+}
 
-    /// The target format the pipeline was built for.
-    pub fn format(&self) -> wgpu::TextureFormat {
-        self.format
+/// `RenderStartup`: queues the pipeline.
+pub(crate) fn init_composite_pipeline(
+    mut commands: Commands,
+    cache: Res<PipelineCache>,
+    fullscreen: Res<FullscreenShader>,
+    shader: Res<CompositeShader>,
+) {
+    let layout = BindGroupLayoutDescriptor::new(
+        "bevy_ppr composite",
+        &BindGroupLayoutEntries::sequential(
+            ShaderStages::FRAGMENT,
+            (uniform_buffer_sized(false, None), texture_2d(TextureSampleType::Float { filterable: false })),
+        ),
+    );
+    let pipeline = cache.queue_render_pipeline(RenderPipelineDescriptor {
+        label: Some("bevy_ppr composite".into()),
+        layout: vec![layout.clone()],
+        vertex: fullscreen.to_vertex_state(),
+        fragment: Some(FragmentState {
+            shader: shader.0.clone(),
+            targets: vec![Some(ColorTargetState {
+                format: ViewTarget::TEXTURE_FORMAT_HDR,
+                blend: Some(BLEND),
+                write_mask: ColorWrites::ALL,
+            })],
+            ..Default::default()
+        }),
+        ..Default::default()
+    });
+    commands.insert_resource(CompositePipeline { layout, pipeline });
+}
+
+impl CompositePipeline {
+    /// The pipeline once compiled (it compiles in the background).
+    pub fn get<'a>(&self, cache: &'a PipelineCache) -> Option<&'a RenderPipeline> {
+        cache.get_render_pipeline(self.pipeline)
     }
 
     /// A bind group of the reflection and the reflectivity, for one view's frame.
-    pub fn bind_group(&self, device: &wgpu::Device, reflection: &wgpu::TextureView, reflectivity: f32) -> wgpu::BindGroup {
+    pub fn bind_group(
+        &self,
+        device: &RenderDevice,
+        cache: &PipelineCache,
+        reflection: &TextureView,
+        reflectivity: f32,
+    ) -> BindGroup {
         let params = [reflectivity.clamp(0.0, 1.0), 0.0, 0.0, 0.0];
-        let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        let uniform = device.create_buffer_with_data(&BufferInitDescriptor {
             label: Some("bevy_ppr composite"),
             contents: bytemuck::cast_slice(&params),
-            usage: wgpu::BufferUsages::UNIFORM,
+            usage: BufferUsages::UNIFORM,
         });
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("bevy_ppr composite"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(reflection) },
-            ],
-        })
-    }
-
-    /// Records the blend of the reflection over `target`.
-    pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, bind_group: &wgpu::BindGroup, target: &wgpu::TextureView) {
-        let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-            label: Some("bevy_ppr composite"),
-            color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                view: target,
-                depth_slice: None,
-                resolve_target: None,
-                ops: wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store },
-            })],
-            depth_stencil_attachment: None,
-            timestamp_writes: None,
-            occlusion_query_set: None,
-            multiview_mask: None,
-        });
-        pass.set_pipeline(&self.pipeline);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.draw(0..3, 0..1);
+        device.create_bind_group(
+            "bevy_ppr composite",
+            &cache.get_bind_group_layout(&self.layout),
+            &BindGroupEntries::sequential((uniform.as_entire_binding(), reflection)),
+        )
     }
 }

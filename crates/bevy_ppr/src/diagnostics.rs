@@ -2,8 +2,8 @@
 
 use std::sync::{Arc, Mutex};
 
-use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
 use bevy::app::App;
+use bevy::diagnostic::{Diagnostic, DiagnosticPath, Diagnostics, RegisterDiagnostic};
 use bevy::ecs::prelude::*;
 
 /// The diagnostic of each pass's GPU time in milliseconds, as `PassTimings::passes` names

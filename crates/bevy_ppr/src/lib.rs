@@ -23,11 +23,14 @@ mod render;
 mod runtime;
 
 use bevy::app::{App, Plugin, PostUpdate, Update};
-use bevy::asset::AssetApp;
+use bevy::asset::{AssetApp, Assets};
 use bevy::core_pipeline::core_3d::{main_opaque_pass_3d, main_transparent_pass_3d};
 use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
 use bevy::ecs::schedule::IntoScheduleConfigs;
-use bevy::render::{ExtractSchedule, Render, RenderApp, RenderSystems};
+use bevy::render::{ExtractSchedule, Render, RenderApp, RenderStartup, RenderSystems};
+use bevy::shader::Shader;
+
+use composite::CompositeShader;
 
 pub use asset::{PprReflectorSet, ReflectorSetLoadError, ReflectorSetLoader, parse_reflector_set};
 pub use camera::PprCamera;
@@ -47,12 +50,16 @@ impl Plugin for PprPlugin {
             .add_systems(PostUpdate, camera::configure_ppr_cameras)
             .add_systems(Update, diagnostics::record_timings);
         diagnostics::register(app);
-        let Some(render_app) = app.get_sub_app_mut(RenderApp) else {
+        let shader =
+            app.world_mut().get_resource_mut::<Assets<Shader>>().map(|mut s| CompositeShader::add(&mut s));
+        let (Some(shader), Some(render_app)) = (shader, app.get_sub_app_mut(RenderApp)) else {
             return;
         };
         render_app
             .insert_resource(timings)
+            .insert_resource(shader)
             .init_resource::<render::PprViews>()
+            .add_systems(RenderStartup, composite::init_composite_pipeline)
             .add_systems(ExtractSchedule, render::extract_ppr_cameras)
             .add_systems(Render, render::prune_views.in_set(RenderSystems::Cleanup))
             .add_systems(

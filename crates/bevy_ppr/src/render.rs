@@ -8,15 +8,20 @@ use bevy::camera::{Camera, Camera3d};
 use bevy::ecs::prelude::*;
 use bevy::log::warn_once;
 use bevy::render::Extract;
+use bevy::render::render_resource::{
+    Extent3d, LoadOp, Operations, PipelineCache, RenderPassColorAttachment, RenderPassDescriptor, StoreOp,
+    TextureAspect, TextureDescriptor, TextureDimension, TextureUsages, TextureViewDescriptor,
+};
 use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery};
 use bevy::render::sync_world::RenderEntity;
+use bevy::render::texture::{CachedTexture, TextureCache};
 use bevy::render::view::{ExtractedView, ViewDepthTexture, ViewTarget};
 use ppr_format::ReflectorSet;
 use ppr_runtime::ReflectionSettings;
 
 use crate::asset::PprReflectorSet;
 use crate::camera::PprCamera;
-use crate::composite::CompositePass;
+use crate::composite::CompositePipeline;
 use crate::diagnostics::PendingTimings;
 use crate::runtime::{OUTPUT_FORMAT, ViewRuntime};
 
@@ -56,56 +61,41 @@ pub(crate) fn extract_ppr_cameras(
     }
 }
 
-/// One view's runtime and output texture.
+/// One view's runtime and how many frames it rendered.
 struct ViewState {
     runtime: ViewRuntime,
-    output: Option<(wgpu::Texture, wgpu::TextureView)>,
     frames: u32,
 }
 
 /// Every PPR view's state, by render-world view entity. The runtime is `Send` but not
-/// `Sync`, hence the mutex (never contended: one system touches it).
+/// `Sync`, hence the mutex (never contended: one system at a time touches it).
 #[derive(Resource, Default)]
-pub(crate) struct PprViews {
-    views: Mutex<HashMap<Entity, ViewState>>,
-    composite: Mutex<Option<CompositePass>>,
-}
+pub(crate) struct PprViews(Mutex<HashMap<Entity, ViewState>>);
 
 /// Drops the state of views that are no longer PPR cameras.
 pub(crate) fn prune_views(mut state: ResMut<PprViews>, live: Query<Entity, With<ExtractedPpr>>) {
-    if let Ok(views) = state.views.get_mut() {
+    if let Ok(views) = state.0.get_mut() {
         views.retain(|entity, _| live.contains(*entity));
     }
 }
 
-fn output_texture(device: &wgpu::Device, [width, height]: [u32; 2]) -> (wgpu::Texture, wgpu::TextureView) {
-    let texture = device.create_texture(&wgpu::TextureDescriptor {
-        label: Some("bevy_ppr output"),
-        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
-        mip_level_count: 1,
-        sample_count: 1,
-        dimension: wgpu::TextureDimension::D2,
-        format: OUTPUT_FORMAT,
-        usage: wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::RENDER_ATTACHMENT,
-        view_formats: &[],
-    });
-    let view = texture.create_view(&Default::default());
-    (texture, view)
-}
-
-fn clear(encoder: &mut wgpu::CommandEncoder, view: &wgpu::TextureView) {
-    encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-        label: Some("bevy_ppr output clear"),
-        color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-            view,
-            depth_slice: None,
-            resolve_target: None,
-            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
-        })],
-        ..Default::default()
-    });
+/// The runtime's output texture for a view of `size` (from Bevy's texture cache).
+fn output_texture(cache: &mut TextureCache, device: &RenderDevice, size: Extent3d) -> CachedTexture {
+    cache.get(
+        device,
+        TextureDescriptor {
+            label: Some("bevy_ppr output"),
+            size,
+            mip_level_count: 1,
+            sample_count: 1,
+            dimension: TextureDimension::D2,
+            format: OUTPUT_FORMAT,
+            usage: TextureUsages::STORAGE_BINDING
+                | TextureUsages::TEXTURE_BINDING
+                | TextureUsages::RENDER_ATTACHMENT,
+            view_formats: &[],
+        },
+    )
 }
 
 /// Bevy's `Mat4` (its glam) as the runtime's `DMat4`.
@@ -119,28 +109,28 @@ fn dmat4(m: bevy::math::Mat4) -> glam::DMat4 {
 pub(crate) fn ppr_pass(
     view: ViewQuery<(&ExtractedView, &ViewTarget, &ViewDepthTexture, &ExtractedPpr)>,
     state: Res<PprViews>,
-    device: Res<RenderDevice>,
+    composite: Res<CompositePipeline>,
+    pipeline_cache: Res<PipelineCache>,
+    mut texture_cache: ResMut<TextureCache>,
     queue: Res<RenderQueue>,
     timings: Res<PendingTimings>,
     mut ctx: RenderContext,
 ) {
     let entity = view.entity();
     let (extracted, target, depth, ppr) = view.into_inner();
-    let Some(set) = &ppr.set else { return };
+    let (Some(set), Some(pipeline)) = (&ppr.set, composite.get(&pipeline_cache)) else { return };
     let format = target.main_texture_format();
-    if format != wgpu::TextureFormat::Rgba16Float {
-        warn_once!("bevy_ppr: the camera's main texture is {format:?}; PPR needs an Hdr camera (Rgba16Float)");
+    if format != ViewTarget::TEXTURE_FORMAT_HDR {
+        warn_once!(
+            "bevy_ppr: the camera's main texture is {format:?}; PPR needs an Hdr camera (Rgba16Float)"
+        );
         return;
     }
-    let device = device.wgpu_device();
-    let size = target.main_texture().size();
-    let size = [size.width, size.height];
-    let (Ok(mut views), Ok(mut composite)) = (state.views.lock(), state.composite.lock()) else { return };
-    let view_state = views.entry(entity).or_insert_with(|| ViewState {
-        runtime: ViewRuntime::new(device, &queue),
-        output: None,
-        frames: 0,
-    });
+    let device = ctx.render_device().clone();
+    let Ok(mut views) = state.0.lock() else { return };
+    let view_state = views
+        .entry(entity)
+        .or_insert_with(|| ViewState { runtime: ViewRuntime::new(device.wgpu_device(), &queue), frames: 0 });
     if let Err(e) = view_state.runtime.use_set(set) {
         warn_once!("bevy_ppr: the runtime refused the reflector set: {e}");
         return;
@@ -151,9 +141,15 @@ pub(crate) fn ppr_pass(
     {
         timings.put(passes);
     }
+    let size = target.main_texture().size();
     let world_from_view = dmat4(extracted.world_from_view.to_matrix());
     let clip_from_view = glam::Mat4::from_cols_array(&extracted.clip_from_view.to_cols_array());
-    let plan = match view_state.runtime.prepare(world_from_view, clip_from_view, ppr.settings, size) {
+    let plan = match view_state.runtime.prepare(
+        world_from_view,
+        clip_from_view,
+        ppr.settings,
+        [size.width, size.height],
+    ) {
         Ok(plan) => plan,
         Err(e) => {
             warn_once!("bevy_ppr: camera not usable by the runtime: {e}");
@@ -163,24 +159,34 @@ pub(crate) fn ppr_pass(
     if plan.empty {
         return;
     }
-    if view_state.output.as_ref().is_none_or(|(t, _)| [t.width(), t.height()] != size) {
-        view_state.output = Some(output_texture(device, size));
-    }
-    let Some((_, output)) = &view_state.output else { return };
-    let composite = match &mut *composite {
-        Some(pass) if pass.format() == format => pass,
-        slot => slot.insert(CompositePass::new(device, format)),
-    };
-    let bind_group = composite.bind_group(device, output, ppr.reflectivity);
-    let depth_view = depth.texture.create_view(&wgpu::TextureViewDescriptor {
+    let output = output_texture(&mut texture_cache, &device, size);
+    let bind_group = composite.bind_group(&device, &pipeline_cache, &output.default_view, ppr.reflectivity);
+    let depth_view = depth.texture.create_view(&TextureViewDescriptor {
         label: Some("bevy_ppr depth"),
-        aspect: wgpu::TextureAspect::DepthOnly,
+        aspect: TextureAspect::DepthOnly,
         ..Default::default()
     });
     let encoder = ctx.command_encoder();
     if plan.indirect {
-        clear(encoder, output);
+        // Only the tiles with a visible reflector are written: clear the rest.
+        encoder.begin_render_pass(&RenderPassDescriptor {
+            label: Some("bevy_ppr output clear"),
+            color_attachments: &[Some(RenderPassColorAttachment {
+                view: &output.default_view,
+                depth_slice: None,
+                resolve_target: None,
+                ops: Operations { load: LoadOp::Clear(Default::default()), store: StoreOp::Store },
+            })],
+            ..Default::default()
+        });
     }
-    view_state.runtime.encode(encoder, target.main_texture_view(), &depth_view, output);
-    composite.encode(encoder, &bind_group, target.main_texture_view());
+    view_state.runtime.encode(encoder, target.main_texture_view(), &depth_view, &output.default_view);
+    let mut pass = ctx.begin_tracked_render_pass(RenderPassDescriptor {
+        label: Some("bevy_ppr composite"),
+        color_attachments: &[Some(target.get_unsampled_color_attachment())],
+        ..Default::default()
+    });
+    pass.set_render_pipeline(pipeline);
+    pass.set_bind_group(0, &bind_group, &[]);
+    pass.draw(0..3, 0..1);
 }

@@ -76,7 +76,8 @@ impl ViewRuntime {
     /// GPU, so call it now and then.
     pub fn read_timings(&self) -> Option<Vec<(&'static str, f64)>> {
         let timings: PassTimings = self.renderer.read_timings()?;
-        let mut passes: Vec<_> = timings.passes().iter().filter_map(|&(name, ms)| Some((name, ms?))).collect();
+        let mut passes: Vec<_> =
+            timings.passes().iter().filter_map(|&(name, ms)| Some((name, ms?))).collect();
         passes.push(("total", timings.total_ms()));
         Some(passes)
     }

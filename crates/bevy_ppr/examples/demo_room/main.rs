@@ -31,7 +31,9 @@ fn main() -> AppExit {
         }
     }
     if !Path::new(ASSETS).join("demo_room.ppr.json").exists() {
-        eprintln!("no assets/demo_room.ppr.json: run `cargo run --release -p ppr-extract -- assets/demo_room.glb`");
+        eprintln!(
+            "no assets/demo_room.ppr.json: run `cargo run --release -p ppr-extract -- assets/demo_room.glb`"
+        );
         return AppExit::error();
     }
     App::new()
@@ -41,7 +43,11 @@ fn main() -> AppExit {
             watch_for_changes_override: Some(true),
             ..default()
         }))
-        .add_plugins((PprPlugin, FreeCameraPlugin, LogDiagnosticsPlugin::filtered(PASS_DIAGNOSTICS.into_iter().collect())))
+        .add_plugins((
+            PprPlugin,
+            FreeCameraPlugin,
+            LogDiagnosticsPlugin::filtered(PASS_DIAGNOSTICS.into_iter().collect()),
+        ))
         .insert_resource(ScreenshotAt(screenshot))
         .insert_resource(CameraName(camera))
         .add_systems(Startup, (load_set, spawn_room))
@@ -74,7 +80,12 @@ fn title(store: Res<DiagnosticsStore>, mut windows: Query<&mut Window>) {
     }
 }
 
-fn take_screenshot(mut commands: Commands, at: Res<ScreenshotAt>, mut frame: Local<u32>, mut exit: MessageWriter<AppExit>) {
+fn take_screenshot(
+    mut commands: Commands,
+    at: Res<ScreenshotAt>,
+    mut frame: Local<u32>,
+    mut exit: MessageWriter<AppExit>,
+) {
     let Some(path) = &at.0 else { return };
     *frame += 1;
     if *frame == SCREENSHOT_FRAME {

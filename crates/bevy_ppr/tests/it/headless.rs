@@ -32,7 +32,8 @@ const MIN_PSNR_DB: f64 = 20.0;
 fn demo_set_file() -> &'static Path {
     static FILE: OnceLock<(tempfile::TempDir, PathBuf)> = OnceLock::new();
     let (_, path) = FILE.get_or_init(|| {
-        let level = ppr_extract::load_level(Path::new(ASSETS).join("demo_room.glb")).expect("demo level loads");
+        let level =
+            ppr_extract::load_level(Path::new(ASSETS).join("demo_room.glb")).expect("demo level loads");
         let extraction = ppr_extract::extract(&level, &ppr_extract::ExtractParams::default(), &|_, _| {});
         let dir = tempfile::tempdir().expect("temp dir");
         let path = dir.path().join("demo_room.ppr.json");
@@ -47,8 +48,13 @@ fn ppr_render() -> (RgbaImage, Rgba32FImage) {
     let dir = tempfile::tempdir().expect("temp dir");
     let gpu = ppr_testbed::GpuContext::new_headless().expect("an adapter (llvmpipe without a GPU)");
     let set = ppr_format::ReflectorSet::load(demo_set_file()).expect("set loads");
-    let mut ppr = ppr_testbed::PprTechnique::new(&gpu.device, &gpu.queue, &set, ppr_runtime_wgpu30::ReflectionSettings::ALL)
-        .expect("valid set");
+    let mut ppr = ppr_testbed::PprTechnique::new(
+        &gpu.device,
+        &gpu.queue,
+        &set,
+        ppr_runtime_wgpu30::ReflectionSettings::ALL,
+    )
+    .expect("valid set");
     let job = ppr_testbed::RenderJob {
         level: Path::new(ASSETS).join("demo_room.glb"),
         reflectors: demo_set_file().to_owned(),
@@ -63,7 +69,8 @@ fn ppr_render() -> (RgbaImage, Rgba32FImage) {
     };
     ppr_testbed::render_job::run(&job, &gpu, Some(&mut ppr)).expect("ppr-render runs");
     let frame = image::open(dir.path().join("frame.png")).expect("frame.png").to_rgba8();
-    let reflection = image::open(dir.path().join("frame.reflection.exr")).expect("reflection exr").to_rgba32f();
+    let reflection =
+        image::open(dir.path().join("frame.reflection.exr")).expect("reflection exr").to_rgba32f();
     (frame, reflection)
 }
 
@@ -74,7 +81,9 @@ fn bevy_frame(with_ppr: bool) -> RgbaImage {
     target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     target.asset_usage = RenderAssetUsages::RENDER_WORLD;
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(target);
-    let set = PprReflectorSet { set: Arc::new(ppr_format::ReflectorSet::load(demo_set_file()).expect("set loads")) };
+    let set = PprReflectorSet {
+        set: Arc::new(ppr_format::ReflectorSet::load(demo_set_file()).expect("set loads")),
+    };
     let set = app.world_mut().resource_mut::<Assets<PprReflectorSet>>().add(set);
     app.insert_resource(DemoRoom { camera: CAMERA.to_owned(), set });
     let image_target = target.clone();
@@ -96,10 +105,12 @@ fn bevy_frame(with_ppr: bool) -> RgbaImage {
         app.update();
         if frame % 30 == 0 {
             let sink = Arc::clone(&captured);
-            app.world_mut().spawn(Screenshot::image(target.clone())).observe(move |shot: On<ScreenshotCaptured>| {
-                let image = shot.image.clone().try_into_dynamic().expect("8-bit capture").to_rgba8();
-                sink.lock().expect("capture sink").push(image);
-            });
+            app.world_mut().spawn(Screenshot::image(target.clone())).observe(
+                move |shot: On<ScreenshotCaptured>| {
+                    let image = shot.image.clone().try_into_dynamic().expect("8-bit capture").to_rgba8();
+                    sink.lock().expect("capture sink").push(image);
+                },
+            );
         }
         let shots = captured.lock().expect("capture sink");
         if let [.., a, b] = shots.as_slice()
@@ -138,8 +149,17 @@ fn reflector_pixels_match_ppr_render() {
     let mask = |x: u32, y: u32| reflection.get_pixel(x, y).0[3] > 0.0;
     let (db, pixels) = psnr(&with, &reference, mask);
     let (db_off, _) = psnr(&without, &reference, mask);
-    eprintln!("cam_mirror {}x{}: {pixels} reflector pixels, PSNR {db:.1} dB with PPR, {db_off:.1} dB without", SIZE[0], SIZE[1]);
+    eprintln!(
+        "cam_mirror {}x{}: {pixels} reflector pixels, PSNR {db:.1} dB with PPR, {db_off:.1} dB without",
+        SIZE[0], SIZE[1]
+    );
     assert!(pixels > 1000, "ppr-render must find reflections on cam_mirror: {pixels}");
-    assert!(db >= MIN_PSNR_DB, "reflector pixels: {db:.1} dB < {MIN_PSNR_DB} dB (without PPR: {db_off:.1} dB)");
-    assert!(db > db_off + 1.0, "PPR must bring the frame nearer ppr-render: {db:.1} dB vs {db_off:.1} dB without");
+    assert!(
+        db >= MIN_PSNR_DB,
+        "reflector pixels: {db:.1} dB < {MIN_PSNR_DB} dB (without PPR: {db_off:.1} dB)"
+    );
+    assert!(
+        db > db_off + 1.0,
+        "PPR must bring the frame nearer ppr-render: {db:.1} dB vs {db_off:.1} dB without"
+    );
 }

@@ -21,7 +21,8 @@ fn set_json() -> String {
 fn parse_errors_name_the_file_and_the_field() {
     let broken = set_json().replacen("\"roughness\": 0.0", "\"roughness\": \"smooth\"", 1);
     assert_ne!(broken, set_json(), "the test must break the set");
-    let error = parse_reflector_set("levels/hall.ppr.json".into(), broken.as_bytes()).unwrap_err().to_string();
+    let error =
+        parse_reflector_set("levels/hall.ppr.json".into(), broken.as_bytes()).unwrap_err().to_string();
     assert!(error.contains("levels/hall.ppr.json"), "{error}");
     assert!(error.contains("roughness"), "{error}");
     let error = parse_reflector_set("x.ppr.json".into(), &[0xff, 0xfe]).unwrap_err().to_string();
@@ -56,9 +57,16 @@ fn a_changed_set_reloads_through_the_asset_watcher() {
     std::fs::write(&path, set_json()).expect("write");
     let mut app = headless_app(dir.path(), true);
     let handle: Handle<PprReflectorSet> = app.world().resource::<AssetServer>().load("hall.ppr.json");
-    let loaded = |app: &mut App| app.world().resource::<Assets<PprReflectorSet>>().get(&handle).map(|a| a.set.clone());
+    let loaded =
+        |app: &mut App| app.world().resource::<Assets<PprReflectorSet>>().get(&handle).map(|a| a.set.clone());
     let mut first = None;
-    assert!(run_until(&mut app, 600, |app| { first = loaded(app); first.is_some() }), "the set must load");
+    assert!(
+        run_until(&mut app, 600, |app| {
+            first = loaded(app);
+            first.is_some()
+        }),
+        "the set must load"
+    );
     let first = first.expect("loaded");
     assert_eq!(first.reflectors[0].name, "mirror");
 

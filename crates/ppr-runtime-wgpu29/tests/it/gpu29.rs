@@ -3,7 +3,9 @@
 
 use glam::Vec4;
 use half::f16;
+use ppr_runtime_wgpu29::OUTPUT_FORMAT;
 use ppr_tests::scene::Frame;
+use wgpu::util::DeviceExt;
 
 /// The device the wgpu-29 build runs on; fails loudly when there is no adapter.
 pub struct Gpu29 {
@@ -34,68 +36,71 @@ pub struct Frame29 {
     pub output: wgpu::Texture,
 }
 
-fn texture(g: &Gpu29, frame: &Frame, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
-    g.device.create_texture(&wgpu::TextureDescriptor {
+/// A texture of the frame's size holding `bytes`.
+fn texture(
+    g: &Gpu29,
+    frame: &Frame,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+    bytes: &[u8],
+) -> wgpu::Texture {
+    let [width, height] = frame.size;
+    let desc = wgpu::TextureDescriptor {
         label: Some("wgpu29 test frame"),
-        size: wgpu::Extent3d { width: frame.size[0], height: frame.size[1], depth_or_array_layers: 1 },
+        size: wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
         format,
-        usage,
+        usage: usage | wgpu::TextureUsages::COPY_DST,
         view_formats: &[],
-    })
-}
-
-fn write(g: &Gpu29, t: &wgpu::Texture, bytes: &[u8], bytes_per_pixel: u32) {
-    let layout = wgpu::TexelCopyBufferLayout {
-        offset: 0,
-        bytes_per_row: Some(t.width() * bytes_per_pixel),
-        rows_per_image: None,
     };
-    g.queue.write_texture(t.as_image_copy(), bytes, layout, t.size());
+    g.device.create_texture_with_data(&g.queue, &desc, wgpu::util::TextureDataOrder::LayerMajor, bytes)
 }
 
 impl Frame29 {
     pub fn upload(g: &Gpu29, frame: &Frame) -> Self {
-        let read = wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_DST;
-        let color = texture(g, frame, wgpu::TextureFormat::Rgba16Float, read);
-        let rgba: Vec<f16> = frame.color.iter().flat_map(|c| [c.x, c.y, c.z, 1.0]).map(f16::from_f32).collect();
-        write(g, &color, bytemuck::cast_slice(&rgba), 8);
-        let depth = texture(g, frame, wgpu::TextureFormat::R32Float, read);
-        write(g, &depth, bytemuck::cast_slice(&frame.depth), 4);
-        let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::COPY_DST;
-        let output = texture(g, frame, ppr_runtime_wgpu29::OUTPUT_FORMAT, usage);
-        write(g, &output, &vec![0; (frame.size[0] * frame.size[1] * 8) as usize], 8);
-        Self { color, depth, output }
+        let rgba: Vec<f16> =
+            frame.color.iter().flat_map(|c| [c.x, c.y, c.z, 1.0]).map(f16::from_f32).collect();
+        let (read, write) = (wgpu::TextureUsages::TEXTURE_BINDING, wgpu::TextureUsages::STORAGE_BINDING);
+        let pixels = (frame.size[0] * frame.size[1]) as usize;
+        Self {
+            color: texture(g, frame, wgpu::TextureFormat::Rgba16Float, read, bytemuck::cast_slice(&rgba)),
+            depth: texture(g, frame, wgpu::TextureFormat::R32Float, read, bytemuck::cast_slice(&frame.depth)),
+            output: texture(
+                g,
+                frame,
+                OUTPUT_FORMAT,
+                write | wgpu::TextureUsages::COPY_SRC,
+                &vec![0; pixels * 8],
+            ),
+        }
     }
 
-    /// The output texture's pixels.
+    /// The output texture's pixels (rows need no padding: the width is a multiple of 32).
     pub fn read_output(&self, g: &Gpu29) -> Vec<Vec4> {
-        let (w, h) = (self.output.width(), self.output.height());
-        let row = (w * 8).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
-        let buffer = g.device.create_buffer(&wgpu::BufferDescriptor {
+        let bytes_per_row = self.output.width() * 8;
+        assert_eq!(bytes_per_row % wgpu::COPY_BYTES_PER_ROW_ALIGNMENT, 0, "width must be a multiple of 32");
+        let readback = g.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("wgpu29 test readback"),
-            size: u64::from(row * h),
+            size: u64::from(bytes_per_row * self.output.height()),
             usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
             mapped_at_creation: false,
         });
         let mut encoder = g.device.create_command_encoder(&Default::default());
-        let layout = wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None };
-        encoder.copy_texture_to_buffer(
-            self.output.as_image_copy(),
-            wgpu::TexelCopyBufferInfo { buffer: &buffer, layout },
-            self.output.size(),
-        );
+        let into = wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(bytes_per_row),
+                rows_per_image: None,
+            },
+        };
+        encoder.copy_texture_to_buffer(self.output.as_image_copy(), into, self.output.size());
         g.queue.submit([encoder.finish()]);
-        buffer.slice(..).map_async(wgpu::MapMode::Read, |r| r.expect("map the readback"));
+        readback.slice(..).map_async(wgpu::MapMode::Read, |r| r.expect("map the readback"));
         g.device.poll(wgpu::PollType::wait_indefinitely()).expect("poll");
-        let bytes = buffer.slice(..).get_mapped_range().to_vec();
-        (0..h as usize)
-            .flat_map(|y| {
-                let line: &[f16] = bytemuck::cast_slice(&bytes[y * row as usize..][..(w * 8) as usize]);
-                line.chunks_exact(4).map(|c| Vec4::new(c[0].into(), c[1].into(), c[2].into(), c[3].into())).collect::<Vec<_>>()
-            })
-            .collect()
+        let halves: Vec<f16> = bytemuck::pod_collect_to_vec(&readback.slice(..).get_mapped_range());
+        halves.chunks_exact(4).map(|c| Vec4::from_array([c[0], c[1], c[2], c[3]].map(f32::from))).collect()
     }
 }

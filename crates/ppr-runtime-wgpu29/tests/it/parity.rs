@@ -29,13 +29,8 @@ fn camera29(c: &ppr_runtime::Camera) -> ppr_runtime_wgpu29::Camera {
         ppr_runtime::DepthMode::Reversed => ppr_runtime_wgpu29::DepthMode::Reversed,
     };
     let p = &c.projection;
-    let projection = ppr_runtime_wgpu29::Projection {
-        fov_y: p.fov_y,
-        near: p.near,
-        far: p.far,
-        depth,
-        matrix: p.matrix,
-    };
+    let projection =
+        ppr_runtime_wgpu29::Projection { fov_y: p.fov_y, near: p.near, far: p.far, depth, matrix: p.matrix };
     ppr_runtime_wgpu29::Camera { position: c.position, rotation: c.rotation, projection }
 }
 
@@ -47,7 +42,12 @@ fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
         DVec3::new(0.3, 1.6, 2.5),
         DVec3::new(-0.2, 0.6, -5.0),
         Vec3::Y,
-        ppr_runtime::Projection { fov_y: 60f32.to_radians(), near: 0.1, far: Some(100.0), ..Default::default() },
+        ppr_runtime::Projection {
+            fov_y: 60f32.to_radians(),
+            near: 0.1,
+            far: Some(100.0),
+            ..Default::default()
+        },
     );
     let frame = scene.render(&camera, SIZE);
 
@@ -71,6 +71,10 @@ fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
 
     let found = out29.iter().filter(|p| p.w > 0.0).count();
     assert!(found > 2000, "the mirror floor must show reflections: {found} pixels");
-    let differ = out29.iter().zip(&out30).filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits)).count();
+    let differ = out29
+        .iter()
+        .zip(&out30)
+        .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
+        .count();
     assert_eq!(differ, 0, "{differ} of {} pixels differ between the wgpu 29 and 30 builds", out29.len());
 }
