@@ -8,8 +8,8 @@
 //! with a floor well above what PPR off gives (the same Bevy frame without the plugin's
 //! composite is also measured, so the floor is shown to tell the two apart).
 
-use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex, OnceLock};
+use std::path::Path;
+use std::sync::{Arc, Mutex};
 
 use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;
@@ -28,26 +28,19 @@ const CAMERA: &str = "cam_mirror";
 /// see the test's output line; the floor sits a few dB under it.
 const MIN_PSNR_DB: f64 = 20.0;
 
-/// The demo set as `ppr-extract` writes it with default parameters, in a temporary folder.
-fn demo_set_file() -> &'static Path {
-    static FILE: OnceLock<(tempfile::TempDir, PathBuf)> = OnceLock::new();
-    let (_, path) = FILE.get_or_init(|| {
-        let level =
-            ppr_extract::load_level(Path::new(ASSETS).join("demo_room.glb")).expect("demo level loads");
-        let extraction = ppr_extract::extract(&level, &ppr_extract::ExtractParams::default(), &|_, _| {});
-        let dir = tempfile::tempdir().expect("temp dir");
-        let path = dir.path().join("demo_room.ppr.json");
-        extraction.set.save(&path).expect("set saved");
-        (dir, path)
-    });
-    path
+/// The demo set as the main command writes it (`ppr-extract`, default parameters).
+fn extract_demo_set() -> ppr_format::ReflectorSet {
+    let glb = Path::new(ASSETS).join("demo_room.glb");
+    let level = ppr_extract::load_level(glb).expect("demo level loads");
+    ppr_extract::extract(&level, &ppr_extract::ExtractParams::default(), &|_, _| {}).set
 }
 
 /// `ppr-render --camera cam_mirror --size 160x90`: its frame (sRGB) and its PPR reflection.
-fn ppr_render() -> (RgbaImage, Rgba32FImage) {
+fn ppr_render(set: &ppr_format::ReflectorSet) -> (RgbaImage, Rgba32FImage) {
     let dir = tempfile::tempdir().expect("temp dir");
+    let set_file = dir.path().join("demo_room.ppr.json");
+    set.save(&set_file).expect("set saved");
     let gpu = ppr_testbed::GpuContext::new_headless().expect("an adapter (llvmpipe without a GPU)");
-    let set = ppr_format::ReflectorSet::load(demo_set_file()).expect("set loads");
     let mut ppr = ppr_testbed::PprTechnique::new(
         &gpu.device,
         &gpu.queue,
@@ -57,7 +50,7 @@ fn ppr_render() -> (RgbaImage, Rgba32FImage) {
     .expect("valid set");
     let job = ppr_testbed::RenderJob {
         level: Path::new(ASSETS).join("demo_room.glb"),
-        reflectors: demo_set_file().to_owned(),
+        reflectors: set_file,
         camera: Some(CAMERA.to_owned()),
         size: SIZE,
         projection: Default::default(),
@@ -75,16 +68,16 @@ fn ppr_render() -> (RgbaImage, Rgba32FImage) {
 }
 
 /// The Bevy app's frame of the PPR camera, with the plugin's composite or without it.
-fn bevy_frame(with_ppr: bool) -> RgbaImage {
+fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage {
     let mut app = headless_app(Path::new(ASSETS), false);
     let mut target = Image::new_target_texture(SIZE[0], SIZE[1], TextureFormat::Rgba8UnormSrgb, None);
     target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     target.asset_usage = RenderAssetUsages::RENDER_WORLD;
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(target);
-    let set = PprReflectorSet {
-        set: Arc::new(ppr_format::ReflectorSet::load(demo_set_file()).expect("set loads")),
-    };
-    let set = app.world_mut().resource_mut::<Assets<PprReflectorSet>>().add(set);
+    let set = app
+        .world_mut()
+        .resource_mut::<Assets<PprReflectorSet>>()
+        .add(PprReflectorSet { set: Arc::clone(set) });
     app.insert_resource(DemoRoom { camera: CAMERA.to_owned(), set });
     let image_target = target.clone();
     app.add_systems(Startup, spawn_room).add_systems(Update, adopt_gltf_camera).add_systems(
@@ -140,9 +133,10 @@ fn psnr(a: &RgbaImage, b: &RgbaImage, mask: impl Fn(u32, u32) -> bool) -> (f64, 
 #[test]
 fn reflector_pixels_match_ppr_render() {
     let _gpu = lock();
-    let (reference, reflection) = ppr_render();
-    let with = bevy_frame(true);
-    let without = bevy_frame(false);
+    let set = Arc::new(extract_demo_set());
+    let (reference, reflection) = ppr_render(&set);
+    let with = bevy_frame(&set, true);
+    let without = bevy_frame(&set, false);
     let out_dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
     with.save(out_dir.join("bevy_ppr-cam_mirror.png")).expect("save");
     reference.save(out_dir.join("ppr-render-cam_mirror.png")).expect("save");

@@ -45,8 +45,7 @@ fn a_broken_set_fails_to_load_naming_file_and_field() {
         error.is_some()
     });
     let error = error.expect("the load must fail");
-    assert!(error.contains("broken.ppr.json"), "{error}");
-    assert!(error.contains("roughness"), "{error}");
+    assert!(error.contains("broken.ppr.json") && error.contains("roughness"), "names file and field: {error}");
 }
 
 #[test]
