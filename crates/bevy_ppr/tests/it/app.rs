@@ -1,33 +1,36 @@
-//! Bevy apps for tests: no window, driven frame by frame, and a lock that runs them one at
-//! a time (llvmpipe on two cores gains nothing from two at once).
+//! Bevy apps for tests: no window, driven frame by frame.
 
 use std::path::Path;
-use std::sync::{Mutex, MutexGuard};
 
 use bevy::asset::AssetPlugin;
 use bevy::prelude::*;
 use bevy::window::ExitCondition;
 use bevy::winit::WinitPlugin;
 
-pub fn lock() -> MutexGuard<'static, ()> {
-    static LOCK: Mutex<()> = Mutex::new(());
-    LOCK.lock().unwrap_or_else(|e| e.into_inner())
+fn asset_plugin(assets: &Path, watch: bool) -> AssetPlugin {
+    AssetPlugin {
+        file_path: assets.display().to_string(),
+        watch_for_changes_override: Some(watch),
+        ..default()
+    }
+}
+
+/// No rendering: the asset server reading `assets` (watching it when `watch`) and the PPR
+/// plugin, which then registers only its asset and main-world systems.
+pub fn asset_app(assets: &Path, watch: bool) -> App {
+    let mut app = App::new();
+    app.add_plugins((MinimalPlugins, asset_plugin(assets, watch), bevy_ppr::PprPlugin));
+    app.finish();
+    app.cleanup();
+    app
 }
 
 /// Default plugins without a window or winit, assets read from `assets`, and the PPR plugin.
-pub fn headless_app(assets: &Path, watch: bool) -> App {
+pub fn render_app(assets: &Path) -> App {
     let mut app = App::new();
-    app.add_plugins(
-        DefaultPlugins
-            .set(AssetPlugin {
-                file_path: assets.display().to_string(),
-                watch_for_changes_override: Some(watch),
-                ..default()
-            })
-            .set(WindowPlugin { primary_window: None, exit_condition: ExitCondition::DontExit, ..default() })
-            .disable::<WinitPlugin>(),
-    )
-    .add_plugins(bevy_ppr::PprPlugin);
+    let window = WindowPlugin { primary_window: None, exit_condition: ExitCondition::DontExit, ..default() };
+    let plugins = DefaultPlugins.set(asset_plugin(assets, false)).set(window).disable::<WinitPlugin>();
+    app.add_plugins((plugins, bevy_ppr::PprPlugin));
     app.finish();
     app.cleanup();
     app

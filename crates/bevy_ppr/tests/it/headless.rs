@@ -19,7 +19,7 @@ use bevy::render::view::screenshot::{Screenshot, ScreenshotCaptured};
 use bevy_ppr::{PprCamera, PprReflectorSet};
 use image::{Rgba32FImage, RgbaImage};
 
-use crate::app::{headless_app, lock};
+use crate::app::render_app;
 use crate::scene::{ASSETS, DemoRoom, adopt_gltf_camera, spawn_room};
 
 const SIZE: [u32; 2] = [160, 90];
@@ -69,7 +69,7 @@ fn ppr_render(set: &ppr_format::ReflectorSet) -> (RgbaImage, Rgba32FImage) {
 
 /// The Bevy app's frame of the PPR camera, with the plugin's composite or without it.
 fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage {
-    let mut app = headless_app(Path::new(ASSETS), false);
+    let mut app = render_app(Path::new(ASSETS));
     let mut target = Image::new_target_texture(SIZE[0], SIZE[1], TextureFormat::Rgba8UnormSrgb, None);
     target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
     target.asset_usage = RenderAssetUsages::RENDER_WORLD;
@@ -132,7 +132,6 @@ fn psnr(a: &RgbaImage, b: &RgbaImage, mask: impl Fn(u32, u32) -> bool) -> (f64, 
 
 #[test]
 fn reflector_pixels_match_ppr_render() {
-    let _gpu = lock();
     let set = Arc::new(extract_demo_set());
     let (reference, reflection) = ppr_render(&set);
     let with = bevy_frame(&set, true);

@@ -8,7 +8,7 @@ use bevy::asset::{AssetServer, Assets, LoadState};
 use bevy::prelude::*;
 use bevy_ppr::{PprReflectorSet, parse_reflector_set};
 
-use crate::app::{headless_app, lock, run_until};
+use crate::app::{asset_app, run_until};
 
 /// A valid one-reflector set from the analytic-scene harness, as JSON.
 fn set_json() -> String {
@@ -31,11 +31,10 @@ fn parse_errors_name_the_file_and_the_field() {
 
 #[test]
 fn a_broken_set_fails_to_load_naming_file_and_field() {
-    let _gpu = lock();
     let dir = tempfile::tempdir().expect("temp dir");
     let broken = set_json().replacen("\"roughness\": 0.0", "\"roughness\": -3.0", 1);
     std::fs::write(dir.path().join("broken.ppr.json"), broken).expect("write");
-    let mut app = headless_app(dir.path(), false);
+    let mut app = asset_app(dir.path(), false);
     let handle: Handle<PprReflectorSet> = app.world().resource::<AssetServer>().load("broken.ppr.json");
     let mut error = None;
     run_until(&mut app, 600, |app| {
@@ -45,16 +44,18 @@ fn a_broken_set_fails_to_load_naming_file_and_field() {
         error.is_some()
     });
     let error = error.expect("the load must fail");
-    assert!(error.contains("broken.ppr.json") && error.contains("roughness"), "names file and field: {error}");
+    assert!(
+        error.contains("broken.ppr.json") && error.contains("roughness"),
+        "names file and field: {error}"
+    );
 }
 
 #[test]
 fn a_changed_set_reloads_through_the_asset_watcher() {
-    let _gpu = lock();
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("hall.ppr.json");
     std::fs::write(&path, set_json()).expect("write");
-    let mut app = headless_app(dir.path(), true);
+    let mut app = asset_app(dir.path(), true);
     let handle: Handle<PprReflectorSet> = app.world().resource::<AssetServer>().load("hall.ppr.json");
     let loaded =
         |app: &mut App| app.world().resource::<Assets<PprReflectorSet>>().get(&handle).map(|a| a.set.clone());
