@@ -24,9 +24,10 @@ mod runtime;
 
 use bevy::app::{App, Plugin, PostUpdate, Update};
 use bevy::asset::{AssetApp, Assets};
-use bevy::core_pipeline::core_3d::{main_opaque_pass_3d, main_transparent_pass_3d};
+use bevy::core_pipeline::core_3d::main_opaque_pass_3d;
 use bevy::core_pipeline::schedule::{Core3d, Core3dSystems};
 use bevy::ecs::schedule::IntoScheduleConfigs;
+use bevy::pbr::main_transmissive_pass_3d;
 use bevy::render::{ExtractSchedule, Render, RenderApp, RenderStartup, RenderSystems};
 use bevy::shader::Shader;
 
@@ -64,9 +65,11 @@ impl Plugin for PprPlugin {
             .add_systems(Render, render::prune_views.in_set(RenderSystems::Cleanup))
             .add_systems(
                 Core3d,
+                // Opaque colour and depth are final (deferred lighting ran before the opaque
+                // pass); glass, water and other transmissive or transparent surfaces draw over.
                 render::ppr_pass
                     .after(main_opaque_pass_3d)
-                    .before(main_transparent_pass_3d)
+                    .before(main_transmissive_pass_3d)
                     .in_set(Core3dSystems::MainPass),
             );
     }
