@@ -9,11 +9,14 @@ use bevy::render::render_resource::{
     BindGroup, BindGroupEntries, BindGroupLayoutDescriptor, BindGroupLayoutEntries, BlendComponent,
     BlendFactor, BlendOperation, BlendState, BufferInitDescriptor, BufferUsages, CachedRenderPipelineId,
     ColorTargetState, ColorWrites, FragmentState, PipelineCache, RenderPipeline, RenderPipelineDescriptor,
-    ShaderStages, TextureSampleType, TextureView,
+    ShaderStages, TextureFormat, TextureSampleType, TextureView,
 };
 use bevy::render::renderer::RenderDevice;
-use bevy::render::view::ViewTarget;
 use bevy::shader::Shader;
+
+/// The main texture of an `Hdr` camera, the only target the pipeline is built for (the
+/// runtime reads linear float colour).
+pub(crate) const TARGET_FORMAT: TextureFormat = TextureFormat::Rgba16Float;
 
 /// The composite's WGSL.
 const WGSL: &str = include_str!("../shaders/composite.wgsl");
@@ -71,7 +74,7 @@ pub(crate) fn init_composite_pipeline(
         fragment: Some(FragmentState {
             shader: shader.0.clone(),
             targets: vec![Some(ColorTargetState {
-                format: ViewTarget::TEXTURE_FORMAT_HDR,
+                format: TARGET_FORMAT,
                 blend: Some(BLEND),
                 write_mask: ColorWrites::ALL,
             })],

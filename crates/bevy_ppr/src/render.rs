@@ -21,7 +21,7 @@ use ppr_runtime::ReflectionSettings;
 
 use crate::asset::PprReflectorSet;
 use crate::camera::PprCamera;
-use crate::composite::CompositePipeline;
+use crate::composite::{CompositePipeline, TARGET_FORMAT};
 use crate::diagnostics::PendingTimings;
 use crate::runtime::{OUTPUT_FORMAT, ViewRuntime};
 
@@ -120,7 +120,7 @@ pub(crate) fn ppr_pass(
     let (extracted, target, depth, ppr) = view.into_inner();
     let (Some(set), Some(pipeline)) = (&ppr.set, composite.get(&pipeline_cache)) else { return };
     let format = target.main_texture_format();
-    if format != ViewTarget::TEXTURE_FORMAT_HDR {
+    if format != TARGET_FORMAT {
         warn_once!(
             "bevy_ppr: the camera's main texture is {format:?}; PPR needs an Hdr camera (Rgba16Float)"
         );

@@ -6,6 +6,7 @@ use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::gltf::GltfAssetLabel;
 use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::prelude::*;
+use bevy::world_serialization::WorldAssetRoot;
 use bevy_ppr::{PprCamera, PprReflectorSet};
 
 /// Where the workspace keeps `demo_room.glb` (and the main command writes its set).
@@ -29,7 +30,7 @@ pub struct DemoRoom {
 
 /// Spawns the level and the light.
 pub fn spawn_room(mut commands: Commands, assets: Res<AssetServer>) {
-    commands.spawn(SceneRoot(assets.load(GltfAssetLabel::Scene(0).from_asset("demo_room.glb"))));
+    commands.spawn(WorldAssetRoot(assets.load(GltfAssetLabel::Scene(0).from_asset("demo_room.glb"))));
     commands.spawn((
         DirectionalLight { illuminance: 0.85 * LUX_PER_UNIT, shadow_maps_enabled: false, ..default() },
         Transform::from_translation(LIGHT_TOWARDS).looking_at(Vec3::ZERO, Vec3::Y),
@@ -37,8 +38,9 @@ pub fn spawn_room(mut commands: Commands, assets: Res<AssetServer>) {
     commands.insert_resource(GlobalAmbientLight { brightness: 0.25 * 998.5, ..default() });
 }
 
-/// As the level's cameras appear: the chosen one becomes the PPR camera (linear output,
-/// as `ppr-render` writes it), the others are switched off.
+/// As the level's cameras appear: the chosen one becomes the PPR camera, the others are
+/// switched off. No tone mapping (as `ppr-render` writes its frames; Bevy's default needs
+/// the `tonemapping_luts` feature).
 pub fn adopt_gltf_camera(
     mut commands: Commands,
     room: Res<DemoRoom>,
@@ -47,8 +49,9 @@ pub fn adopt_gltf_camera(
     for (entity, name, mut camera) in &mut cameras {
         let chosen = name.as_str() == room.camera;
         camera.is_active = chosen;
+        commands.entity(entity).insert(Tonemapping::None);
         if chosen {
-            commands.entity(entity).insert((PprCamera::new(room.set.clone()), Tonemapping::None));
+            commands.entity(entity).insert(PprCamera::new(room.set.clone()));
         }
     }
 }
