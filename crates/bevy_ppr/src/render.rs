@@ -37,11 +37,14 @@ pub(crate) struct ExtractedPpr {
     pub reflectivity: f32,
 }
 
+/// 3D cameras without PPR.
+type PlainCameras = (With<Camera3d>, Without<PprCamera>);
+
 /// Copies each active PPR camera's component (and its set, an `Arc`) to the render world.
 pub(crate) fn extract_ppr_cameras(
     mut commands: Commands,
     cameras: Extract<Query<(RenderEntity, &PprCamera, &Camera)>>,
-    plain: Extract<Query<RenderEntity, (With<Camera3d>, Without<PprCamera>)>>,
+    plain: Extract<Query<RenderEntity, PlainCameras>>,
     sets: Extract<Res<Assets<PprReflectorSet>>>,
 ) {
     for (entity, ppr, camera) in &cameras {

@@ -13,7 +13,7 @@ use bevy::prelude::*;
 use bevy::render::view::screenshot::{Screenshot, save_to_disk};
 use bevy_ppr::{PASS_DIAGNOSTICS, PprCamera, PprPlugin};
 
-use scene::{ASSETS, DemoRoom, adopt_gltf_camera, spawn_room};
+use scene::{ASSETS, DemoRoom, adopt_gltf_camera, spawn_room, tolerate_failed_pipelines};
 
 /// `--screenshot PATH`: save the frame after this many frames, then quit.
 const SCREENSHOT_FRAME: u32 = 90;
@@ -48,6 +48,7 @@ fn main() -> AppExit {
             FreeCameraPlugin,
             LogDiagnosticsPlugin::filtered(PASS_DIAGNOSTICS.into_iter().collect()),
         ))
+        .insert_resource(tolerate_failed_pipelines())
         .insert_resource(ScreenshotAt(screenshot))
         .insert_resource(CameraName(camera))
         .add_systems(Startup, (load_set, spawn_room))

@@ -6,6 +6,7 @@ use bevy::core_pipeline::tonemapping::Tonemapping;
 use bevy::gltf::GltfAssetLabel;
 use bevy::light::{DirectionalLight, GlobalAmbientLight};
 use bevy::prelude::*;
+use bevy::render::error_handler::{RenderErrorHandler, RenderErrorPolicy};
 use bevy::world_serialization::WorldAssetRoot;
 use bevy_ppr::{PprCamera, PprReflectorSet};
 
@@ -54,4 +55,19 @@ pub fn adopt_gltf_camera(
             commands.entity(entity).insert(PprCamera::new(room.set.clone()));
         }
     }
+}
+
+/// Keeps rendering when a shader fails to translate (a validation error naming a shader
+/// translation, logged by Bevy; that pipeline is then unusable); quits on any other. Bevy 0.19 compiles its SSAO depth-preprocess shader at
+/// start-up whether or not a camera uses SSAO, and on wgpu's GL backend (Mesa's llvmpipe,
+/// no GPU) naga's GLSL for it does not compile (`textureGatherOffset` on a shadow
+/// sampler): Bevy's default handler would quit. Nothing here uses SSAO.
+pub fn tolerate_failed_pipelines() -> RenderErrorHandler {
+    RenderErrorHandler(|error, main_world, _| {
+        if error.description.contains("Shader translation error") {
+            return RenderErrorPolicy::Ignore;
+        }
+        main_world.write_message(AppExit::error());
+        RenderErrorPolicy::StopRendering
+    })
 }
