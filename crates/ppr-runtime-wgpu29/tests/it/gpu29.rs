@@ -1,6 +1,8 @@
 //! A wgpu-29 device and frame for the parity test: colour and raw `R32Float` depth in,
 //! the runtime's output read back.
 
+use std::sync::OnceLock;
+
 use glam::Vec4;
 use half::f16;
 use ppr_runtime_wgpu29::OUTPUT_FORMAT;
@@ -14,7 +16,14 @@ pub struct Gpu29 {
     pub adapter: String,
 }
 
-pub fn gpu29() -> Gpu29 {
+/// Created once and never dropped: wgpu 29 and wgpu 30 share the process's EGL display on
+/// the GL backend, and dropping either's last device terminates it under the other.
+pub fn gpu29() -> &'static Gpu29 {
+    static GPU: OnceLock<Gpu29> = OnceLock::new();
+    GPU.get_or_init(open)
+}
+
+fn open() -> Gpu29 {
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
         .expect("no GPU adapter for wgpu 29 (llvmpipe through the GL backend works without a GPU)");

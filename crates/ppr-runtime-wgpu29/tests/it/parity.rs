@@ -54,6 +54,7 @@ fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
     let mut ppr30 = renderer();
     ppr30.set_reflectors(&set).expect("valid set");
     let out30 = run(&mut ppr30, &GpuFrame::upload_raw_depth(&frame), &camera).pixels;
+    drop(ppr30);
 
     let g = gpu29();
     eprintln!("wgpu 29 adapter: {}", g.adapter);
@@ -61,13 +62,13 @@ fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
     ppr29.set_reflectors(&set).expect("valid set");
     let plan = ppr29.prepare(&camera29(&camera), SIZE).clone();
     assert!(!plan.is_empty(), "the mirror floor must be visible");
-    let f29 = Frame29::upload(&g, &frame);
+    let f29 = Frame29::upload(g, &frame);
     let view = |t: &wgpu::Texture| t.create_view(&Default::default());
     let (color, depth, output) = (view(&f29.color), view(&f29.depth), view(&f29.output));
     let mut encoder = g.device.create_command_encoder(&Default::default());
     ppr29.encode(&mut encoder, &ppr_runtime_wgpu29::FrameInputs::new(&color, &depth, &output));
     g.queue.submit([encoder.finish()]);
-    let out29 = f29.read_output(&g);
+    let out29 = f29.read_output(g);
 
     let found = out29.iter().filter(|p| p.w > 0.0).count();
     assert!(found > 2000, "the mirror floor must show reflections: {found} pixels");
