@@ -45,7 +45,7 @@ fn ppr_render(set: &ppr_format::ReflectorSet) -> (RgbaImage, Rgba32FImage) {
     let mut ppr = ppr_testbed::PprTechnique::new(
         &gpu.device,
         &gpu.queue,
-        &set,
+        set,
         ppr_runtime_wgpu30::ReflectionSettings::ALL,
     )
     .expect("valid set");
@@ -112,7 +112,7 @@ fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage 
             continue;
         }
         frames_with_camera += 1;
-        if frames_with_camera % 30 == 0 {
+        if frames_with_camera.is_multiple_of(30) {
             let sink = Arc::clone(&captured);
             world.spawn(Screenshot::image(target.clone())).observe(move |shot: On<ScreenshotCaptured>| {
                 let image = shot.image.clone().try_into_dynamic().expect("8-bit capture").to_rgba8();
