@@ -57,14 +57,14 @@ pub fn adopt_gltf_camera(
     }
 }
 
-/// Keeps rendering when a shader fails to translate (a validation error naming a shader
-/// translation, logged by Bevy; that pipeline is then unusable); quits on any other. Bevy 0.19 compiles its SSAO depth-preprocess shader at
+/// Keeps rendering when a pipeline fails to build (an error whose description names a
+/// pipeline, logged by Bevy; that pipeline is then unusable); quits on any other. Bevy 0.19 compiles its SSAO depth-preprocess shader at
 /// start-up whether or not a camera uses SSAO, and on wgpu's GL backend (Mesa's llvmpipe,
 /// no GPU) naga's GLSL for it does not compile (`textureGatherOffset` on a shadow
 /// sampler): Bevy's default handler would quit. Nothing here uses SSAO.
 pub fn tolerate_failed_pipelines() -> RenderErrorHandler {
     RenderErrorHandler(|error, main_world, _| {
-        if error.description.contains("Shader translation error") {
+        if error.description.to_lowercase().contains("pipeline") {
             return RenderErrorPolicy::Ignore;
         }
         main_world.write_message(AppExit::error());

@@ -12,7 +12,6 @@ use std::path::Path;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-use bevy::asset::RenderAssetUsages;
 use bevy::camera::RenderTarget;
 use bevy::prelude::*;
 use bevy::render::render_resource::{TextureFormat, TextureUsages};
@@ -77,7 +76,6 @@ fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage 
     let mut app = render_app(Path::new(ASSETS));
     let mut target = Image::new_target_texture(SIZE[0], SIZE[1], TextureFormat::Rgba8UnormSrgb, None);
     target.texture_descriptor.usage |= TextureUsages::COPY_SRC;
-    target.asset_usage = RenderAssetUsages::RENDER_WORLD;
     let target = app.world_mut().resource_mut::<Assets<Image>>().add(target);
     let set = app
         .world_mut()
@@ -106,6 +104,9 @@ fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage 
     let mut frames_with_camera = 0u32;
     while Instant::now() < deadline {
         app.update();
+        if let Some(exit) = app.should_exit() {
+            panic!("the app quit: {exit:?} (a render error; see the log)");
+        }
         let world = app.world_mut();
         if world.query::<&ImageCamera>().iter(world).next().is_none() {
             std::thread::sleep(Duration::from_millis(5));
@@ -127,7 +128,15 @@ fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage 
             return b.clone();
         }
     }
-    panic!("the Bevy frame did not settle within 120 s ({frames_with_camera} frames with the camera)");
+    let shots = captured.lock().expect("capture sink");
+    let lit = shots.iter().filter(|s| s.pixels().any(|p| p.0[..3] != [0, 0, 0])).count();
+    if let Some(last) = shots.last() {
+        let _ = last.save(Path::new(env!("CARGO_TARGET_TMPDIR")).join("bevy_ppr-unsettled.png"));
+    }
+    panic!(
+        "the Bevy frame did not settle within 120 s: {frames_with_camera} frames with the camera, {} captures, {lit} not black",
+        shots.len()
+    );
 }
 
 /// PSNR (dB, 8-bit sRGB) between two frames over the pixels where `mask` holds.
