@@ -41,6 +41,7 @@ pub mod source_box;
 mod stereo;
 #[doc(hidden)]
 pub mod timestamps;
+mod wgpu_compat;
 
 pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};

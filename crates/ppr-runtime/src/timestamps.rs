@@ -1,5 +1,6 @@
 //! GPU timestamps around each pass, resolved into a buffer and read back on request.
 
+use crate::wgpu_compat::MappedRange;
 use std::fmt;
 
 /// GPU time of each pass of one frame, milliseconds; `None` for a pass that did not run
@@ -117,7 +118,7 @@ impl PassTimer {
         device.poll(wgpu::PollType::wait_indefinitely()).ok()?;
         rx.recv().ok()?.ok()?;
         let ticks: Vec<u64> = {
-            let view = slice.get_mapped_range().ok()?;
+            let view = slice.get_mapped_range().into_view()?;
             view.chunks_exact(8).map(|c| u64::from_le_bytes(c.try_into().expect("8 bytes"))).collect()
         };
         self.readback.unmap();
