@@ -37,7 +37,7 @@ fn camera29(c: &ppr_runtime::Camera) -> ppr_runtime_wgpu29::Camera {
 #[test]
 fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
     let scene = room();
-    let set = scene.reflector_set();
+    let set = ppr_format::ValidatedSet::new(scene.reflector_set()).expect("a valid set");
     let camera = ppr_runtime::Camera::look_at(
         DVec3::new(0.3, 1.6, 2.5),
         DVec3::new(-0.2, 0.6, -5.0),
@@ -52,14 +52,14 @@ fn wgpu29_build_matches_the_wgpu30_build_bit_for_bit() {
     let frame = scene.render(&camera, SIZE);
 
     let mut ppr30 = renderer();
-    ppr30.set_reflectors(&set).expect("valid set");
+    ppr30.set_reflectors(&set);
     let out30 = run(&mut ppr30, &GpuFrame::upload_raw_depth(&frame), &camera).pixels;
     drop(ppr30);
 
     let g = gpu29();
     eprintln!("wgpu 29 adapter: {}", g.adapter);
     let mut ppr29 = ppr_runtime_wgpu29::ReflectionRenderer::new(&g.device, &g.queue, &Default::default());
-    ppr29.set_reflectors(&set).expect("valid set");
+    ppr29.set_reflectors(&set);
     let plan = ppr29.prepare(&camera29(&camera), SIZE).clone();
     assert!(!plan.is_empty(), "the mirror floor must be visible");
     let f29 = Frame29::upload(g, &frame);
