@@ -88,6 +88,20 @@ mod tests {
         }
     }
 
+    /// The size of the WGSL struct `name` in `module`.
+    fn struct_size(module: &naga::Module, name: &str) -> usize {
+        module
+            .types
+            .iter()
+            .find_map(|(_, t)| match &t.inner {
+                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
+                    Some(*span as usize)
+                }
+                _ => None,
+            })
+            .unwrap_or_else(|| panic!("no struct {name} in the WGSL"))
+    }
+
     /// The WGSL structs the Rust side uploads have the sizes of their `#[repr(C)]` mirrors
     /// (a field added on one side only would shift every field after it).
     #[test]
@@ -96,18 +110,7 @@ mod tests {
         let source = super::source("");
         let module =
             naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
-        let size = |name: &str| {
-            module
-                .types
-                .iter()
-                .find_map(|(_, t)| match &t.inner {
-                    naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
-                        Some(*span as usize)
-                    }
-                    _ => None,
-                })
-                .unwrap_or_else(|| panic!("no struct {name} in the shared WGSL"))
-        };
+        let size = |name: &str| struct_size(&module, name);
         assert_eq!(size("FrameUniforms"), std::mem::size_of::<FrameUniforms>());
         assert_eq!(size("Shape"), std::mem::size_of::<GpuShape>());
         assert_eq!(size("Layer"), std::mem::size_of::<GpuLayer>());
@@ -181,16 +184,7 @@ mod tests {
             .1;
         let size = module.types[uniform_tests.ty].inner.size(module.to_ctx()) as usize;
         assert_eq!(size, crate::plan::UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>());
-        let test_size = module
-            .types
-            .iter()
-            .find_map(|(_, t)| match &t.inner {
-                naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some("ShapeTest") => {
-                    Some(*span as usize)
-                }
-                _ => None,
-            })
-            .expect("ShapeTest");
+        let test_size = struct_size(&module, "ShapeTest");
         assert_eq!(test_size, std::mem::size_of::<GpuShapeTest>());
     }
 
@@ -204,18 +198,7 @@ mod tests {
         );
         let module =
             naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
-        let size = |name: &str| {
-            module
-                .types
-                .iter()
-                .find_map(|(_, t)| match &t.inner {
-                    naga::TypeInner::Struct { span, .. } if t.name.as_deref() == Some(name) => {
-                        Some(*span as usize)
-                    }
-                    _ => None,
-                })
-                .unwrap_or_else(|| panic!("no struct {name}"))
-        };
+        let size = |name: &str| struct_size(&module, name);
         assert_eq!(size("GlossyShape"), std::mem::size_of::<GpuGlossyShape>());
         assert_eq!(size("GlossyShapes"), std::mem::size_of::<GpuGlossyShapes>());
         let capacity = module
