@@ -6,5 +6,6 @@ mod confidence;
 mod encoding_parity;
 mod features;
 mod glossy;
+mod plane_groups;
 mod reflection;
 mod tiles;

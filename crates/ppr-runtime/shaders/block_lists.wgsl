@@ -38,7 +38,7 @@ fn main(
     let empty = box.lo.x > box.hi.x;
 
     // Candidates: the super-tile's list, or every visible shape.
-    var count = frame.visible_count;
+    var count = frame.tested_count;
     var start = 0u;
     var listed = false;
     if (SUPER_TILES) {

@@ -32,7 +32,8 @@ struct FrameUniforms {
     plane_epsilon: f32,
     // Layer reflectors (glass, water) with an atlas region this frame.
     layer_count: u32,
-    _pad0: u32,
+    // Projection tests before the layers': visible shapes and merged plane groups.
+    tested_count: u32,
     // The screen rectangle the layer reflection pass covers.
     layer_origin: vec2<u32>,
     layer_extent: vec2<u32>,

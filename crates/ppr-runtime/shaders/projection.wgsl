@@ -35,6 +35,10 @@
 // - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
 //   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
 //   without writing.
+// Not a variant (the plan decides per frame): a test whose `shape` has GROUP_TEST_FLAG
+// stands for a merged group of coplanar shapes, tested by the pyramid of their bounding
+// rectangle; a pixel that passes writes only if its reflection point lies on a member
+// (group_covers, a grid lookup).
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
@@ -72,6 +76,52 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // The first entries of `tests` again, read with UNIFORM_TESTS (the plan sets it when every
 // visible shape and layer fits): uniform loads go through the constant cache.
 @group(0) @binding(12) var<uniform> uniform_tests: array<ShapeTest, 128>;
+// Merged plane groups (crates/ppr-runtime/src/plane_groups.rs): per group a header of 16
+// words (PlaneGroup), then the grids' static words.
+@group(0) @binding(13) var<storage, read> plane_groups: array<u32>;
+
+// Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
+const GROUP_TEST_FLAG: u32 = 0x80000000u;
+// Words per member rectangle in the grids.
+const GROUP_RECT_WORDS: u32 = 8u;
+
+fn group_f32(i: u32) -> f32 {
+    return bitcast<f32>(plane_groups[i]);
+}
+
+fn group_vec3(i: u32) -> vec3<f32> {
+    return vec3<f32>(group_f32(i), group_f32(i + 1u), group_f32(i + 2u));
+}
+
+// Whether the reflection point `hit` (camera-relative, on the group's plane) lies on a
+// member of the merged group in header slot `slot`: the grid cell holding it lists the
+// members that overlap the cell, each tested by its own axes.
+fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
+    let h = slot * 16u;
+    let l = hit - group_vec3(h);
+    let cells_start = plane_groups[h + 3u];
+    let u = dot(l, group_vec3(h + 4u));
+    let v = dot(l, group_vec3(h + 8u));
+    let cells = vec2<u32>(plane_groups[h + 7u], plane_groups[h + 11u]);
+    let c = floor(vec2<f32>(u, v) * vec2<f32>(group_f32(h + 12u), group_f32(h + 13u)));
+    if (!(all(c >= vec2<f32>(0.0)) && all(c < vec2<f32>(cells)))) {
+        return false;
+    }
+    let cell = cells_start + u32(c.x) + u32(c.y) * cells.x;
+    let rects = plane_groups[h + 14u];
+    let end = cells_start + plane_groups[cell + 1u];
+    for (var i = cells_start + plane_groups[cell]; i < end; i++) {
+        let r = rects + GROUP_RECT_WORDS * plane_groups[i];
+        let d = vec2<f32>(u - group_f32(r), v - group_f32(r + 1u));
+        let axis = vec2<f32>(group_f32(r + 4u), group_f32(r + 5u));
+        let lu = d.x * axis.x + d.y * axis.y;
+        let lv = d.y * axis.x - d.x * axis.y;
+        if (abs(lu) <= group_f32(r + 2u) && abs(lv) <= group_f32(r + 3u)) {
+            return true;
+        }
+    }
+    return false;
+}
 
 fn shape_test(k: u32) -> ShapeTest {
     if (UNIFORM_TESTS) {
@@ -223,7 +273,14 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
 fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
     let n = plane.xyz;
     let mirrored = p - 2.0 * dist * n;
-    if (OCCLUDER_TESTS) {
+    if ((shape & GROUP_TEST_FLAG) != 0u) {
+        // A merged plane group (never with occluder lists): does the reflection point lie
+        // on a member, not just in the group's bounding rectangle?
+        let hit = mirrored * (-plane.w / dot(mirrored, n));
+        if (!group_covers(shape & ~GROUP_TEST_FLAG, hit)) {
+            return false;
+        }
+    } else if (OCCLUDER_TESTS) {
         let s = shapes[shape];
         let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
         if (is_occluded(hit, s)) {
@@ -320,7 +377,7 @@ struct Candidates {
 }
 
 fn block_candidates(wid: vec3<u32>) -> Candidates {
-    var c = Candidates(frame.visible_count, 0u, false);
+    var c = Candidates(frame.tested_count, 0u, false);
     if (SUPER_TILES) {
         let grid = super_tile_grid();
         let per = SUPER_TILE_SIZE / BLOCK_SIZE;
@@ -373,8 +430,8 @@ fn main(
     // In the tiled variant, the candidates are the block's list (positions in `visible`);
     // otherwise, or when the list overflowed, every candidate (the super-tile's list or
     // every visible shape).
-    var cand = Candidates(frame.visible_count, 0u, false);
-    var count = frame.visible_count;
+    var cand = Candidates(frame.tested_count, 0u, false);
+    var count = frame.tested_count;
     var use_list = false;
     var list_start = 0u;
     if (TILE_CULLING) {
@@ -466,7 +523,7 @@ fn main(
     }
     // Layer reflectors (few): their tests follow the visible shapes'.
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
-        let k = frame.visible_count + l;
+        let k = frame.tested_count + l;
         if (!block_meets_source_box(k, lo, hi)) {
             continue;
         }

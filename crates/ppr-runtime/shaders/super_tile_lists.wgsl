@@ -39,11 +39,11 @@ fn main(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: v
     let st = wid.x + wid.y * grid.x;
     let list_start = grid.y + st * SUPER_LIST_CAPACITY;
     var count = 0u;
-    for (var base = 0u; base < frame.visible_count; base += TILE_GROUP_THREADS) {
+    for (var base = 0u; base < frame.tested_count; base += TILE_GROUP_THREADS) {
         let k = base + lid;
         var passes = false;
-        if (!empty && k < frame.visible_count) {
-            let b = source_boxes[min(k, frame.visible_count - 1u)];
+        if (!empty && k < frame.tested_count) {
+            let b = source_boxes[min(k, frame.tested_count - 1u)];
             let meets = !SOURCE_BOXES || (all(b.xy < origin + SUPER_TILE_SIZE) && all(origin < b.zw));
             passes = meets && box_may_reflect(tests[k], box.lo, box.hi);
         }

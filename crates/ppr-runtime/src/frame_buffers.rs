@@ -8,6 +8,7 @@ use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
 use crate::plan::FramePlan;
 use crate::plan::{MAX_LAYERS, UNIFORM_TESTS_CAPACITY};
+use crate::plane_groups::plane_group_words_offset;
 use crate::shapes::ShapeTable;
 
 /// Buffers reallocated only when the viewport or the set changes.
@@ -37,6 +38,9 @@ pub(crate) struct FrameBuffers {
     pub super_lists: wgpu::Buffer,
     /// Block counts and lists (full size only once a plan uses tile culling).
     pub block_lists: wgpu::Buffer,
+    /// The merged plane groups' headers (one slot per group of the table, written per
+    /// frame), then the table's static grid words (`crate::plane_groups`).
+    pub plane_groups: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -117,6 +121,7 @@ impl FrameBuffers {
                 if tile_culling { block_lists_size(plan.viewport) } else { 16 },
                 readable,
             ),
+            plane_groups: plane_groups_buffer(device, table),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
@@ -132,4 +137,16 @@ impl FrameBuffers {
             && (!plan.super_tiles || self.super_lists.size() >= super_lists_size(plan.viewport))
             && (!plan.tile_culling || self.block_lists.size() >= block_lists_size(plan.viewport))
     }
+}
+
+/// Room for every group's header (zeros until a frame writes them), then the static words.
+fn plane_groups_buffer(device: &wgpu::Device, table: &ShapeTable) -> wgpu::Buffer {
+    let mut words = vec![0u32; plane_group_words_offset(table) as usize];
+    words.extend(&table.plane_groups.words);
+    words.resize(words.len().max(4), 0);
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some("ppr plane groups"),
+        contents: bytemuck::cast_slice(&words),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    })
 }

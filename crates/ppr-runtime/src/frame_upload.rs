@@ -1,6 +1,6 @@
 //! What one `prepare` hands to the GPU, in a buffer of its own: the frame uniforms, the
 //! camera-relative shapes, the visible list, the screen rectangles, the layers, the shape
-//! tests and the source boxes.
+//! tests, the source boxes and the merged plane groups' headers.
 //! `encode` records copies from it into the frame buffers before its passes.
 //!
 //! Why not `queue.write_buffer` into the frame buffers: those writes all land at the next
@@ -23,6 +23,7 @@ pub(crate) enum UploadTarget {
     Tests,
     UniformTests,
     SourceRects,
+    PlaneGroups,
     Glossy,
 }
 
@@ -37,6 +38,7 @@ impl UploadTarget {
             Self::Tests => &b.tests,
             Self::UniformTests => &b.uniform_tests,
             Self::SourceRects => &b.source_rects,
+            Self::PlaneGroups => &b.plane_groups,
             Self::Glossy => &b.glossy,
         }
     }

@@ -39,7 +39,9 @@ pub struct FrameUniforms {
     pub far_depth: f32,
     pub plane_epsilon: f32,
     pub layer_count: u32,
-    pub _pad: u32,
+    /// Projection tests before the layers' ([`crate::FramePlan::tested`]): visible shapes
+    /// and merged plane groups.
+    pub tested_count: u32,
     pub layer_origin: [u32; 2],
     pub layer_extent: [u32; 2],
     pub encoding: EncodingParams,

@@ -25,6 +25,8 @@ pub mod gpu_types;
 pub mod passes;
 #[doc(hidden)]
 pub mod plan;
+#[doc(hidden)]
+pub mod plane_groups;
 mod reduced_targets;
 #[doc(hidden)]
 pub mod renderer;
@@ -47,7 +49,7 @@ pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
 pub use passes::projection::Ablation;
 pub use passes::reflection::OUTPUT_FORMAT;
-pub use plan::{Choice, FramePlan, PlanParams, ScreenRect};
+pub use plan::{Choice, FramePlan, PlanParams, ScreenRect, TestedEntry};
 pub use renderer::{DebugOptions, FrameInputs, ReflectionRenderer, RendererDesc};
 pub use settings::{ReflectionSettings, ResolutionTier, WriteMode};
 pub use timestamps::PassTimings;

@@ -7,7 +7,7 @@ use ppr_format::ReflectorKind;
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
-use crate::shapes::ShapeTable;
+use crate::shapes::{ShapeSource, ShapeTable};
 use crate::source_box::source_rect;
 
 /// A reflector's rectangle on screen, in pixels (inclusive min, exclusive max).
@@ -111,6 +111,14 @@ pub struct PlanParams {
     /// shape. `Auto`: on (on the H200 at 3840×2160 it takes 0.03–0.08 ms off the demo
     /// room's projection, docs/perf/runtime.md).
     pub source_boxes: Choice,
+    /// Test coplanar visible shapes (a floor of puddles, a facade of windows) as one: the
+    /// projection tests their group's plane once per pixel and looks the reflection point
+    /// up in a grid of its members ([`crate::plane_groups`]). Never with the occluder
+    /// lists (which are per shape) or [`crate::DebugOptions::writes`] (whose masks are).
+    pub plane_groups: Choice,
+    /// With `Auto`, a plane group is merged when at least this many of its members are
+    /// visible.
+    pub plane_group_min_shapes: usize,
     /// Give the projection pass the shape tests in a uniform buffer (at most
     /// [`UNIFORM_TESTS_CAPACITY`] visible shapes and layers) instead of a storage buffer:
     /// the per-shape loads of every pixel go through the constant cache. `Auto`: on
@@ -144,6 +152,8 @@ impl Default for PlanParams {
             depth_occlusion: Choice::Auto,
             occluder_lists: Choice::Auto,
             uniform_tests: Choice::Auto,
+            plane_groups: Choice::Auto,
+            plane_group_min_shapes: 4,
         }
     }
 }
@@ -164,6 +174,16 @@ pub struct LayerAlloc {
     pub offset: u32,
 }
 
+/// What one projection test covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum TestedEntry {
+    /// A visible shape (index into the set).
+    Shape(u32),
+    /// A merged group of coplanar visible shapes (index into
+    /// [`crate::plane_groups::PlaneGroups::groups`]).
+    PlaneGroup(u32),
+}
+
 /// What one frame will do, and why.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FramePlan {
@@ -173,9 +193,13 @@ pub struct FramePlan {
     pub visible: Vec<u32>,
     /// Screen rectangle of each visible shape (same order as `visible`).
     pub screen_rects: Vec<ScreenRect>,
-    /// With source boxes: the screen box of the pixels that may reflect into each visible
-    /// shape (same order as `visible`), then into each layer (`crate::source_box`). Empty
-    /// without.
+    /// What the projection pass tests, in order: the visible shapes, those of a merged
+    /// plane group replaced by one entry for the group (where its first member stood).
+    pub tested: Vec<TestedEntry>,
+    /// Visible shapes the merged plane groups of `tested` cover.
+    pub grouped_shapes: usize,
+    /// With source boxes: the screen box of the pixels that may reflect into each entry of
+    /// `tested`, then into each layer (`crate::source_box`). Empty without.
     pub source_rects: Vec<ScreenRect>,
     /// Shapes disabled in the set.
     pub disabled: usize,
@@ -239,6 +263,8 @@ impl FramePlan {
             viewport,
             visible: Vec::new(),
             screen_rects: Vec::new(),
+            tested: Vec::new(),
+            grouped_shapes: 0,
             source_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
@@ -313,24 +339,62 @@ impl FramePlan {
         let screen = (w as f64 * h as f64).max(1.0);
         let covered: f64 = plan.screen_rects.iter().map(|r| r.area() as f64).sum();
         plan.coverage = (covered / screen).min(1.0) as f32;
-        plan.tile_culling = params.tile_culling.decide(plan.visible.len() >= params.tile_culling_min_shapes);
-        plan.super_tiles = plan.tile_culling
-            && params.super_tiles.decide(plan.visible.len() >= params.super_tiles_min_shapes);
+        plan.merge_plane_groups(table, params);
+        let tested = plan.tested.len();
+        plan.tile_culling = params.tile_culling.decide(tested >= params.tile_culling_min_shapes);
+        plan.super_tiles =
+            plan.tile_culling && params.super_tiles.decide(tested >= params.super_tiles_min_shapes);
         plan.parallel_rule = params.parallel_rule.decide(false);
-        plan.uniform_tests = params.uniform_tests.decide(true)
-            && plan.visible.len() + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
+        plan.uniform_tests =
+            params.uniform_tests.decide(true) && tested + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
         if params.source_boxes.decide(true) {
-            let layers = plan.layers.iter().map(|l| l.shape);
-            plan.source_rects = plan
-                .visible
-                .iter()
-                .copied()
-                .chain(layers)
-                .map(|i| source_rect(&table.shapes[i as usize], camera.position, &clip_from_rel, viewport))
-                .collect();
+            let rect = |s: &ShapeSource| source_rect(s, camera.position, &clip_from_rel, viewport);
+            let layers = plan.layers.iter().map(|l| rect(&table.shapes[l.shape as usize]));
+            let entries = plan.tested.iter().map(|e| match *e {
+                TestedEntry::Shape(i) => rect(&table.shapes[i as usize]),
+                TestedEntry::PlaneGroup(g) => rect(&table.plane_groups.groups[g as usize].bounding_shape()),
+            });
+            plan.source_rects = entries.chain(layers).collect();
         }
         plan
+    }
+
+    /// Fills `tested`: each visible shape, but one entry for the visible members of a plane
+    /// group with enough of them (none of them too rough, no occluder lists).
+    fn merge_plane_groups(&mut self, table: &ShapeTable, params: &PlanParams) {
+        let groups = &table.plane_groups;
+        let mut visible_members = vec![0usize; groups.groups.len()];
+        for &i in &self.visible {
+            if let Some(g) = groups.group_of[i as usize] {
+                visible_members[g as usize] += 1;
+            }
+        }
+        let merged: Vec<bool> = groups
+            .groups
+            .iter()
+            .zip(&visible_members)
+            .map(|(group, &n)| {
+                !self.occluder_tests
+                    && n >= 2
+                    && group.max_roughness <= params.max_roughness
+                    && params.plane_groups.decide(n >= params.plane_group_min_shapes)
+            })
+            .collect();
+        let mut emitted = vec![false; groups.groups.len()];
+        self.tested.clear();
+        self.grouped_shapes = 0;
+        for &i in &self.visible {
+            match groups.group_of[i as usize] {
+                Some(g) if merged[g as usize] => {
+                    self.grouped_shapes += 1;
+                    if !std::mem::replace(&mut emitted[g as usize], true) {
+                        self.tested.push(TestedEntry::PlaneGroup(g));
+                    }
+                }
+                _ => self.tested.push(TestedEntry::Shape(i)),
+            }
+        }
     }
 
     /// Gives glass panels (largest first) and the `max_water_layers` largest water planes
@@ -496,6 +560,15 @@ impl fmt::Display for FramePlan {
                 } else {
                     String::new()
                 }
+            )?;
+        }
+        if self.grouped_shapes > 0 {
+            let groups = self.tested.iter().filter(|e| matches!(e, TestedEntry::PlaneGroup(_))).count();
+            writeln!(
+                f,
+                "plane groups: {} coplanar reflector(s) tested as {groups} plane(s); {} projection test(s)",
+                self.grouped_shapes,
+                self.tested.len()
             )?;
         }
         if !self.glossy.is_empty() || self.glossy_dropped > 0 || self.too_rough > 0 {

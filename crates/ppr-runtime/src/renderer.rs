@@ -28,7 +28,7 @@ use crate::passes::{
 use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
-use crate::shape_tests::shape_tests;
+use crate::shape_tests::frame_tests;
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
 
@@ -240,6 +240,10 @@ impl ReflectionRenderer {
             // The last encode gave the layers nowhere to go: do not compute them.
             params.layers = Choice::Off;
         }
+        if self.debug.writes {
+            // Debug write masks record each visible shape; a merged group writes as one.
+            params.plane_groups = Choice::Off;
+        }
         let plans = cameras.map(|camera| {
             let mut plan = FramePlan::build(&self.table, camera, planned, &params);
             if let Some(layout) = self.debug.encoding {
@@ -319,7 +323,7 @@ impl ReflectionRenderer {
             far_depth: camera.projection.far_depth(),
             plane_epsilon: PLANE_EPSILON,
             layer_count: plan.layers.len() as u32,
-            _pad: 0,
+            tested_count: plan.tested.len() as u32,
             layer_origin: plan.layer_rect.min,
             layer_extent: [
                 plan.layer_rect.max[0].saturating_sub(plan.layer_rect.min[0]),
@@ -341,13 +345,7 @@ impl ReflectionRenderer {
                 _pad: 0,
             })
             .collect();
-        let tests = if plan.is_empty() {
-            Vec::new()
-        } else {
-            let tested: Vec<u32> =
-                plan.visible.iter().copied().chain(plan.layers.iter().map(|l| l.shape)).collect();
-            shape_tests(&self.table, &tested, camera.position)
-        };
+        let (tests, groups) = frame_tests(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
@@ -365,6 +363,7 @@ impl ReflectionRenderer {
                     if plan.uniform_tests { bytemuck::cast_slice(&tests) } else { &[] },
                 ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
+                (UploadTarget::PlaneGroups, bytemuck::cast_slice(&groups)),
                 (
                     UploadTarget::Glossy,
                     if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },
@@ -515,6 +514,7 @@ impl ReflectionRenderer {
                     source_boxes: &b.source_rects,
                     block_lists: &b.block_lists,
                     uniform_tests: &b.uniform_tests,
+                    plane_groups: &b.plane_groups,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

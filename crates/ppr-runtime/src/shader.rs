@@ -167,6 +167,8 @@ mod tests {
             ("BLOCK_LIST_CAPACITY", U32(BLOCK_LIST_CAPACITY)),
             ("SUPER_TILE_SIZE", U32(SUPER_TILE)),
             ("SUPER_LIST_CAPACITY", U32(SUPER_LIST_CAPACITY)),
+            ("GROUP_TEST_FLAG", U32(crate::plane_groups::GROUP_TEST_FLAG)),
+            ("GROUP_RECT_WORDS", U32(crate::plane_groups::RECT_WORDS as u32)),
         ];
         for (name, value) in expected {
             assert_eq!(constant(name), value, "{name}");

@@ -13,11 +13,41 @@
 use glam::{DVec3, DVec4};
 
 use crate::gpu_types::GpuShapeTest;
+use crate::plan::{FramePlan, TestedEntry};
+use crate::plane_groups::{GROUP_TEST_FLAG, GpuPlaneGroup, plane_group_words_offset};
 use crate::shapes::{ShapeSource, ShapeTable};
 
 /// The tests of `visible` (indices into `table`), in that order, for a camera at `eye`.
 pub fn shape_tests(table: &ShapeTable, visible: &[u32], eye: DVec3) -> Vec<GpuShapeTest> {
     visible.iter().map(|&i| shape_test(&table.shapes[i as usize], i, eye)).collect()
+}
+
+/// A frame's projection tests for a camera at `eye`: one per entry of `plan.tested` (a
+/// merged plane group's is its bounding rectangle's, its `shape` the group's slot among
+/// the headers, flagged [`GROUP_TEST_FLAG`]), then one per layer; and the headers of the
+/// merged groups, in slot order.
+pub fn frame_tests(
+    table: &ShapeTable,
+    plan: &FramePlan,
+    eye: DVec3,
+) -> (Vec<GpuShapeTest>, Vec<GpuPlaneGroup>) {
+    let base = plane_group_words_offset(table);
+    let mut headers = Vec::new();
+    let mut tests: Vec<GpuShapeTest> = plan
+        .tested
+        .iter()
+        .map(|e| match *e {
+            TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
+            TestedEntry::PlaneGroup(g) => {
+                let group = &table.plane_groups.groups[g as usize];
+                let slot = GROUP_TEST_FLAG | headers.len() as u32;
+                headers.push(group.gpu_header(eye, base));
+                shape_test(&group.bounding_shape(), slot, eye)
+            }
+        })
+        .collect();
+    tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
+    (tests, headers)
 }
 
 /// The test of one shape (index `index` in its table).

@@ -5,6 +5,7 @@ use glam::{DVec3, Vec3};
 use ppr_format::{ReflectorKind, ReflectorSet};
 
 use crate::gpu_types::{GpuShape, SHAPE_OCCLUDES};
+use crate::plane_groups::PlaneGroups;
 
 /// One reflector as the runtime needs it (f64 centre, f32 frame).
 #[derive(Clone, Debug, PartialEq)]
@@ -55,6 +56,8 @@ pub struct ShapeTable {
     pub occluder_ranges: Vec<std::ops::Range<u32>>,
     /// All occluder lists, concatenated.
     pub occluder_indices: Vec<u32>,
+    /// The groups of coplanar shapes and their grids (built with the table).
+    pub plane_groups: PlaneGroups,
 }
 
 impl ShapeTable {
@@ -79,6 +82,7 @@ impl ShapeTable {
             table.occluder_indices.extend(&r.occluders);
             table.occluder_ranges.push(start..table.occluder_indices.len() as u32);
         }
+        table.plane_groups = PlaneGroups::build(&table.shapes);
         table
     }
 

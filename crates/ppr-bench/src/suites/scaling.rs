@@ -43,6 +43,8 @@ pub struct ScalingRow {
     pub variant: String,
     /// Visible shapes, as the plan saw them.
     pub visible: usize,
+    /// Projection tests (visible shapes, merged plane groups counting one).
+    pub tested: usize,
     /// Share of the screen the plan's screen rectangles cover.
     pub coverage: f32,
     /// Passes the plan ran.
@@ -121,6 +123,7 @@ impl Measurer<'_> {
                 shapes: g.reflectors.reflectors.len(),
                 variant: (*variant).into(),
                 visible: plan.as_ref().map_or(0, |p| p.visible.len()),
+                tested: plan.as_ref().map_or(0, |p| p.tested.len()),
                 coverage: plan.as_ref().map_or(0.0, |p| p.coverage),
                 passes: plan.as_ref().map_or(String::new(), |p| p.passes().join(" → ")),
                 timings: run.timings,
@@ -131,8 +134,9 @@ impl Measurer<'_> {
     }
 }
 
+/// Culling forced, every visible shape tested alone (no merged plane groups).
 fn culling(tile_culling: Choice, super_tiles: Choice) -> PlanParams {
-    PlanParams { tile_culling, super_tiles, ..PlanParams::default() }
+    PlanParams { tile_culling, super_tiles, plane_groups: Choice::Off, ..PlanParams::default() }
 }
 
 /// Variant names of the culling sweeps.
@@ -141,6 +145,8 @@ pub const CULLING_OFF: &str = "culling off";
 pub const CULLING_ON: &str = "culling on";
 /// Tile culling with tile lists built from super-tile lists.
 pub const SUPER_TILES: &str = "super-tiles";
+/// Coplanar shapes merged into plane groups (forced on), culling as the plan picks it.
+pub const PLANE_GROUPS: &str = "plane groups";
 
 /// Runs the suite.
 ///
@@ -156,6 +162,7 @@ pub fn run_scaling(
         (CULLING_OFF, culling(Choice::Off, Choice::Off)),
         (CULLING_ON, culling(Choice::On, Choice::Off)),
         (SUPER_TILES, culling(Choice::On, Choice::On)),
+        (PLANE_GROUPS, PlanParams { plane_groups: Choice::On, ..PlanParams::default() }),
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {

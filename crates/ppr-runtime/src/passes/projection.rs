@@ -82,7 +82,7 @@ pub struct ProjectionBindings<'a> {
     pub uniforms: &'a wgpu::Buffer,
     pub depth: &'a wgpu::TextureView,
     pub shapes: &'a wgpu::Buffer,
-    /// Per visible shape, then per layer: its test planes (`ShapeTest` of
+    /// Per projection test (visible shape or merged plane group), then per layer: its test planes (`ShapeTest` of
     /// `tile_test.wgsl`).
     pub tests: &'a wgpu::Buffer,
     pub occluders: &'a wgpu::Buffer,
@@ -98,6 +98,8 @@ pub struct ProjectionBindings<'a> {
     pub block_lists: &'a wgpu::Buffer,
     /// The first shape tests as a uniform buffer (read with `uniform_tests`).
     pub uniform_tests: &'a wgpu::Buffer,
+    /// The merged plane groups' headers and grids (`crate::plane_groups`).
+    pub plane_groups: &'a wgpu::Buffer,
 }
 
 /// The projection pass.
@@ -125,6 +127,7 @@ impl ProjectionPass {
                 storage_entry(10, true),
                 storage_entry(11, true),
                 uniform_entry(12),
+                storage_entry(13, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -180,6 +183,7 @@ impl ProjectionPass {
                 entry(10, b.source_boxes),
                 entry(11, b.block_lists),
                 entry(12, b.uniform_tests),
+                entry(13, b.plane_groups),
             ],
         })
     }
