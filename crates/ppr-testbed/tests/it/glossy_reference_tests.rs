@@ -23,15 +23,19 @@ fn rough_floor(roughness: f64) -> SyntheticScene {
 
 /// Renders the mirror reference (glossy off) and the glossy reference of `scene`, with
 /// the glossy reference's effective sample size.
-fn render_both(scene: &SyntheticScene, glossy: GlossyParams) -> (FrameImages, FrameImages, GlossyStats) {
+fn render_both(
+    scene: &SyntheticScene,
+    glossy: GlossyParams,
+    size: [u32; 2],
+) -> (FrameImages, FrameImages, GlossyStats) {
     let g = gpu();
     let _guard = g.lock();
     let (device, queue) = (&g.ctx.device, &g.ctx.queue);
     let mut renderer = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
-    renderer.render(device, queue, &scene.camera, SIZE);
+    renderer.render(device, queue, &scene.camera, size);
     let mirror = FrameImages::read(device, queue, &renderer).expect("readback");
     renderer.settings.glossy = glossy;
-    let summary = renderer.render(device, queue, &scene.camera, SIZE);
+    let summary = renderer.render(device, queue, &scene.camera, size);
     assert_eq!(summary.glossy_views, glossy.samples as usize, "one rough plane");
     let rough = FrameImages::read(device, queue, &renderer).expect("readback");
     let stats = renderer.glossy_stats(device, queue).expect("glossy views were rendered").expect("readback");
@@ -51,13 +55,13 @@ fn psnr(a: &Rgba32FImage, b: &Rgba32FImage, mask: &PixelMask) -> f64 {
 #[test]
 fn a_nearly_smooth_floor_gives_the_mirror_reference() {
     timed("a_nearly_smooth_floor_gives_the_mirror_reference", || {
-        let (mirror, rough, stats) = render_both(&rough_floor(0.02), GlossyParams::tests());
+        let (mirror, rough, stats) = render_both(&rough_floor(0.02), GlossyParams::tests(), SIZE);
         let mask = floor_mask(&mirror);
         assert!(mask.count() > 1000, "the floor covers {} pixels", mask.count());
         assert_eq!(stats.pixels, mask.count(), "every floor pixel has a positive weight sum");
         let db = psnr(&rough.reference, &mirror.reference, &mask);
         eprintln!("roughness 0.02: glossy vs mirror reference {db:.1} dB; ESS {stats:?}");
-        // Measured 52 dB on llvmpipe (the lobe is 0.2 mrad wide, pixels 14 mrad).
+        // Measured 53.5 dB on llvmpipe (the lobe is under a milliradian wide, a pixel 10).
         assert!(db >= 40.0, "glossy reference at roughness 0.02 is {db:.1} dB from the mirror reference");
         // Roughness 0 keeps the mirror reference bit for bit (no glossy views).
         let g = gpu();
@@ -99,7 +103,7 @@ fn cpu_glossy(scene: &SyntheticScene, camera: &Camera, frame: &FrameImages, roug
 fn a_rough_floor_agrees_with_a_cpu_ray_traced_glossy_reflection() {
     timed("a_rough_floor_agrees_with_a_cpu_ray_traced_glossy_reflection", || {
         let scene = rough_floor(0.2);
-        let (mirror, rough, stats) = render_both(&scene, GlossyParams::tests());
+        let (mirror, rough, stats) = render_both(&scene, GlossyParams::tests(), SIZE);
         let cpu = cpu_glossy(&scene, &scene.camera, &mirror, 0.2);
         let mask = floor_mask(&mirror);
         let glossy_db = psnr(&rough.reference, &cpu, &mask);
@@ -108,6 +112,8 @@ fn a_rough_floor_agrees_with_a_cpu_ray_traced_glossy_reflection() {
             "roughness 0.2 vs CPU (256 GGX rays): glossy reference {glossy_db:.1} dB, mirror reference \
              {mirror_db:.1} dB; ESS {stats:?}"
         );
+        // Measured on llvmpipe: 44.0 dB (mirror reference 31.7 dB), mean ESS 16 of 64; the
+        // CPU side has its own error (256 Hammersley rays per pixel).
         assert!(glossy_db >= 35.0, "glossy reference {glossy_db:.1} dB from the CPU reference");
         assert!(glossy_db >= mirror_db + 8.0, "glossy {glossy_db:.1} dB, mirror {mirror_db:.1} dB");
         assert!(stats.mean_ess >= 4.0, "{stats:?}");
@@ -115,8 +121,8 @@ fn a_rough_floor_agrees_with_a_cpu_ray_traced_glossy_reflection() {
 }
 
 /// `Σ |∇a| / Σ |∇b|` (horizontal and vertical differences of the summed channels) over the
-/// pixels of `mask` whose right and lower neighbours are in it too and where `b` has an edge.
-fn gradient_ratio(a: &Rgba32FImage, b: &Rgba32FImage, mask: &PixelMask) -> (f64, usize) {
+/// pixels of `mask` whose right and lower neighbours are on `floor` and where `b` has an edge.
+fn gradient_ratio(a: &Rgba32FImage, b: &Rgba32FImage, mask: &PixelMask, floor: &PixelMask) -> (f64, usize) {
     let v = |img: &Rgba32FImage, x: u32, y: u32| {
         let p = img.get_pixel(x, y).0;
         f64::from(p[0] + p[1] + p[2])
@@ -124,11 +130,11 @@ fn gradient_ratio(a: &Rgba32FImage, b: &Rgba32FImage, mask: &PixelMask) -> (f64,
     let (mut sa, mut sb, mut n) = (0.0, 0.0, 0usize);
     for y in 0..a.height() - 1 {
         for x in 0..a.width() - 1 {
-            if !(mask.get(x, y) && mask.get(x + 1, y) && mask.get(x, y + 1)) {
+            if !(mask.get(x, y) && floor.get(x + 1, y) && floor.get(x, y + 1)) {
                 continue;
             }
             let gb = (v(b, x + 1, y) - v(b, x, y)).abs() + (v(b, x, y + 1) - v(b, x, y)).abs();
-            if gb < 0.1 {
+            if gb < 0.03 {
                 continue;
             }
             sb += gb;
@@ -143,7 +149,8 @@ fn gradient_ratio(a: &Rgba32FImage, b: &Rgba32FImage, mask: &PixelMask) -> (f64,
 fn blur_grows_with_the_distance_of_the_reflected_point() {
     timed("blur_grows_with_the_distance_of_the_reflected_point", || {
         let scene = rough_floor(0.3);
-        let (mirror, rough, _) = render_both(&scene, GlossyParams::tests());
+        // Larger than SIZE: more reflected edges near the floor and far from it.
+        let (mirror, rough, _) = render_both(&scene, GlossyParams::tests(), [160, 120]);
         let [w, h] = mirror.size();
         let floor = floor_mask(&mirror);
         // Height of the mirror reflection's point above the floor (the ray's length scale).
@@ -151,14 +158,16 @@ fn blur_grows_with_the_distance_of_the_reflected_point() {
             let p = mirror.reference_position.get_pixel(x, y).0;
             (p[3] > 0.0).then(|| scene.camera.position.y + f64::from(p[1]))
         };
-        let near = PixelMask::from_fn(w, h, |x, y| floor.get(x, y) && height(x, y).is_some_and(|d| d < 0.25));
+        let near = PixelMask::from_fn(w, h, |x, y| floor.get(x, y) && height(x, y).is_some_and(|d| d < 0.3));
         let far = PixelMask::from_fn(w, h, |x, y| floor.get(x, y) && height(x, y).is_some_and(|d| d > 1.0));
-        let (near_ratio, near_n) = gradient_ratio(&rough.reference, &mirror.reference, &near);
-        let (far_ratio, far_n) = gradient_ratio(&rough.reference, &mirror.reference, &far);
+        let (near_ratio, near_n) = gradient_ratio(&rough.reference, &mirror.reference, &near, &floor);
+        let (far_ratio, far_n) = gradient_ratio(&rough.reference, &mirror.reference, &far, &floor);
+        eprintln!("reflected points: {} near, {} far of {} floor pixels", near.count(), far.count(), floor.count());
         eprintln!(
             "edge contrast kept at roughness 0.3: near contact {near_ratio:.2} ({near_n} px), far {far_ratio:.2} \
              ({far_n} px)"
         );
+        // Measured on llvmpipe: 0.71 near contact (27 px), 0.15 far (48 px).
         assert!(near_n >= 10 && far_n >= 10, "edges: {near_n} near, {far_n} far");
         assert!(near_ratio >= 0.5, "a near-contact edge blurs: {near_ratio:.2}");
         assert!(
