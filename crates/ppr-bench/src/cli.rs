@@ -214,7 +214,7 @@ pub struct CompareArgs {
     /// tier= full|half|quarter, the resolution the passes run at), exact,
     /// ppr:glossy=off (every reflector blurred as a mirror), ssr-brute (thickness=),
     /// ssr-low (stride=, refine=, thickness=), ssr-glossy (ssr-low's march and keys, then a
-    /// blur of radius spread × roughness² × hit distance: spread= default 2, max-radius= in
+    /// blur of radius spread × roughness² × hit distance: spread= default 4, max-radius= in
     /// pixels default 32, taps= default 24), ssr-hiz (iterations=, thickness=), sspr,
     /// sspr-stretch, planar.
     #[arg(long = "technique")]
