@@ -78,4 +78,3 @@ fn a_rough_floor_is_blurred_and_closer_to_the_glossy_reference_than_plain_ssr() 
         assert!(glossy_db >= plain_db + 1.0, "glossy SSR {glossy_db:.1} dB vs plain SSR {plain_db:.1} dB");
     });
 }
-

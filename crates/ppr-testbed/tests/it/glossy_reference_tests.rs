@@ -162,7 +162,12 @@ fn blur_grows_with_the_distance_of_the_reflected_point() {
         let far = PixelMask::from_fn(w, h, |x, y| floor.get(x, y) && height(x, y).is_some_and(|d| d > 1.0));
         let (near_ratio, near_n) = gradient_ratio(&rough.reference, &mirror.reference, &near, &floor);
         let (far_ratio, far_n) = gradient_ratio(&rough.reference, &mirror.reference, &far, &floor);
-        eprintln!("reflected points: {} near, {} far of {} floor pixels", near.count(), far.count(), floor.count());
+        eprintln!(
+            "reflected points: {} near, {} far of {} floor pixels",
+            near.count(),
+            far.count(),
+            floor.count()
+        );
         eprintln!(
             "edge contrast kept at roughness 0.3: near contact {near_ratio:.2} ({near_n} px), far {far_ratio:.2} \
              ({far_n} px)"
