@@ -201,6 +201,20 @@ pub fn run_compare(
                 level.encode_reference(&mut encoder);
                 queue.submit([encoder.finish()]);
                 let images = if res.pixels() <= cc.quality_max_pixels {
+                    if let Some(stats) = level.glossy_stats(device, queue) {
+                        let s = stats?;
+                        outcome.notes.push(format!(
+                            "{} {} {res}: glossy reference over {} px, effective sample size mean {:.1}, \
+                             10th percentile {:.1}, min {:.1} (of {} views per rough plane)",
+                            scene.name,
+                            cam.name,
+                            s.pixels,
+                            s.mean_ess,
+                            s.p10_ess,
+                            s.min_ess,
+                            cc.glossy_samples
+                        ));
+                    }
                     Some(FrameImages::read(device, queue, &level)?)
                 } else {
                     None

@@ -40,6 +40,7 @@ fn quick_compare_scores_ssr_glossy_against_the_glossy_reference() {
     // The demo's brushed metal (0.3) and rough water (0.15) make it a glossy scene.
     let md = std::fs::read_to_string(out.path().join("comparison.md")).expect("markdown");
     assert!(md.contains("scored against the exact glossy reference"), "{md}");
+    assert!(md.contains("effective sample size mean"), "{md}");
 }
 
 #[test]
