@@ -28,6 +28,8 @@ pub struct GlossyPlan {
     pub planes: Vec<GlossyPlane>,
     /// Per reflector: its plane slot and GGX alpha (0 for mirrors and disabled ones).
     pub reflectors: Vec<RoughReflector>,
+    /// The scene raster's view slot of the first view (the renderer's to set).
+    pub first_view_slot: u32,
 }
 
 impl GlossyPlan {
@@ -84,6 +86,7 @@ pub fn plan_glossy(
     let mut plan = GlossyPlan {
         planes: Vec::new(),
         reflectors: vec![RoughReflector { plane: u32::MAX, alpha: 0.0 }; set.reflectors.len()],
+        first_view_slot: 0,
     };
     if !params.enabled() {
         return plan;

@@ -263,10 +263,12 @@ impl LevelRenderer {
             let slot = first_bounce_slot + u32::try_from(i).expect("fewer than 2^32 views");
             self.views.write_view(queue, slot, &view);
         }
-        let glossy_plan = plan_glossy(&self.reflectors, &self.planes, &rendered, camera, aspect, &s.glossy);
+        let mut glossy_plan =
+            plan_glossy(&self.reflectors, &self.planes, &rendered, camera, aspect, &s.glossy);
+        glossy_plan.first_view_slot = self.first_glossy_slot(bounces);
         if let Some((glossy, _)) = &frame.glossy {
             glossy.write_reflectors(queue, &glossy_plan.reflectors);
-            let first_view = self.first_glossy_slot(bounces);
+            let first_view = glossy_plan.first_view_slot;
             for gp in &glossy_plan.planes {
                 let slot = u32::try_from(gp.plane).expect("fewer than 2^32 planes");
                 for (i, v) in gp.views.iter().enumerate() {
@@ -408,7 +410,7 @@ impl LevelRenderer {
             return;
         }
         self.glossy_accumulate.encode_clear(encoder, glossy);
-        let first_view = self.first_glossy_slot(self.settings.reference_bounces.max(1));
+        let first_view = self.glossy_plan.first_view_slot;
         for gp in &self.glossy_plan.planes {
             for i in 0..gp.views.len() {
                 let index = gp.first + u32::try_from(i).expect("fewer than 2^32 views");

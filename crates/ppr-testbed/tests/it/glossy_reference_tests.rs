@@ -181,3 +181,44 @@ fn blur_grows_with_the_distance_of_the_reflected_point() {
         );
     });
 }
+
+#[test]
+fn glossy_views_leave_mirrors_and_bounce_views_alone() {
+    timed("glossy_views_leave_mirrors_and_bounce_views_alone", || {
+        let mut scene =
+            SyntheticScene::floor_mirror(&FloorMirrorParams { wall_pane: true, ..Default::default() });
+        scene.reflectors.reflectors[0].roughness = 0.2;
+        let g = gpu();
+        let _guard = g.lock();
+        let (device, queue) = (&g.ctx.device, &g.ctx.queue);
+        let mut renderer = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
+        renderer.settings.reference_bounces = 2;
+        let sharp_summary = renderer.render(device, queue, &scene.camera, SIZE);
+        let sharp = FrameImages::read(device, queue, &renderer).expect("readback");
+        renderer.settings.glossy = GlossyParams::tests();
+        let summary = renderer.render(device, queue, &scene.camera, SIZE);
+        let rough = FrameImages::read(device, queue, &renderer).expect("readback");
+        assert!(
+            summary.bounce_views > 0 && summary.bounce_views == sharp_summary.bounce_views,
+            "{summary:?}"
+        );
+        assert_eq!(summary.glossy_views, 64, "only the floor is rough: {summary:?}");
+        let [w, h] = SIZE;
+        let pane = PixelMask::from_fn(w, h, |x, y| rough.reflector_id.get(x, y) == 2);
+        let floor = floor_mask(&rough);
+        assert!(
+            pane.count() > 200 && floor.count() > 200,
+            "{} pane, {} floor px",
+            pane.count(),
+            floor.count()
+        );
+        let differs = |m: &PixelMask| {
+            PixelMask::from_fn(w, h, |x, y| {
+                m.get(x, y) && rough.reference.get_pixel(x, y) != sharp.reference.get_pixel(x, y)
+            })
+            .count()
+        };
+        assert_eq!(differs(&pane), 0, "the mirror pane keeps its two-bounce mirror reference");
+        assert!(differs(&floor) * 4 > floor.count(), "the rough floor changed on {} px", differs(&floor));
+    });
+}
