@@ -2,7 +2,7 @@
 //! with rough members, the lobe's range of distances and alphas and the eye points of
 //! [`crate::glossy_views`]; and the per-reflector table the accumulation reads.
 
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 use ppr_format::ReflectorSet;
 use ppr_runtime::Camera;
 
@@ -50,28 +50,75 @@ pub fn rough_plane_count(set: &ReflectorSet, planes: &[ReflectorPlane]) -> usize
     planes.iter().filter(|g| g.members.iter().any(|&m| alpha(set, m) > 0.0)).count()
 }
 
+/// Grid points per side over the screen where [`lobe_range`] looks at the plane.
+const RANGE_GRID: u32 = 33;
+
 /// The lobe's range over the rough members of `group` seen from `camera`, and the cosine
-/// of the most grazing view of them. `None` when no member is rough.
-pub fn lobe_range(set: &ReflectorSet, group: &ReflectorPlane, camera: &Camera) -> Option<(LobeRange, f64)> {
-    let alphas: Vec<f64> = group.members.iter().map(|&m| alpha(set, m)).filter(|&a| a > 0.0).collect();
-    let min_alpha = alphas.iter().copied().fold(f64::INFINITY, f64::min);
-    let max_alpha = alphas.iter().copied().fold(0.0, f64::max);
-    if alphas.is_empty() {
+/// of the most grazing view of them: from a [`RANGE_GRID`]² grid of main-view rays that hit
+/// a rough member (what is on screen), else from the members' corners. `None` when no
+/// member is rough.
+pub fn lobe_range(
+    set: &ReflectorSet,
+    group: &ReflectorPlane,
+    camera: &Camera,
+    aspect: f64,
+) -> Option<(LobeRange, f64)> {
+    let rough: Vec<usize> = group.members.iter().copied().filter(|&m| alpha(set, m) > 0.0).collect();
+    if rough.is_empty() {
         return None;
     }
-    let height = group.plane.signed_distance(camera.position).abs();
-    let near = height.max(f64::from(camera.projection.near));
-    let mut far = near;
-    for &m in &group.members {
-        let r = &set.reflectors[m];
-        let v = r.normal.cross(r.axis_u);
-        for (su, sv) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
-            let corner: DVec3 = r.center + r.axis_u * (su * r.half_extents.x) + v * (sv * r.half_extents.y);
-            far = far.max((corner - camera.position).length());
+    let min_alpha = rough.iter().map(|&m| alpha(set, m)).fold(f64::INFINITY, f64::min);
+    let max_alpha = rough.iter().map(|&m| alpha(set, m)).fold(0.0, f64::max);
+    let n = group.plane.normal;
+    let d_rel = n.dot(group.plane.point - camera.position);
+    let height = d_rel.abs();
+    let near_plane = f64::from(camera.projection.near);
+    let far_plane = camera.projection.far.map_or(1e4, f64::from);
+    let inside = |p: DVec3| {
+        rough.iter().any(|&m| {
+            let r = &set.reflectors[m];
+            let l = p - r.center;
+            let v = r.normal.cross(r.axis_u);
+            l.dot(r.axis_u).abs() <= r.half_extents.x && l.dot(v).abs() <= r.half_extents.y
+        })
+    };
+    let rel_from_clip = camera.clip_from_relative(aspect as f32).as_dmat4().inverse();
+    let (mut near, mut far, mut grazing) = (f64::INFINITY, 0.0f64, 1.0f64);
+    for j in 0..RANGE_GRID {
+        for i in 0..RANGE_GRID {
+            let k = |a: u32| f64::from(a) / f64::from(RANGE_GRID - 1) * 2.0 - 1.0;
+            let h = rel_from_clip * DVec4::new(k(i), k(j), 0.5, 1.0);
+            let dir = (h.truncate() / h.w).normalize();
+            let dn = n.dot(dir);
+            if dn >= -1e-9 {
+                continue;
+            }
+            let t = d_rel / dn;
+            if t <= near_plane || t > far_plane || !inside(camera.position + dir * t) {
+                continue;
+            }
+            near = near.min(t);
+            far = far.max(t);
+            grazing = grazing.min(-dn);
         }
     }
-    let far = far.min(camera.projection.far.map_or(1e4, f64::from)).max(near);
-    Some((LobeRange { near, far, min_alpha, max_alpha }, height / far))
+    if far == 0.0 {
+        // Smaller than the grid's spacing: the members' corners.
+        near = height.max(near_plane);
+        far = near;
+        for &m in &rough {
+            let r = &set.reflectors[m];
+            let v = r.normal.cross(r.axis_u);
+            for (su, sv) in [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)] {
+                let corner: DVec3 =
+                    r.center + r.axis_u * (su * r.half_extents.x) + v * (sv * r.half_extents.y);
+                far = far.max((corner - camera.position).length());
+            }
+        }
+        far = far.min(far_plane).max(near);
+        grazing = height / far;
+    }
+    Some((LobeRange { near, far, min_alpha, max_alpha }, grazing))
 }
 
 /// The glossy views of the `rendered` planes and the reflector table.
@@ -93,7 +140,7 @@ pub fn plan_glossy(
     }
     for &k in rendered {
         let group = &planes[k];
-        let Some((range, grazing)) = lobe_range(set, group, camera) else { continue };
+        let Some((range, grazing)) = lobe_range(set, group, camera, aspect) else { continue };
         let scales = component_scales(&range, grazing, params.components);
         let Some(views) = glossy_views(camera, aspect, &group.plane, &scales, params.samples) else {
             continue;
