@@ -51,7 +51,7 @@ pub fn rough_plane_count(set: &ReflectorSet, planes: &[ReflectorPlane]) -> usize
 }
 
 /// Grid points per side over the screen where [`lobe_range`] looks at the plane.
-const RANGE_GRID: u32 = 33;
+pub const RANGE_GRID: u32 = 33;
 
 /// The lobe's range over the rough members of `group` seen from `camera`, and the cosine
 /// of the most grazing view of them: from a [`RANGE_GRID`]² grid of main-view rays that hit
