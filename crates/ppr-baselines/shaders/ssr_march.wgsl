@@ -23,6 +23,9 @@ struct SsrParams {
 
 // Workgroup edge (threads per side); set from Rust.
 override GROUP_EDGE: u32 = 8u;
+// Alpha of a found reflection: 1 (a technique's output), or the distance from the
+// reflector to the hit in metres (ssr-glossy's blur reads it); set from Rust.
+override OUTPUT_HIT_DISTANCE: bool = false;
 
 @group(0) @binding(1) var<uniform> params: SsrParams;
 @group(0) @binding(2) var<storage, read> planes: array<ReflectorPlane>;
@@ -128,7 +131,12 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         if (ray.valid) {
             let hit = march(ray, plane);
             if (hit.found) {
-                out = vec4<f32>(textureLoad(color_tex, hit.pixel, 0).rgb, 1.0);
+                var alpha = 1.0;
+                if (OUTPUT_HIT_DISTANCE) {
+                    let q = baseline_rel_position(hit.pixel, textureLoad(depth_tex, hit.pixel, 0).x);
+                    alpha = max(distance(q, p), 1e-3);
+                }
+                out = vec4<f32>(textureLoad(color_tex, hit.pixel, 0).rgb, alpha);
             }
         }
     }

@@ -113,6 +113,21 @@ pub struct SsrUniform {
 }
 const _: () = assert!(size_of::<SsrUniform>() == 32);
 
+/// `GlossyBlurParams` of `ssr_glossy_blur.wgsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct GlossyBlurUniform {
+    /// Blur radius at the hit in units of `alpha × hit distance`.
+    pub spread: f32,
+    /// Largest radius, pixels.
+    pub max_radius: f32,
+    /// Gather taps besides the centre.
+    pub samples: u32,
+    /// Padding.
+    pub _pad: u32,
+}
+const _: () = assert!(size_of::<GlossyBlurUniform>() == 16);
+
 /// `HiZParams` of `hiz_trace.wgsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]

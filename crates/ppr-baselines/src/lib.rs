@@ -6,6 +6,9 @@
 //! - [`SsrTechnique`]: screen-space rays marched at pixel granularity
 //!   ([`SsrSettings::brute_force`]) or in coarse steps with binary refinement
 //!   ([`SsrSettings::low_quality`]);
+//! - [`SsrGlossyTechnique`]: that march followed by a blur whose radius grows with each
+//!   reflector's roughness and the hit distance ([`SsrGlossySettings`]), the glossy SSR of
+//!   the kind Bevy and Godot ship;
 //! - [`HiZSsrTechnique`]: rays walked through a min-depth pyramid ([`HiZPyramid`], its
 //!   build timed apart);
 //! - [`SsprTechnique`]: the screen-space planar reflection projection hash of Ghost Recon
@@ -30,6 +33,7 @@ mod required_inputs;
 pub mod settings;
 pub mod shader;
 pub mod sspr_technique;
+pub mod ssr_glossy_technique;
 pub mod ssr_technique;
 pub mod timestamps;
 
@@ -37,6 +41,7 @@ pub use error::BaselineError;
 pub use hiz_pyramid::HiZPyramid;
 pub use hiz_technique::HiZSsrTechnique;
 pub use planar_technique::PlanarReflectionTechnique;
-pub use settings::{EdgeStretch, HiZSettings, SsprSettings, SsrSettings};
+pub use settings::{EdgeStretch, HiZSettings, SsprSettings, SsrGlossySettings, SsrSettings};
 pub use sspr_technique::SsprTechnique;
+pub use ssr_glossy_technique::SsrGlossyTechnique;
 pub use ssr_technique::SsrTechnique;

@@ -9,6 +9,8 @@ pub const HIZ_LAYOUT: &str = include_str!("../shaders/hiz_layout.wgsl");
 
 /// Source of the ray-march pass (brute-force and low-quality SSR).
 pub const SSR_MARCH: &str = include_str!("../shaders/ssr_march.wgsl");
+/// Source of ssr-glossy's roughness blur.
+pub const SSR_GLOSSY_BLUR: &str = include_str!("../shaders/ssr_glossy_blur.wgsl");
 /// Source of the Hi-Z pyramid build.
 pub const HIZ_BUILD: &str = include_str!("../shaders/hiz_build.wgsl");
 /// Source of the Hi-Z trace.
@@ -55,6 +57,7 @@ pub fn module(device: &wgpu::Device, label: &str, source: String) -> wgpu::Shade
 pub fn all_sources() -> Vec<(&'static str, String)> {
     vec![
         ("ssr_march", with_common(SSR_MARCH)),
+        ("ssr_glossy_blur", with_common(SSR_GLOSSY_BLUR)),
         ("hiz_build", with_hiz_layout(HIZ_BUILD)),
         ("hiz_trace", with_hiz_layout(HIZ_TRACE)),
         ("sspr_clear", SSPR_CLEAR.to_owned()),
@@ -68,7 +71,8 @@ pub fn all_sources() -> Vec<(&'static str, String)> {
 mod tests {
     use super::*;
     use crate::gpu_types::{
-        BaselineFrame, ClearUniform, GpuReflectorPlane, HiZUniform, NO_LAYER, SsprUniform, SsrUniform,
+        BaselineFrame, ClearUniform, GlossyBlurUniform, GpuReflectorPlane, HiZUniform, NO_LAYER, SsprUniform,
+        SsrUniform,
     };
     use crate::hiz_pyramid::{DownsampleUniform, HIZ_MAX_LEVELS, HiZLevelsUniform, SKY_DEPTH};
 
@@ -120,6 +124,10 @@ mod tests {
         }
         assert_eq!(struct_size(&build, "DownsampleParams"), size_of::<DownsampleUniform>());
         assert_eq!(struct_size(&parse(&with_common(SSR_MARCH)), "SsrParams"), size_of::<SsrUniform>());
+        assert_eq!(
+            struct_size(&parse(&with_common(SSR_GLOSSY_BLUR)), "GlossyBlurParams"),
+            size_of::<GlossyBlurUniform>()
+        );
         assert_eq!(struct_size(&parse(&with_common(SSPR_PROJECT)), "SsprParams"), size_of::<SsprUniform>());
         assert_eq!(struct_size(&parse(SSPR_CLEAR), "ClearParams"), size_of::<ClearUniform>());
         assert_eq!(constant(&trace, "BASELINE_SKY_DEPTH"), naga::Literal::F32(SKY_DEPTH));

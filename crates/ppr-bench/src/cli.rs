@@ -13,7 +13,7 @@ use crate::report::runtime_report::write_runtime_report;
 use crate::report::scaling_report::write_scaling_report;
 use crate::report::trade_report::write_trade_report;
 use crate::scaling::level_family::LevelFamily;
-use crate::suites::compare::{CompareConfig, CompareOutcome, run_compare};
+use crate::suites::compare::{CompareConfig, CompareOutcome, ReferenceKind, run_compare};
 use crate::suites::extract_trade::{TradeConfig, run_extract_trade};
 use crate::suites::runtime::{RuntimeConfig, run_runtime};
 use crate::suites::scaling::{ScalingConfig, run_scaling};
@@ -212,8 +212,11 @@ pub struct CompareArgs {
     /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect= on|off|auto; fade= border fade
     /// as a fraction of the shorter side, 0..0.5; replace-far= on|off, the seed's 6-px rule;
     /// tier= full|half|quarter, the resolution the passes run at), exact,
-    /// ssr-brute (thickness=), ssr-low (stride=, refine=, thickness=), ssr-hiz
-    /// (iterations=, thickness=), sspr, sspr-stretch, planar.
+    /// ppr:glossy=off (every reflector blurred as a mirror), ssr-brute (thickness=),
+    /// ssr-low (stride=, refine=, thickness=), ssr-glossy (ssr-low's march and keys, then a
+    /// blur of radius spread × roughness² × hit distance: spread= default 4, max-radius= in
+    /// pixels default 32, taps= default 24), ssr-hiz (iterations=, thickness=), sspr,
+    /// sspr-stretch, planar.
     #[arg(long = "technique")]
     pub techniques: Vec<TechniqueSpec>,
     /// Measure quality only up to this many megapixels (FLIP runs on the CPU; the default
@@ -226,6 +229,15 @@ pub struct CompareArgs {
     /// Size of the image sheet's crops.
     #[arg(long, default_value = "1920x1080")]
     pub sheet_resolution: Resolution,
+    /// What every row is scored against: `glossy` (the exact glossy reference on scenes
+    /// whose reflectors have roughness > 0: views from eye points around the mirrored camera,
+    /// self-normalised importance sampling of the GGX lobe; the mirror reference elsewhere)
+    /// or `mirror` (every reflector as a perfect mirror).
+    #[arg(long, value_enum, default_value_t = ReferenceKind::Glossy)]
+    pub reference: ReferenceKind,
+    /// Views per rough reflector plane of the glossy reference (default 256; 64 with --quick).
+    #[arg(long)]
+    pub glossy_samples: Option<u32>,
 }
 
 /// The size of `--quick` runs.
@@ -280,6 +292,8 @@ fn compare_config(args: &CompareArgs, quick: bool) -> CompareConfig {
         techniques,
         quality_max_pixels: (args.quality_max_mpix * 1e6) as u64,
         sheet_resolution: if quick { resolutions[0] } else { args.sheet_resolution },
+        reference: args.reference,
+        glossy_samples: args.glossy_samples.unwrap_or(if quick { 64 } else { 256 }),
         pareto_resolution: if quick { resolutions[0] } else { args.pareto_resolution },
     }
 }

@@ -5,8 +5,8 @@ use std::fmt;
 use std::str::FromStr;
 
 use ppr_baselines::{
-    HiZSettings, HiZSsrTechnique, PlanarReflectionTechnique, SsprSettings, SsprTechnique, SsrSettings,
-    SsrTechnique,
+    HiZSettings, HiZSsrTechnique, PlanarReflectionTechnique, SsprSettings, SsprTechnique, SsrGlossySettings,
+    SsrGlossyTechnique, SsrSettings, SsrTechnique,
 };
 use ppr_format::ReflectorSet;
 use ppr_runtime::{Choice, PlanParams, ReflectionSettings, ResolutionTier};
@@ -28,7 +28,7 @@ pub struct TechniqueSpec {
 }
 
 /// Every technique the bench can build, with what it is.
-pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
+pub const KNOWN_TECHNIQUES: [(&str, &str); 12] = [
     ("ppr-raw", "PPR, raw decoded intermediate buffer (no hole filling, no filtering)"),
     ("ppr-holes", "PPR with hole filling"),
     ("ppr-filter", "PPR with hole filling and bilinear filtering"),
@@ -39,6 +39,11 @@ pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
     ),
     ("ssr-brute", "brute-force SSR, one-pixel steps [McGuire14]; thickness=metres"),
     ("ssr-low", "low-quality SSR, 64-pixel steps + bisection; stride=, refine=, thickness="),
+    (
+        "ssr-glossy",
+        "glossy SSR (Bevy/Godot kind): ssr-low's march + blur of radius spread x roughness^2 x hit distance; \
+         stride=, refine=, thickness=, spread=, max-radius= (px), taps=",
+    ),
     ("ssr-hiz", "Hi-Z SSR with its pyramid build [Uludag14]; iterations=, thickness= (none: seed)"),
     ("sspr", "screen-space planar reflections, projection hash (Wildlands)"),
     ("sspr-stretch", "SSPR with the edge stretch"),
@@ -47,17 +52,19 @@ pub const KNOWN_TECHNIQUES: [(&str, &str); 11] = [
 
 /// The comparison's default list: every PPR setting, the exact reference, and the baselines
 /// with SSR step counts and thicknesses (`planar` is `exact` plus a copy: on request only).
-pub const DEFAULT_TECHNIQUES: [&str; 13] = [
+pub const DEFAULT_TECHNIQUES: [&str; 15] = [
     "ppr-raw",
     "ppr-holes",
     "ppr-filter",
     "ppr",
+    "ppr:glossy=off",
     "exact",
     "ssr-brute",
     "ssr-low",
     "ssr-low:stride=16,refine=4",
     "ssr-low:stride=8,refine=3",
     "ssr-low:thickness=1",
+    "ssr-glossy",
     "ssr-hiz",
     "sspr",
     "sspr-stretch",
@@ -82,6 +89,9 @@ fn keys_of(name: &str) -> &'static [&'static str] {
         n if n.starts_with("ppr") => &PPR_KEYS,
         "ssr-brute" => &["thickness", "reference-bounces"],
         "ssr-low" => &["stride", "refine", "thickness", "reference-bounces"],
+        "ssr-glossy" => {
+            &["stride", "refine", "thickness", "spread", "max-radius", "taps", "reference-bounces"]
+        }
         "ssr-hiz" => &["iterations", "thickness", "reference-bounces"],
         "sspr" | "sspr-stretch" => &["reference-bounces"],
         "exact" => &["bounces"],
@@ -178,7 +188,13 @@ impl TechniqueSpec {
                         return Err(bad(format!("fade: {f} is outside [0, 0.5]")));
                     }
                 }
-                "stride" | "refine" | "iterations" => {
+                "spread" | "max-radius" => {
+                    let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
+                    if !(f.is_finite() && f >= 0.0) {
+                        return Err(bad(format!("{k}: {f} is not a finite value ≥ 0")));
+                    }
+                }
+                "stride" | "refine" | "iterations" | "taps" => {
                     v.parse::<u32>().map_err(|e| bad(format!("{k}: {e}")))?;
                 }
                 "thickness" if v == "none" && self.name == "ssr-hiz" => {}
@@ -332,6 +348,16 @@ pub fn build_technique(
             s.thickness = num("thickness").unwrap_or(s.thickness);
             runner(Family::Ssr, Box::new(SsrTechnique::new(device, queue, set, s)))
         }
+        "ssr-glossy" => {
+            let mut s = SsrGlossySettings::low_quality();
+            s.march.stride = int("stride").unwrap_or(s.march.stride);
+            s.march.refine_steps = int("refine").unwrap_or(s.march.refine_steps);
+            s.march.thickness = num("thickness").unwrap_or(s.march.thickness);
+            s.spread = num("spread").unwrap_or(s.spread);
+            s.max_radius = num("max-radius").unwrap_or(s.max_radius);
+            s.samples = int("taps").unwrap_or(s.samples);
+            runner(Family::Ssr, Box::new(SsrGlossyTechnique::new(device, queue, set, s)))
+        }
         "ssr-hiz" => {
             let mut s = HiZSettings::seed();
             s.max_iterations = int("iterations").unwrap_or(s.max_iterations);
@@ -379,6 +405,12 @@ mod tests {
         assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
         assert!("exact:steps=3".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:stride=x".parse::<TechniqueSpec>().is_err());
+        let glossy: TechniqueSpec =
+            "ssr-glossy:spread=3,max-radius=16,taps=12,stride=8".parse().expect("glossy");
+        assert_eq!(glossy.label(), "ssr-glossy spread=3 max-radius=16 taps=12 stride=8");
+        assert!("ssr-glossy:spread=-1".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-glossy:taps=many".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:spread=2".parse::<TechniqueSpec>().is_err());
         assert_eq!(
             "ssr-low:stride=16,refine=4".parse::<TechniqueSpec>().expect("ssr").label(),
             "ssr-low stride=16 refine=4"

@@ -1,5 +1,6 @@
 //! Tools-side GPU harness for pixel-projected reflections: glTF levels to GPU meshes,
-//! G-buffer raster, the exact mirrored-camera reference, compositing, image I/O and metrics.
+//! G-buffer raster, the exact mirrored-camera reference and its glossy counterpart
+//! ([`GlossyParams`]), compositing, image I/O and metrics.
 //!
 //! Tests, the bench and the inspector use it; a game never links it.
 //!
@@ -19,6 +20,10 @@ mod error;
 pub mod frame_images;
 pub mod gbuffer;
 pub mod gbuffer_targets;
+pub mod glossy_accumulate;
+pub mod glossy_plan;
+pub mod glossy_resolve;
+pub mod glossy_views;
 mod gltf_loader;
 pub mod gpu;
 pub mod image_io;
@@ -46,6 +51,8 @@ pub use error::TestbedError;
 pub use frame_images::FrameImages;
 pub use gbuffer::{GBUFFER_SURFACES, GBufferDraw, GBufferPass, ViewKind};
 pub use gbuffer_targets::GBuffer;
+pub use glossy_accumulate::GlossyStats;
+pub use glossy_views::GlossyParams;
 pub use gpu::GpuContext;
 pub use image_io::ToneMap;
 pub use level::{Level, LevelCamera, Material};

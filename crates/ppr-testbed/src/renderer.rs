@@ -9,6 +9,10 @@ use crate::bounce_plan::{BounceParent, BouncePlan, BounceRoot, BounceScene, plan
 use crate::composite::CompositeParams;
 use crate::gbuffer::{GBUFFER_SURFACES, GBufferDraw, GBufferPass, ViewKind};
 use crate::gbuffer_targets::GBuffer;
+use crate::glossy_accumulate::{GlossyAccumulatePass, GlossyBindings, GlossyStats};
+use crate::glossy_plan::{GlossyPlan, plan_glossy, rough_plane_count, sample_uniform};
+use crate::glossy_resolve::GlossyResolvePass;
+use crate::glossy_views::GlossyParams;
 use crate::level::Level;
 use crate::mirror_camera::{MirrorClipping, mirrored_view};
 use crate::mirror_chain::ChainedView;
@@ -42,6 +46,10 @@ pub struct RenderSettings {
     /// planned breadth first, so the deepest bounces go first; the frame's summary counts
     /// those skipped).
     pub max_bounce_views: usize,
+    /// The exact glossy reference on reflectors with roughness (off by default: rough
+    /// reflectors then show their mirror reflection). Its views show other reflectors with
+    /// their own colour (one bounce), whatever [`Self::reference_bounces`] says.
+    pub glossy: GlossyParams,
 }
 
 /// [`RenderSettings::max_bounce_views`] by default: every second-bounce view of the
@@ -59,6 +67,7 @@ impl Default for RenderSettings {
             mirror_clipping: MirrorClipping::Oblique,
             reference_bounces: 1,
             max_bounce_views: DEFAULT_MAX_BOUNCE_VIEWS,
+            glossy: GlossyParams::off(),
         }
     }
 }
@@ -76,12 +85,15 @@ pub struct FrameSummary {
     pub bounce_views: usize,
     /// Views beyond the first bounce left out by [`RenderSettings::max_bounce_views`].
     pub bounce_views_skipped: usize,
+    /// Views of the glossy reference ([`RenderSettings::glossy`]).
+    pub glossy_views: usize,
 }
 
 struct FrameTargets {
     main: GBuffer,
     reference: ReferenceTargets,
     bindings: ReferenceBindings,
+    glossy: Option<(GlossyBindings, wgpu::BindGroup)>,
 }
 
 /// A level on the GPU with the passes that render it: G-buffer and exact reference.
@@ -92,6 +104,9 @@ pub struct LevelRenderer {
     bounce_pass: BounceCompositePass,
     bounce_targets: Option<BounceTargets>,
     bounce_plan: BouncePlan,
+    glossy_accumulate: GlossyAccumulatePass,
+    glossy_resolve: GlossyResolvePass,
+    glossy_plan: GlossyPlan,
     meshes: LevelMeshes,
     reflectors: ReflectorSet,
     planes: Vec<ReflectorPlane>,
@@ -122,6 +137,9 @@ impl LevelRenderer {
             bounce_pass,
             bounce_targets: None,
             bounce_plan: BouncePlan::default(),
+            glossy_accumulate: GlossyAccumulatePass::new(device),
+            glossy_resolve: GlossyResolvePass::new(device),
+            glossy_plan: GlossyPlan::default(),
             meshes,
             reflectors: ReflectorSet::new(""),
             planes: Vec::new(),
@@ -133,6 +151,7 @@ impl LevelRenderer {
                 rendered_planes: Vec::new(),
                 bounce_views: 0,
                 bounce_views_skipped: 0,
+                glossy_views: 0,
             },
             camera: None,
             settings: RenderSettings::default(),
@@ -182,11 +201,12 @@ impl LevelRenderer {
                 planes,
                 self.reflectors.reflectors.len(),
             );
-            self.frame = Some(FrameTargets { main, reference, bindings });
+            self.frame = Some(FrameTargets { main, reference, bindings, glossy: None });
             self.bounce_targets = None;
         }
         let bounces = self.settings.reference_bounces.max(1);
         self.allocate_bounces(device, queue, size, bounces);
+        self.allocate_glossy(device, size, bounces);
         let frame = self.frame.as_ref().expect("allocated above");
         let aspect = f64::from(size[0]) / f64::from(size[1]);
         let s = &self.settings;
@@ -243,6 +263,27 @@ impl LevelRenderer {
             let slot = first_bounce_slot + u32::try_from(i).expect("fewer than 2^32 views");
             self.views.write_view(queue, slot, &view);
         }
+        let mut glossy_plan =
+            plan_glossy(&self.reflectors, &self.planes, &rendered, camera, aspect, &s.glossy);
+        glossy_plan.first_view_slot = self.first_glossy_slot(bounces);
+        if let Some((glossy, _)) = &frame.glossy {
+            glossy.write_reflectors(queue, &glossy_plan.reflectors);
+            let first_view = glossy_plan.first_view_slot;
+            for gp in &glossy_plan.planes {
+                let slot = u32::try_from(gp.plane).expect("fewer than 2^32 planes");
+                for (i, v) in gp.views.iter().enumerate() {
+                    let index = gp.first + u32::try_from(i).expect("fewer than 2^32 views");
+                    let view = ViewUniform::new(v.clip_from_rel.as_mat4(), &s.lighting, &s.mask, 0);
+                    self.views.write_view(queue, first_view + index, &view);
+                    glossy.write_sample(
+                        queue,
+                        index,
+                        &sample_uniform(camera, aspect, &self.planes[gp.plane], slot, v),
+                    );
+                }
+            }
+        }
+        self.glossy_plan = glossy_plan;
         self.camera = Some(*camera);
         self.summary = FrameSummary {
             size,
@@ -250,8 +291,44 @@ impl LevelRenderer {
             rendered_planes: rendered,
             bounce_views: self.bounce_plan.views.len(),
             bounce_views_skipped: self.bounce_plan.skipped,
+            glossy_views: self.glossy_plan.view_count() as usize,
         };
         &self.summary
+    }
+
+    /// The first view slot of the glossy reference: after the main view, the planes and
+    /// the room of the later bounces.
+    fn first_glossy_slot(&self, bounces: u32) -> u32 {
+        let planes = u32::try_from(self.planes.len()).expect("fewer than 2^32 planes");
+        let bounce_room = if bounces > 1 {
+            u32::try_from(self.settings.max_bounce_views).unwrap_or(u32::MAX / 2)
+        } else {
+            0
+        };
+        1 + planes + bounce_room
+    }
+
+    /// Room for the glossy reference's views and its sums, when the settings ask for it.
+    fn allocate_glossy(&mut self, device: &wgpu::Device, size: [u32; 2], bounces: u32) {
+        let samples = self.settings.glossy.samples;
+        let rough =
+            u32::try_from(rough_plane_count(&self.reflectors, &self.planes)).expect("fewer than 2^32 planes");
+        if samples == 0 || rough == 0 {
+            return;
+        }
+        let needed = rough * samples;
+        let slots = self.first_glossy_slot(bounces) + needed;
+        let shapes = self.reflectors.reflectors.len();
+        if !self.views.fits(slots, shapes) {
+            self.views = ViewBindings::new(device, &self.layouts, slots, shapes);
+        }
+        let frame = self.frame.as_mut().expect("allocated before the glossy reference");
+        if frame.glossy.as_ref().is_none_or(|(g, _)| !g.fits(needed, shapes, size)) {
+            let bindings =
+                self.glossy_accumulate.bindings(device, &frame.main, &frame.reference.mirror, needed, shapes);
+            let group = self.glossy_resolve.bind_group(device, &frame.main, &bindings);
+            frame.glossy = Some((bindings, group));
+        }
     }
 
     /// Room for the later bounces' views and their scratch targets, when the settings ask
@@ -321,6 +398,48 @@ impl LevelRenderer {
             self.encode_bounces(encoder, BounceParent::Plane(k), &frame.reference.mirror);
             self.reference_pass.encode_resolve(encoder, &frame.reference, &frame.bindings, slot, n == 0);
         }
+        self.encode_glossy(encoder);
+    }
+
+    /// Records the glossy reference's views, their accumulation and the resolve over the
+    /// mirror reference (after it).
+    fn encode_glossy(&self, encoder: &mut wgpu::CommandEncoder) {
+        let (frame, camera) = self.prepared();
+        let Some((glossy, resolve_group)) = &frame.glossy else { return };
+        if self.glossy_plan.planes.is_empty() {
+            return;
+        }
+        self.glossy_accumulate.encode_clear(encoder, glossy);
+        let first_view = self.glossy_plan.first_view_slot;
+        for gp in &self.glossy_plan.planes {
+            for i in 0..gp.views.len() {
+                let index = gp.first + u32::try_from(i).expect("fewer than 2^32 views");
+                let draw = GBufferDraw {
+                    targets: &frame.reference.mirror,
+                    slot: first_view + index,
+                    kind: ViewKind::Mirrored,
+                    depth: camera.projection.depth,
+                    background: self.settings.background,
+                };
+                self.gbuffer_pass.encode(encoder, &self.meshes, &self.views, &draw);
+                self.glossy_accumulate.encode(encoder, glossy, index);
+            }
+        }
+        self.glossy_resolve.encode(encoder, &frame.reference, resolve_group);
+    }
+
+    /// The effective sample size of the glossy reference of the last rendered frame (waits
+    /// for the GPU); `None` when the frame had no glossy views.
+    ///
+    /// # Errors
+    /// A readback error.
+    pub fn glossy_stats(
+        &self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+    ) -> Option<Result<GlossyStats, crate::TestbedError>> {
+        let (glossy, _) = self.frame.as_ref()?.glossy.as_ref()?;
+        (!self.glossy_plan.planes.is_empty()).then(|| glossy.read_stats(device, queue))
     }
 
     /// Records the later-bounce views seen in `parent` (drawn into `parent_target`),

@@ -6,6 +6,7 @@ pub mod hiz_trace;
 pub mod sspr_clear;
 pub mod sspr_project;
 pub mod sspr_resolve;
+pub mod ssr_glossy_blur;
 pub mod ssr_march;
 pub mod texture_copy;
 
@@ -14,7 +15,8 @@ pub use hiz_trace::HiZTracePass;
 pub use sspr_clear::SsprClearPass;
 pub use sspr_project::SsprProjectPass;
 pub use sspr_resolve::SsprResolvePass;
-pub use ssr_march::SsrMarchPass;
+pub use ssr_glossy_blur::SsrGlossyBlurPass;
+pub use ssr_march::{MarchAlpha, SsrMarchPass};
 pub use texture_copy::TextureCopyPass;
 
 /// Workgroup edge of the per-pixel passes (8 × 8 threads), given to the WGSL as the

@@ -24,6 +24,16 @@ pub struct SsrMarchBindings<'a> {
     pub output: &'a wgpu::TextureView,
 }
 
+/// What the march writes in the alpha of a found reflection.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MarchAlpha {
+    /// 1: the technique's output as it is.
+    #[default]
+    Found,
+    /// The distance from the reflector to the hit, metres (for a roughness blur).
+    HitDistance,
+}
+
 /// Marches one reflection ray per reflector pixel and writes the colour it hits.
 pub struct SsrMarchPass {
     pipeline: wgpu::ComputePipeline,
@@ -31,8 +41,13 @@ pub struct SsrMarchPass {
 }
 
 impl SsrMarchPass {
-    /// Builds the pipeline.
+    /// Builds the pipeline (alpha 1 where a reflection was found).
     pub fn new(device: &wgpu::Device) -> Self {
+        Self::with_alpha(device, MarchAlpha::Found)
+    }
+
+    /// Builds the pipeline writing `alpha` where a reflection was found.
+    pub fn with_alpha(device: &wgpu::Device, alpha: MarchAlpha) -> Self {
         let layout = bind_group_layout(
             device,
             "ssr march",
@@ -47,7 +62,10 @@ impl SsrMarchPass {
             ],
         );
         let module = shader::module(device, "ssr march", shader::with_common(shader::SSR_MARCH));
-        let pipeline = compute_pipeline(device, "ssr march", &layout, &module, "main", &pixel_constants());
+        let [group] = pixel_constants();
+        let hit_distance = ("OUTPUT_HIT_DISTANCE", if alpha == MarchAlpha::HitDistance { 1.0 } else { 0.0 });
+        let pipeline =
+            compute_pipeline(device, "ssr march", &layout, &module, "main", &[group, hit_distance]);
         Self { pipeline, layout }
     }
 

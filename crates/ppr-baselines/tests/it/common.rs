@@ -12,7 +12,7 @@ use ppr_testbed::render_job::hole_share;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{
     FrameImages, GpuContext, ImageComparison, LevelRenderer, ReflectionInputs, ReflectionTechnique,
-    SyntheticScene, ToneMap, image_io,
+    RenderSettings, SyntheticScene, ToneMap, image_io,
 };
 
 /// Test image size: small enough for llvmpipe, large enough for 64-pixel steps to matter.
@@ -88,10 +88,22 @@ pub fn run(
     size: [u32; 2],
     technique: &mut dyn ReflectionTechnique,
 ) -> TechniqueRun {
+    run_with(scene, camera, size, technique, RenderSettings::default())
+}
+
+/// [`run`] with the level renderer's `settings` (the glossy reference, for one).
+pub fn run_with(
+    scene: &SyntheticScene,
+    camera: &Camera,
+    size: [u32; 2],
+    technique: &mut dyn ReflectionTechnique,
+    settings: RenderSettings,
+) -> TechniqueRun {
     let g = gpu();
     let _guard = g.lock();
     let (device, queue) = (&g.ctx.device, &g.ctx.queue);
     let mut renderer = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
+    renderer.settings = settings;
     renderer.prepare(device, queue, camera, size);
     let output = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("technique output"),

@@ -6,5 +6,6 @@ mod hiz_tests;
 mod planar_tests;
 mod scenes;
 mod sspr_tests;
+mod ssr_glossy_tests;
 mod ssr_tests;
 mod technique_tests;

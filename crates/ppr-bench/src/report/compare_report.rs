@@ -327,7 +327,10 @@ pub fn write_compare_report(
          first timed frame took over 50 ms: brute-force SSR and the exact re-render at high \
          resolutions); each frame first overwrites a scratch buffer so that no input sits in \
          the L2 cache. Quality is against the exact planar reflection (the scene \
-         re-rendered from the mirrored camera), over reflector pixels, split into pixels whose \
+         re-rendered from the mirrored camera; on reflectors with roughness > 0, unless \
+         `--reference mirror`, the exact glossy reference: views from eye points around the \
+         mirrored camera summed with GGX importance weights, see the notes), over reflector \
+         pixels, split into pixels whose \
          reflected point is on screen (what a screen-space method can get) and the rest; \
          \"no data\" is the share of those pixels a technique left without a reflection. Each \
          technique is scored as a renderer shows it, its colour blended by its alpha over one \

@@ -9,7 +9,7 @@ use ppr_runtime::PlanParams;
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::readback::read_rgba_f32;
 use ppr_testbed::technique::REFLECTION_FORMAT;
-use ppr_testbed::{FrameImages, GpuContext, LevelRenderer, ReflectionInputs, clear_target};
+use ppr_testbed::{FrameImages, GlossyParams, GpuContext, LevelRenderer, ReflectionInputs, clear_target};
 
 use crate::bounce_reference::DeeperReferences;
 use crate::config::{BenchConfig, Resolution};
@@ -46,6 +46,49 @@ pub struct CompareConfig {
     pub sheet_resolution: Resolution,
     /// Size of the accuracy-against-time plot.
     pub pareto_resolution: Resolution,
+    /// The reference every row is scored against.
+    pub reference: ReferenceKind,
+    /// Views per rough reflector plane of the glossy reference.
+    pub glossy_samples: u32,
+}
+
+/// The reference the comparison scores against.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum ReferenceKind {
+    /// Every reflector as a perfect mirror (the mirrored re-render per plane).
+    Mirror,
+    /// The exact glossy reference on reflectors with roughness > 0 (the testbed's
+    /// `GlossyParams`), the mirror reference on the others.
+    #[default]
+    Glossy,
+}
+
+/// The level renderer's settings for `scene` under `cc`'s reference, and a note saying
+/// what the rows of the scene are scored against.
+fn reference_settings(scene: &BenchScene, cc: &CompareConfig) -> (ppr_testbed::RenderSettings, String) {
+    let mut settings = scene.render_settings();
+    let set = &scene.reflectors.reflectors;
+    let rough = set.iter().filter(|r| r.enabled && r.roughness > 0.0).count();
+    let note = match cc.reference {
+        ReferenceKind::Glossy if rough > 0 && cc.glossy_samples > 0 => {
+            settings.glossy = GlossyParams { samples: cc.glossy_samples, ..GlossyParams::bench() };
+            format!(
+                "{}: scored against the exact glossy reference on its {rough} of {} reflectors with roughness > 0 \
+                 ({} views per rough plane; `exact` is timed with them), the mirror reference on the others",
+                scene.name,
+                set.len(),
+                cc.glossy_samples
+            )
+        }
+        ReferenceKind::Glossy => {
+            format!("{}: no reflector has roughness > 0: scored against the mirror reference", scene.name)
+        }
+        ReferenceKind::Mirror => format!(
+            "{}: scored against the mirror reference (--reference mirror; {rough} reflectors have roughness > 0)",
+            scene.name
+        ),
+    };
+    (settings, note)
 }
 
 /// Everything the comparison found.
@@ -112,7 +155,9 @@ pub fn run_compare(
         let results = &mut outcome.results;
         let sheets = &mut outcome.sheets;
         let mut level = LevelRenderer::new(device, queue, &scene.level, &scene.reflectors);
-        level.settings = scene.render_settings();
+        let (settings, note) = reference_settings(scene, cc);
+        level.settings = settings;
+        outcome.notes.push(note);
         let ctx = TechniqueContext {
             device,
             queue,
@@ -156,6 +201,20 @@ pub fn run_compare(
                 level.encode_reference(&mut encoder);
                 queue.submit([encoder.finish()]);
                 let images = if res.pixels() <= cc.quality_max_pixels {
+                    if let Some(stats) = level.glossy_stats(device, queue) {
+                        let s = stats?;
+                        outcome.notes.push(format!(
+                            "{} {} {res}: glossy reference over {} px, effective sample size mean {:.1}, \
+                             10th percentile {:.1}, min {:.1} (of {} views per rough plane)",
+                            scene.name,
+                            cam.name,
+                            s.pixels,
+                            s.mean_ess,
+                            s.p10_ess,
+                            s.min_ess,
+                            cc.glossy_samples
+                        ));
+                    }
                     Some(FrameImages::read(device, queue, &level)?)
                 } else {
                     None

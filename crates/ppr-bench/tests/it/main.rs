@@ -3,6 +3,7 @@
 
 mod bounces;
 mod error_causes;
+mod glossy_compare;
 mod mirror_rooms;
 mod quick_compare;
 mod quick_scaling;

@@ -3,7 +3,9 @@
 
 mod common;
 mod composite_tests;
+mod cpu_trace;
 mod demo_level_tests;
+mod glossy_reference_tests;
 mod gltf_tests;
 mod image_tests;
 mod ppr_tests;
