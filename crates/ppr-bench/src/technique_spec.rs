@@ -70,14 +70,24 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
     "sspr-stretch",
 ];
 
-/// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `fade=`, `replace-far=`,
+/// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
+/// (coplanar reflectors merged into plane groups), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 8] =
-    ["culling", "indirect", "fade", "replace-far", "tier", "glossy", "bounces", "reference-bounces"];
+const PPR_KEYS: [&str; 9] = [
+    "culling",
+    "indirect",
+    "groups",
+    "fade",
+    "replace-far",
+    "tier",
+    "glossy",
+    "bounces",
+    "reference-bounces",
+];
 
 /// Largest `bounces=` (each bounce is a frame of PPR and, in the reference, a level of
 /// mirrored views).
@@ -173,7 +183,7 @@ impl TechniqueSpec {
             }
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
-                "culling" | "indirect" | "replace-far" | "glossy" => {
+                "culling" | "indirect" | "groups" | "replace-far" | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -302,6 +312,9 @@ pub fn ppr_settings(
     }
     if let Some(v) = spec.param("indirect") {
         params.indirect = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    if let Some(v) = spec.param("groups") {
+        params.plane_groups = parse_choice(v).map_err(BenchError::Spec)?;
     }
     Ok(Some((settings, params)))
 }

@@ -13,6 +13,7 @@ use crate::near_planar::{MergeReport, NearPlanarRule, merge_near_planar};
 use crate::occluders::{OccluderRule, ranked_occluder_lists_threaded};
 use crate::parallel::extraction_groups;
 use crate::parallel_map::thread_count;
+use crate::params::CandidateRule;
 use crate::roughness::area_weighted_roughness;
 use crate::select::select;
 use crate::stable_id::{IdContent, content_hash, dedupe_ids};
@@ -183,7 +184,13 @@ fn build_set(
             // The fit's own in-plane frame, which may be left-handed about the normal.
             r.axis_v = axis_v;
             r.coverage = (s.area / rect_area).clamp(0.0, 1.0);
-            r.roughness = area_weighted_roughness(&s.polygons);
+            // `--all-planar` declares every planar surface a mirror: the level's materials
+            // say nothing (one material for everything, often rough), and a roughness
+            // from them would leave every reflector to the runtime's rough fallback.
+            r.roughness = match params.candidates {
+                CandidateRule::AllPlanar => 0.0,
+                CandidateRule::Materials => area_weighted_roughness(&s.polygons),
+            };
             r.normal_map =
                 s.materials.iter().any(|m| level.materials.iter().any(|l| l.normal_map && &l.name == m));
             r.source = ReflectorSource { nodes: s.nodes, materials: s.materials };

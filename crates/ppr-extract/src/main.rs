@@ -35,7 +35,8 @@ CANDIDATES:
   material: roughness <= 0.3, or metallic >= 0.8 with roughness <= 0.5, or transmission
   > 0, or clear coat >= 0.5 with clear-coat roughness <= 0.3, or a material, mesh or node
   name containing mirror, glass, water, puddle, chrome or polished. With --all-planar
-  every triangle is a candidate (for levels with one material for everything).
+  every triangle is a candidate (for levels with one material for everything) and
+  every reflector a mirror (roughness 0, whatever the material says).
   Kind: extras {\"ppr\": {\"kind\": \"opaque|transparent|water\"}} wins; else a name
   containing \"water\" gives water; else transmission > 0 or a name containing \"glass\"
   or \"window\" gives transparent; else opaque.

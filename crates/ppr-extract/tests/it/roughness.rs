@@ -101,3 +101,18 @@ fn roughness_is_deterministic_to_the_byte() {
     assert_eq!(set.reflectors.len(), 1, "the floors touch: one region; {first}");
     assert!(set.reflectors[0].roughness > 0.05, "{first}");
 }
+
+#[test]
+fn all_planar_reflectors_are_mirrors_whatever_the_material() {
+    // `--all-planar` is for levels whose one material says nothing: a rough floor becomes a
+    // mirror (roughness 0) rather than a reflector the runtime leaves to its rough fallback
+    // (it renders none rougher than `PlanParams::max_roughness`, 0.5).
+    let mut b = GltfBuilder::new();
+    floor(&mut b, "Concrete", 0.0, 2.0, 1.0, 0.9);
+    let level = load_level_from_bytes(std::path::Path::new("t.glb"), &b.glb(), std::path::Path::new("."))
+        .expect("loads");
+    let by_material = extract(&level, &ExtractParams::default(), &|_, _| {});
+    assert!(by_material.set.reflectors.is_empty(), "a rough floor is no candidate by material");
+    let all = extract(&level, &ExtractParams::all_planar(), &|_, _| {});
+    assert_eq!(only_roughness(&all), 0.0);
+}
