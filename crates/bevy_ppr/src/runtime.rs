@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use ppr_format::{FormatError, ReflectorSet};
+use ppr_format::{FormatError, ReflectorSet, ValidatedSet};
 use ppr_runtime::{
     Camera, CameraError, Choice, DepthMode, FrameInputs, PassTimings, ReflectionRenderer, ReflectionSettings,
     RendererDesc,
@@ -41,7 +41,8 @@ impl ViewRuntime {
             return Ok(());
         }
         self.set = Some(Arc::clone(set));
-        self.renderer.set_reflectors(set)
+        self.renderer.set_reflectors(&ValidatedSet::new(ReflectorSet::clone(set))?);
+        Ok(())
     }
 
     /// Plans the frame for a camera given by Bevy's matrices (reversed Z, as Bevy draws).

@@ -1,11 +1,12 @@
-//! One frame of the demo room from `cam_mirror` at 160 × 90 on the software adapter: the
-//! Bevy app's reflector pixels against `ppr-render`'s frame for the same camera.
+//! One frame of the demo room from `cam_mirror` at 160 × 90 on the software adapter (Bevy
+//! through Vulkan: Mesa's lavapipe without a GPU): the Bevy app's reflector pixels against
+//! `ppr-render`'s frame for the same camera.
 //!
 //! The two renderers light the level differently (Bevy's PBR with a directional light and
 //! ambient set to the testbed's Lambert light, roughly; the testbed's Lambert exactly), and
 //! the testbed resolves glass and water as layers where the plugin turns layers off, so the
 //! frames are compared by PSNR over the pixels where `ppr-render`'s PPR found a reflection,
-//! with a floor well above what PPR off gives (the same Bevy frame without the plugin's
+//! with a floor between what PPR off and PPR on give (the same Bevy frame without the plugin's
 //! composite is also measured, so the floor is shown to tell the two apart).
 
 use std::path::Path;
@@ -24,9 +25,12 @@ use crate::scene::{ASSETS, DemoRoom, adopt_gltf_camera, spawn_room, tolerate_fai
 
 const SIZE: [u32; 2] = [160, 90];
 const CAMERA: &str = "cam_mirror";
-/// Measured on llvmpipe (Mesa, GL backend for ppr-render; Bevy picks its own backend):
-/// see the test's output line; the floor sits a few dB under it.
-const MIN_PSNR_DB: f64 = 20.0;
+/// Measured 15.7 dB with PPR, 11.8 dB without (Bevy on Mesa 22.3 lavapipe through Vulkan,
+/// `ppr-render` on llvmpipe through GL or on lavapipe: the same numbers): the floor lies
+/// between the two, so the frame without the plugin's composite fails it.
+const MIN_PSNR_DB: f64 = 14.0;
+/// How much nearer `ppr-render` PPR must bring the reflector pixels (measured: 3.9 dB).
+const MIN_GAIN_DB: f64 = 2.0;
 
 /// The demo set as the main command writes it (`ppr-extract`, default parameters).
 fn extract_demo_set() -> ppr_format::ReflectorSet {
@@ -88,9 +92,15 @@ fn bevy_frame(set: &Arc<ppr_format::ReflectorSet>, with_ppr: bool) -> RgbaImage 
         PostUpdate,
         move |mut commands: Commands, added: Query<Entity, Added<PprCamera>>| {
             for entity in &added {
+                // Bevy 0.19's `camera_system` sizes a camera's target when the camera is
+                // added or its projection, viewport, window or image changes, not when its
+                // `RenderTarget` is replaced: without the touch the glTF camera keeps no
+                // target size and never renders into the image.
                 commands
                     .entity(entity)
-                    .insert((RenderTarget::Image(image_target.clone().into()), ImageCamera));
+                    .insert((RenderTarget::Image(image_target.clone().into()), ImageCamera))
+                    .entry::<Projection>()
+                    .and_modify(|mut projection| projection.set_changed());
                 if !with_ppr {
                     commands.entity(entity).remove::<PprCamera>();
                 }
@@ -154,7 +164,6 @@ fn psnr(a: &RgbaImage, b: &RgbaImage, mask: impl Fn(u32, u32) -> bool) -> (f64, 
 }
 
 #[test]
-#[ignore = "not settling yet on llvmpipe GL: no two equal captures within 120 s (bevy_ppr README, Tests)"]
 fn reflector_pixels_match_ppr_render() {
     let set = Arc::new(extract_demo_set());
     let (reference, reflection) = ppr_render(&set);
@@ -176,7 +185,7 @@ fn reflector_pixels_match_ppr_render() {
         "reflector pixels: {db:.1} dB < {MIN_PSNR_DB} dB (without PPR: {db_off:.1} dB)"
     );
     assert!(
-        db > db_off + 1.0,
-        "PPR must bring the frame nearer ppr-render: {db:.1} dB vs {db_off:.1} dB without"
+        db >= db_off + MIN_GAIN_DB,
+        "PPR must bring the frame {MIN_GAIN_DB} dB nearer ppr-render: {db:.1} dB vs {db_off:.1} dB without"
     );
 }
