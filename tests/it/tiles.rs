@@ -477,6 +477,9 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
 fn super_tiles_run_from_the_plan_threshold() {
     let (camera, gpu, set) = dense_puddles_frame(200);
     let mut r = renderer();
+    // The thresholds count projection tests: coplanar puddles merged into a plane group
+    // would be one.
+    r.plan_params.plane_groups = Choice::Off;
     r.set_reflectors(&ppr_tests::harness::validated(&set));
     let out = run(&mut r, &gpu, &camera);
     let n = out.plan.visible.len();

@@ -59,7 +59,13 @@ fn a_rough_floor_is_blurred_and_closer_to_the_glossy_reference_than_plain_ssr() 
         let mask = found_on_screen(&plain);
         assert!(mask.count() > 500, "plain SSR found {} on-screen pixels", mask.count());
         let reference = &plain.frame.reference;
-        assert_eq!(reference, &glossy.frame.reference, "the same glossy reference for both");
+        // Both runs render the same glossy reference; with other tests on the shared
+        // software adapter at the same time the two differ in the last bits of some pixels
+        // (seen: 4th significant digit), so both techniques are scored against one of them
+        // and the two are only required to agree closely.
+        let full = PixelMask::from_fn(SIZE[0], SIZE[1], |_, _| true);
+        let agree = psnr(reference, &glossy.frame.reference, &full, ToneMap::Clamp).expect("sizes");
+        assert!(agree >= 50.0, "the two runs' glossy references differ: {agree:.1} dB");
         let plain_db = psnr(reference, &plain.reflection, &mask, ToneMap::Clamp).expect("sizes");
         let glossy_db = psnr(reference, &glossy.reflection, &mask, ToneMap::Clamp).expect("sizes");
         let changed = PixelMask::from_fn(SIZE[0], SIZE[1], |x, y| {
