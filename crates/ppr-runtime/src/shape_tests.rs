@@ -17,11 +17,6 @@ use crate::plan::{FramePlan, TestedEntry};
 use crate::plane_groups::{GROUP_TEST_FLAG, GpuPlaneGroup, plane_group_words_offset};
 use crate::shapes::{ShapeSource, ShapeTable};
 
-/// The tests of `visible` (indices into `table`), in that order, for a camera at `eye`.
-pub fn shape_tests(table: &ShapeTable, visible: &[u32], eye: DVec3) -> Vec<GpuShapeTest> {
-    visible.iter().map(|&i| shape_test(&table.shapes[i as usize], i, eye)).collect()
-}
-
 /// A frame's projection tests for a camera at `eye`: one per entry of `plan.tested` (a
 /// merged plane group's is its bounding rectangle's, its `shape` the group's slot among
 /// the headers, flagged [`GROUP_TEST_FLAG`]), then one per layer; and the headers of the
