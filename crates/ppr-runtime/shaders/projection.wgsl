@@ -39,6 +39,10 @@
 // stands for a merged group of coplanar shapes, tested by the pyramid of their bounding
 // rectangle; a pixel that passes writes only if its reflection point lies on a member
 // (group_covers, a grid lookup).
+// - PARALLEL_TREES: some test (its `shape` flagged TREE_TEST_FLAG) stands for the visible
+//   shapes of a parallel family at many plane offsets (crates/ppr-runtime/src/
+//   parallel_trees.rs): its plane is the lowest member's, and a pixel in front of it walks
+//   the family's tree, testing the members it reaches with their own tests (tree_pixel).
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
@@ -51,6 +55,7 @@ override DEBUG_WRITES: bool = false;
 override DEBUG_TILE_LISTS: bool = false;
 override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
+override PARALLEL_TREES: bool = false;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;
@@ -77,7 +82,8 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // visible shape and layer fits): uniform loads go through the constant cache.
 @group(0) @binding(12) var<uniform> uniform_tests: array<ShapeTest, 128>;
 // Merged plane groups (crates/ppr-runtime/src/plane_groups.rs): per group a header of 16
-// words (PlaneGroup), then the grids' static words.
+// words (PlaneGroup), then the frame's parallel trees (parallel_trees.rs), then the grids'
+// static words.
 @group(0) @binding(13) var<storage, read> plane_groups: array<u32>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
@@ -121,6 +127,83 @@ fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
         }
     }
     return false;
+}
+
+// Bit of ShapeTest.shape: the test is a parallel tree's, the rest its header's word.
+const TREE_TEST_FLAG: u32 = 0x40000000u;
+const TREE_NODE_WORDS: u32 = 6u;
+
+// The part of the parameter range `r` where `t * a` lies in [lo - m, hi + m].
+fn tree_axis(a: f32, lo: f32, hi: f32, m: f32, r: vec2<f32>) -> vec2<f32> {
+    if (abs(a) < 1e-20) {
+        if (lo - m <= 0.0 && 0.0 <= hi + m) {
+            return r;
+        }
+        return vec2<f32>(1.0, 0.0);
+    }
+    let x = (lo - m) / a;
+    let y = (hi + m) / a;
+    return vec2<f32>(max(r.x, min(x, y)), min(r.y, max(x, y)));
+}
+
+// Whether a member of the tree node at word `w` may reflect the pixel (its coordinate
+// `zp` along the family's normal, `uv` in its plane; members must lie below `reach`): the
+// reflection point t * uv, over the t of the node's plane offsets, meets the node's box
+// widened by `m`. The CPU model is parallel_trees.rs's node_meets.
+fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
+    let lo = group_f32(w);
+    if (!(lo < reach)) {
+        return false;
+    }
+    let hi = min(group_f32(w + 1u), reach);
+    let ta = lo / (2.0 * lo - zp);
+    let tb = hi / (2.0 * hi - zp);
+    var r = vec2<f32>(min(ta, tb), max(ta, tb));
+    r = tree_axis(uv.x, group_f32(w + 2u), group_f32(w + 3u), m, r);
+    r = tree_axis(uv.y, group_f32(w + 4u), group_f32(w + 5u), m, r);
+    return r.x <= r.y;
+}
+
+// Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
+// tolerance `tol`) and writes its reflection in every member that passes the member's own
+// test, as the plain loop would.
+fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
+    let n = group_vec3(h);
+    let node_start = plane_groups[h + 3u];
+    let leaves = plane_groups[h + 7u];
+    let tests_start = plane_groups[h + 12u];
+    let zp = dot(p, n);
+    let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
+    let reach = zp - 0.5 * tol;
+    let m = 1e-4 * (abs(uv.x) + abs(uv.y) + abs(zp));
+    var node = 1u;
+    loop {
+        if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
+            if (node < leaves) {
+                node = node * 2u;
+                continue;
+            }
+            let t = tests[tests_start + node - leaves];
+            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+            let inside = min(
+                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
+                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
+                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
+                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
+            );
+            if (dist > tol && inside >= 0.0) {
+                reflect_pixel(pixel, p, dist, t.plane, t.shape);
+            }
+        }
+        // The next node in walk order: up past right children, then the right sibling.
+        while ((node & 1u) == 1u) {
+            node = node >> 1u;
+        }
+        if (node == 0u) {
+            break;
+        }
+        node += 1u;
+    }
 }
 
 fn shape_test(k: u32) -> ShapeTest {
@@ -504,6 +587,15 @@ fn main(
             continue;
         }
         let dist = quad_test(q, t);
+        if (PARALLEL_TREES && (t.shape & TREE_TEST_FLAG) != 0u) {
+            // In front of the family's lowest plane: walk its tree.
+            for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
+                if (lane_f32(dist, j) >= 0.0) {
+                    tree_pixel(t.shape & ~TREE_TEST_FLAG, quad_pixel(base, j), quad_position(q, j), lane_f32(q.tolerance, j));
+                }
+            }
+            continue;
+        }
         let passes = dist >= vec4<f32>(0.0);
         if (ABLATION == 3u) {
             tested += dist;

@@ -19,7 +19,7 @@ pub(crate) struct FrameBuffers {
     pub screen_rects: wgpu::Buffer,
     /// Per visible shape, the screen box of the pixels that may reflect into it.
     pub source_rects: wgpu::Buffer,
-    /// Per visible shape, its test planes.
+    /// Per projection test and layer, then per parallel tree member, its test planes.
     pub tests: wgpu::Buffer,
     /// The first [`UNIFORM_TESTS_CAPACITY`] of `tests`, as a uniform buffer.
     pub uniform_tests: wgpu::Buffer,
@@ -39,7 +39,8 @@ pub(crate) struct FrameBuffers {
     /// Block counts and lists (full size only once a plan uses tile culling).
     pub block_lists: wgpu::Buffer,
     /// The merged plane groups' headers (one slot per group of the table, written per
-    /// frame), then the table's static grid words (`crate::plane_groups`).
+    /// frame), the frame's parallel trees (`crate::parallel_trees`, room for every family),
+    /// then the table's static grid words (`crate::plane_groups`).
     pub plane_groups: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
@@ -80,7 +81,9 @@ impl FrameBuffers {
             visible: buffer("ppr visible shapes", 4 * n, storage),
             screen_rects: buffer("ppr screen rects", 16 * n, storage),
             source_rects: buffer("ppr source rects", 16 * n, storage),
-            tests: buffer("ppr shape tests", n * std::mem::size_of::<GpuShapeTest>() as u64, storage),
+            // The loop's tests (entries and layers), then the parallel trees' members: each
+            // shape at most once, plus one entry per tree.
+            tests: buffer("ppr shape tests", 2 * n * std::mem::size_of::<GpuShapeTest>() as u64, storage),
             uniform_tests: buffer(
                 "ppr shape tests (uniform)",
                 (UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>()) as u64,

@@ -22,6 +22,8 @@ mod glossy;
 #[doc(hidden)]
 pub mod gpu_types;
 #[doc(hidden)]
+pub mod parallel_trees;
+#[doc(hidden)]
 pub mod passes;
 #[doc(hidden)]
 pub mod plan;

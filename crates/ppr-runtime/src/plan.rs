@@ -7,6 +7,7 @@ use ppr_format::ReflectorKind;
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
+use crate::parallel_trees::FrameTree;
 use crate::shapes::{ShapeSource, ShapeTable};
 use crate::source_box::source_rect;
 
@@ -119,6 +120,15 @@ pub struct PlanParams {
     /// With `Auto`, a plane group is merged when at least this many of its members are
     /// visible.
     pub plane_group_min_shapes: usize,
+    /// Test the visible shapes of one parallel family (one normal, many plane offsets:
+    /// stair treads, shelves, storeys) as one: each pixel walks a tree of their offsets
+    /// and boxes and tests only the members whose box its reflection point can reach
+    /// ([`crate::parallel_trees`]); the writes are the plain loop's. Never with the
+    /// parallel rule, the occluder lists or [`crate::DebugOptions::writes`].
+    pub parallel_trees: Choice,
+    /// With `Auto`, a family's visible shapes (those not merged into a plane group) become
+    /// a tree from this many on.
+    pub parallel_tree_min_shapes: usize,
     /// Give the projection pass the shape tests in a uniform buffer (at most
     /// [`UNIFORM_TESTS_CAPACITY`] visible shapes and layers) instead of a storage buffer:
     /// the per-shape loads of every pixel go through the constant cache. `Auto`: on
@@ -154,6 +164,8 @@ impl Default for PlanParams {
             uniform_tests: Choice::Auto,
             plane_groups: Choice::Auto,
             plane_group_min_shapes: 4,
+            parallel_trees: Choice::Auto,
+            parallel_tree_min_shapes: 16,
         }
     }
 }
@@ -182,6 +194,9 @@ pub enum TestedEntry {
     /// A merged group of coplanar visible shapes (index into
     /// [`crate::plane_groups::PlaneGroups::groups`]).
     PlaneGroup(u32),
+    /// The visible shapes of a parallel family, walked as a tree (index into
+    /// [`FramePlan::trees`]).
+    ParallelTree(u32),
 }
 
 /// What one frame will do, and why.
@@ -198,6 +213,8 @@ pub struct FramePlan {
     pub tested: Vec<TestedEntry>,
     /// Visible shapes the merged plane groups of `tested` cover.
     pub grouped_shapes: usize,
+    /// The parallel trees of `tested`.
+    pub trees: Vec<FrameTree>,
     /// With source boxes: the screen box of the pixels that may reflect into each entry of
     /// `tested`, then into each layer (`crate::source_box`). Empty without.
     pub source_rects: Vec<ScreenRect>,
@@ -265,6 +282,7 @@ impl FramePlan {
             screen_rects: Vec::new(),
             tested: Vec::new(),
             grouped_shapes: 0,
+            trees: Vec::new(),
             source_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
@@ -339,12 +357,13 @@ impl FramePlan {
         let screen = (w as f64 * h as f64).max(1.0);
         let covered: f64 = plan.screen_rects.iter().map(|r| r.area() as f64).sum();
         plan.coverage = (covered / screen).min(1.0) as f32;
+        plan.parallel_rule = params.parallel_rule.decide(false);
         plan.merge_plane_groups(table, params);
+        plan.merge_parallel_trees(table, params);
         let tested = plan.tested.len();
         plan.tile_culling = params.tile_culling.decide(tested >= params.tile_culling_min_shapes);
         plan.super_tiles =
             plan.tile_culling && params.super_tiles.decide(tested >= params.super_tiles_min_shapes);
-        plan.parallel_rule = params.parallel_rule.decide(false);
         plan.uniform_tests =
             params.uniform_tests.decide(true) && tested + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
@@ -354,6 +373,12 @@ impl FramePlan {
             let entries = plan.tested.iter().map(|e| match *e {
                 TestedEntry::Shape(i) => rect(&table.shapes[i as usize]),
                 TestedEntry::PlaneGroup(g) => rect(&table.plane_groups.groups[g as usize].bounding_shape()),
+                TestedEntry::ParallelTree(t) => plan.trees[t as usize]
+                    .members
+                    .iter()
+                    .map(|&m| rect(&table.shapes[m as usize]))
+                    .reduce(union_rect)
+                    .expect("a tree has members"),
             });
             plan.source_rects = entries.chain(layers).collect();
         }
@@ -394,6 +419,54 @@ impl FramePlan {
                 }
                 _ => self.tested.push(TestedEntry::Shape(i)),
             }
+        }
+    }
+
+    /// Replaces, in `tested`, the single shapes of each parallel family with enough of them
+    /// by one tree entry (where its first member stood).
+    fn merge_parallel_trees(&mut self, table: &ShapeTable, params: &PlanParams) {
+        self.trees.clear();
+        if self.occluder_tests || self.parallel_rule {
+            return;
+        }
+        let families = &table.parallel_families;
+        let mut singles = vec![0usize; families.families.len()];
+        for e in &self.tested {
+            if let TestedEntry::Shape(i) = *e
+                && let Some((f, _)) = families.family_of[i as usize]
+            {
+                singles[f as usize] += 1;
+            }
+        }
+        let merged: Vec<bool> = singles
+            .iter()
+            .map(|&n| n >= 2 && params.parallel_trees.decide(n >= params.parallel_tree_min_shapes))
+            .collect();
+        if !merged.contains(&true) {
+            return;
+        }
+        let mut tree_of: Vec<Option<u32>> = vec![None; families.families.len()];
+        let mut tested = Vec::with_capacity(self.tested.len());
+        for e in std::mem::take(&mut self.tested) {
+            let TestedEntry::Shape(i) = e else {
+                tested.push(e);
+                continue;
+            };
+            match families.family_of[i as usize] {
+                Some((f, _)) if merged[f as usize] => {
+                    let t = *tree_of[f as usize].get_or_insert_with(|| {
+                        tested.push(TestedEntry::ParallelTree(self.trees.len() as u32));
+                        self.trees.push(FrameTree { family: f, members: Vec::new() });
+                        self.trees.len() as u32 - 1
+                    });
+                    self.trees[t as usize].members.push(i);
+                }
+                _ => tested.push(e),
+            }
+        }
+        self.tested = tested;
+        for t in &mut self.trees {
+            t.members.sort_by_key(|&m| families.family_of[m as usize].map(|(_, rank)| rank));
         }
     }
 
@@ -498,6 +571,20 @@ impl FramePlan {
     }
 }
 
+/// The smallest rectangle holding both (an empty one holds nothing).
+fn union_rect(a: ScreenRect, b: ScreenRect) -> ScreenRect {
+    if a.area() == 0 {
+        return b;
+    }
+    if b.area() == 0 {
+        return a;
+    }
+    ScreenRect {
+        min: [a.min[0].min(b.min[0]), a.min[1].min(b.min[1])],
+        max: [a.max[0].max(b.max[0]), a.max[1].max(b.max[1])],
+    }
+}
+
 /// Whether all corners lie outside one of the clip volume's planes (conservative).
 fn outside_frustum(clip: &[Vec4; 4]) -> bool {
     let planes: [fn(&Vec4) -> f32; 5] = [
@@ -568,6 +655,15 @@ impl fmt::Display for FramePlan {
                 f,
                 "plane groups: {} coplanar reflector(s) tested as {groups} plane(s); {} projection test(s)",
                 self.grouped_shapes,
+                self.tested.len()
+            )?;
+        }
+        if !self.trees.is_empty() {
+            writeln!(
+                f,
+                "parallel trees: {} reflector(s) at many plane offsets walked as {} tree(s); {} projection test(s)",
+                self.trees.iter().map(|t| t.members.len()).sum::<usize>(),
+                self.trees.len(),
                 self.tested.len()
             )?;
         }

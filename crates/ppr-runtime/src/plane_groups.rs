@@ -18,8 +18,8 @@
 //! `cells_start`; the next cell's start ends it), the member lists (local member indices),
 //! then per member eight words from `rects_start`: centre (u, v), half extents (u, v), the
 //! member's own u axis in the group's (u, v), its shape index, and a pad. On the GPU the
-//! static words follow the headers; a header's `cells_start` and `rects_start` count from
-//! the buffer's start.
+//! static words follow the headers and the frame's parallel trees; a header's
+//! `cells_start` and `rects_start` count from the buffer's start.
 
 use std::collections::HashMap;
 
@@ -33,9 +33,9 @@ use crate::shapes::ShapeSource;
 pub const GROUP_TEST_FLAG: u32 = 0x8000_0000;
 
 /// Word offset of `table`'s static grid words in the GPU buffer: after one header slot per
-/// group.
+/// group and the room of the frame's parallel trees ([`crate::parallel_trees`]).
 pub fn plane_group_words_offset(table: &crate::shapes::ShapeTable) -> u32 {
-    (table.plane_groups.groups.len() * std::mem::size_of::<GpuPlaneGroup>() / 4) as u32
+    crate::parallel_trees::tree_words_start(table) + table.parallel_families.words_capacity() as u32
 }
 
 /// Words per member rectangle in the static data.

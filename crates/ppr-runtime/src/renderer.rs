@@ -243,6 +243,7 @@ impl ReflectionRenderer {
         if self.debug.writes {
             // Debug write masks record each visible shape; a merged group writes as one.
             params.plane_groups = Choice::Off;
+            params.parallel_trees = Choice::Off;
         }
         let plans = cameras.map(|camera| {
             let mut plan = FramePlan::build(&self.table, camera, planned, &params);
@@ -293,6 +294,7 @@ impl ReflectionRenderer {
             debug_tile_lists: self.debug.writes && self.debug.tile_lists,
             source_boxes: !plan.source_rects.is_empty(),
             uniform_tests: plan.uniform_tests,
+            parallel_trees: !plan.trees.is_empty(),
             ablation: self.debug.projection_ablation,
         }
     }
@@ -345,7 +347,7 @@ impl ReflectionRenderer {
                 _pad: 0,
             })
             .collect();
-        let (tests, groups) = frame_tests(&self.table, plan, camera.position);
+        let tests = frame_tests(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
@@ -357,13 +359,13 @@ impl ReflectionRenderer {
                 (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
                 (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
-                (UploadTarget::Tests, bytemuck::cast_slice(&tests)),
+                (UploadTarget::Tests, bytemuck::cast_slice(&tests.tests)),
                 (
                     UploadTarget::UniformTests,
-                    if plan.uniform_tests { bytemuck::cast_slice(&tests) } else { &[] },
+                    if plan.uniform_tests { bytemuck::cast_slice(&tests.tests[..tests.looped]) } else { &[] },
                 ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
-                (UploadTarget::PlaneGroups, bytemuck::cast_slice(&groups)),
+                (UploadTarget::PlaneGroups, bytemuck::cast_slice(&tests.group_words)),
                 (
                     UploadTarget::Glossy,
                     if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },

@@ -13,21 +13,34 @@
 use glam::{DVec3, DVec4};
 
 use crate::gpu_types::GpuShapeTest;
+use crate::parallel_trees::{TREE_TEST_FLAG, tree_words_start};
 use crate::plan::{FramePlan, TestedEntry};
 use crate::plane_groups::{GROUP_TEST_FLAG, GpuPlaneGroup, plane_group_words_offset};
 use crate::shapes::{ShapeSource, ShapeTable};
 
-/// A frame's projection tests for a camera at `eye`: one per entry of `plan.tested` (a
-/// merged plane group's is its bounding rectangle's, its `shape` the group's slot among
-/// the headers, flagged [`GROUP_TEST_FLAG`]), then one per layer; and the headers of the
-/// merged groups, in slot order.
-pub fn frame_tests(
-    table: &ShapeTable,
-    plan: &FramePlan,
-    eye: DVec3,
-) -> (Vec<GpuShapeTest>, Vec<GpuPlaneGroup>) {
+/// What one frame's projection reads of its tests.
+pub struct FrameTests {
+    /// One test per entry of `plan.tested` (a merged plane group's is its bounding
+    /// rectangle's, its `shape` the group's slot among the headers, flagged
+    /// [`GROUP_TEST_FLAG`]; a parallel tree's is its lowest member's plane with sides every
+    /// point passes, its `shape` the tree's header position, flagged [`TREE_TEST_FLAG`]),
+    /// then one per layer, then the trees' members' own tests.
+    pub tests: Vec<GpuShapeTest>,
+    /// How many of `tests` the loop reads (the entries and the layers; the uniform copy).
+    pub looped: usize,
+    /// The start of the plane-group buffer: the merged groups' headers in slot order, then
+    /// (when the frame has trees) zeros up to the trees' room and the trees' words.
+    pub group_words: Vec<u32>,
+}
+
+/// A frame's projection tests for a camera at `eye`.
+pub fn frame_tests(table: &ShapeTable, plan: &FramePlan, eye: DVec3) -> FrameTests {
     let base = plane_group_words_offset(table);
-    let mut headers = Vec::new();
+    let mut headers: Vec<GpuPlaneGroup> = Vec::new();
+    let looped = plan.tested.len() + plan.layers.len();
+    let tree_base = tree_words_start(table);
+    let mut tree_words = Vec::new();
+    let mut member_tests = Vec::new();
     let mut tests: Vec<GpuShapeTest> = plan
         .tested
         .iter()
@@ -39,10 +52,30 @@ pub fn frame_tests(
                 headers.push(group.gpu_header(eye, base));
                 shape_test(&group.bounding_shape(), slot, eye)
             }
+            TestedEntry::ParallelTree(t) => {
+                let tree = &plan.trees[t as usize];
+                let start = (looped + member_tests.len()) as u32;
+                let header = tree.append_words(table, eye, tree_base, start, &mut tree_words);
+                member_tests
+                    .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                let mut test =
+                    shape_test(&table.shapes[tree.lowest() as usize], TREE_TEST_FLAG | header, eye);
+                // Lowered by a margin, so that no member reflects a point the entry's plane
+                // does not (their normals may differ in the last bits).
+                test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;
+                test.sides = [[0.0, 0.0, 0.0, 1.0]; 4];
+                test
+            }
         })
         .collect();
     tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
-    (tests, headers)
+    tests.extend(member_tests);
+    let mut group_words: Vec<u32> = bytemuck::cast_slice(&headers).to_vec();
+    if !tree_words.is_empty() {
+        group_words.resize(tree_base as usize, 0);
+        group_words.extend(tree_words);
+    }
+    FrameTests { tests, looped, group_words }
 }
 
 /// The test of one shape (index `index` in its table).

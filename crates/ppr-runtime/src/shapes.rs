@@ -5,6 +5,7 @@ use glam::{DVec3, Vec3};
 use ppr_format::{ReflectorKind, ReflectorSet};
 
 use crate::gpu_types::{GpuShape, SHAPE_OCCLUDES};
+use crate::parallel_trees::ParallelFamilies;
 use crate::plane_groups::PlaneGroups;
 
 /// One reflector as the runtime needs it (f64 centre, f32 frame).
@@ -58,6 +59,9 @@ pub struct ShapeTable {
     pub occluder_indices: Vec<u32>,
     /// The groups of coplanar shapes and their grids (built with the table).
     pub plane_groups: PlaneGroups,
+    /// The families of parallel shapes with one normal, sorted by plane offset (built with
+    /// the table; a frame merges a family's visible members into a parallel tree).
+    pub parallel_families: ParallelFamilies,
 }
 
 impl ShapeTable {
@@ -83,6 +87,7 @@ impl ShapeTable {
             table.occluder_ranges.push(start..table.occluder_indices.len() as u32);
         }
         table.plane_groups = PlaneGroups::build(&table.shapes);
+        table.parallel_families = ParallelFamilies::build(&table.shapes);
         table
     }
 

@@ -41,6 +41,8 @@ pub struct ProjectionVariant {
     pub source_boxes: bool,
     /// The shape tests come from the uniform copy (binding 12), not the storage buffer.
     pub uniform_tests: bool,
+    /// Some test stands for a parallel tree (`crate::parallel_trees`): its pixels walk it.
+    pub parallel_trees: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -98,7 +100,8 @@ pub struct ProjectionBindings<'a> {
     pub block_lists: &'a wgpu::Buffer,
     /// The first shape tests as a uniform buffer (read with `uniform_tests`).
     pub uniform_tests: &'a wgpu::Buffer,
-    /// The merged plane groups' headers and grids (`crate::plane_groups`).
+    /// The merged plane groups' headers and grids (`crate::plane_groups`) and the frame's
+    /// parallel trees (`crate::parallel_trees`).
     pub plane_groups: &'a wgpu::Buffer,
 }
 
@@ -157,6 +160,7 @@ impl ProjectionPass {
             ("DEBUG_TILE_LISTS", flag(v.debug_tile_lists)),
             ("SOURCE_BOXES", flag(v.source_boxes)),
             ("UNIFORM_TESTS", flag(v.uniform_tests)),
+            ("PARALLEL_TREES", flag(v.parallel_trees)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");

@@ -1,0 +1,438 @@
+//! Parallel reflectors at many plane offsets merged into one projection test: stair
+//! treads, shelves, the floors of a many-storeyed level (the plane groups of
+//! [`crate::plane_groups`] merge only shapes of one plane).
+//!
+//! For a pixel at camera-relative `p` and a plane of normal `n` at (camera-relative)
+//! distance `d < 0`, the mirror image is `p − 2(n·p − d)n` and the ray from the camera to
+//! it crosses the plane at `t` times the image, `t = d / (2d − n·p)`. In the plane's own
+//! coordinates `(u, v)` (shared by parallel planes) that reflection point is `t · (u_p,
+//! v_p)`: as `d` runs over the planes below the pixel, it slides along one segment from
+//! the camera's foot point towards the pixel's, `t` monotone in `d`. A pixel is reflected
+//! by a member exactly when its point for the member's `d` lies in the member's rectangle.
+//!
+//! The members visible in a frame, sorted by plane offset, are the leaves of a complete
+//! binary tree; each node holds the range of its members' offsets and the `(u, v)` box of
+//! their rectangles, camera-relative. A pixel walks the tree and descends only into
+//! nodes whose box its segment (for the node's offsets) meets, and tests each leaf it
+//! reaches with the member's own five planes, the test the plain loop runs, so the writes
+//! are the same. On a stairway the segment meets the boxes along one or two paths: a pixel
+//! costs a few dozen node tests, not one test per tread.
+//!
+//! Words per frame (`u32`, floats as bits), per tree: a header of
+//! [`TREE_HEADER_WORDS`] (normal, node start, u axis, leaf count, v axis, member count,
+//! first member test), then the nodes, [`TREE_NODE_WORDS`] each, in heap order (node 1
+//! the root, children `2k` and `2k + 1`, leaves from the leaf count): lowest and highest
+//! plane offset, u range, v range. Empty leaves have an offset range that no pixel meets.
+//! They live in the plane-group buffer, between the groups' headers and their static
+//! grids ([`tree_words_start`]).
+
+use std::collections::HashMap;
+
+use glam::{DVec3, Vec3};
+use ppr_format::ReflectorKind;
+
+use crate::shapes::{ShapeSource, ShapeTable};
+
+/// Bit of [`crate::gpu_types::GpuShapeTest::shape`]: the test stands for a parallel tree
+/// (the rest of the word is its header's word position in the plane-group buffer).
+pub const TREE_TEST_FLAG: u32 = 0x4000_0000;
+
+/// Words of a tree's header.
+pub const TREE_HEADER_WORDS: usize = 16;
+/// Words of a tree node.
+pub const TREE_NODE_WORDS: usize = 6;
+
+/// Largest difference of a member's unit normal from its family's, per component: members
+/// share the family's plane coordinates to within f32 rounding of the pixel positions.
+const NORMAL_TOLERANCE: f32 = 1e-6;
+
+/// Shapes of one parallel group whose normals agree (two or more), sorted by plane offset.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParallelFamily {
+    /// Shape indices, highest plane offset (`center · normal`) first.
+    pub members: Vec<u32>,
+    /// The first member's frame: the family's plane coordinates.
+    pub normal: Vec3,
+    pub axis_u: Vec3,
+    pub axis_v: Vec3,
+    pub parallel_group: u32,
+}
+
+/// Every family of a table.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ParallelFamilies {
+    pub families: Vec<ParallelFamily>,
+    /// Per shape of the table: its family and its rank in the family's order.
+    pub family_of: Vec<Option<(u32, u32)>>,
+}
+
+impl ParallelFamilies {
+    /// Groups the enabled opaque shapes of `shapes` by parallel group and normal.
+    pub fn build(shapes: &[ShapeSource]) -> Self {
+        let mut by_group: HashMap<u32, Vec<Vec<u32>>> = HashMap::new();
+        for (i, s) in shapes.iter().enumerate() {
+            if !s.enabled || s.kind != ReflectorKind::Opaque {
+                continue;
+            }
+            let drafts = by_group.entry(s.parallel_group).or_default();
+            let same = |d: &Vec<u32>| {
+                (shapes[d[0] as usize].normal - s.normal).abs().max_element() <= NORMAL_TOLERANCE
+            };
+            match drafts.iter_mut().find(|d| same(d)) {
+                Some(d) => d.push(i as u32),
+                None => drafts.push(vec![i as u32]),
+            }
+        }
+        let mut drafts: Vec<Vec<u32>> = by_group.into_values().flatten().filter(|d| d.len() >= 2).collect();
+        // Deterministic family order, whatever the hash map's.
+        drafts.sort_by_key(|d| d[0]);
+        let mut out = Self { families: Vec::new(), family_of: vec![None; shapes.len()] };
+        for mut members in drafts {
+            let first = &shapes[members[0] as usize];
+            let n = first.normal.as_dvec3();
+            let offset = |m: &u32| shapes[*m as usize].center.dot(n);
+            members.sort_by(|a, b| offset(b).total_cmp(&offset(a)).then(a.cmp(b)));
+            let f = out.families.len() as u32;
+            for (rank, &m) in members.iter().enumerate() {
+                out.family_of[m as usize] = Some((f, rank as u32));
+            }
+            out.families.push(ParallelFamily {
+                normal: first.normal,
+                axis_u: first.axis_u,
+                axis_v: first.axis_v,
+                parallel_group: first.parallel_group,
+                members,
+            });
+        }
+        out
+    }
+
+    /// Words the trees of one frame may need at most (every family a tree of all its
+    /// members).
+    pub fn words_capacity(&self) -> usize {
+        self.families.iter().map(|f| tree_words(f.members.len())).sum()
+    }
+}
+
+/// Words of a tree over `members` leaves.
+fn tree_words(members: usize) -> usize {
+    TREE_HEADER_WORDS + TREE_NODE_WORDS * (2 * members.next_power_of_two() - 1)
+}
+
+/// Word position of the trees in the plane-group buffer: after the groups' headers.
+pub fn tree_words_start(table: &ShapeTable) -> u32 {
+    (table.plane_groups.groups.len() * std::mem::size_of::<crate::plane_groups::GpuPlaneGroup>() / 4) as u32
+}
+
+/// One frame's tree: visible members of a family, in the family's order.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct FrameTree {
+    /// Index into [`ParallelFamilies::families`].
+    pub family: u32,
+    /// Shape indices, highest plane offset first.
+    pub members: Vec<u32>,
+}
+
+impl FrameTree {
+    /// The member with the lowest plane (its plane bounds every member's from below).
+    pub fn lowest(&self) -> u32 {
+        *self.members.last().expect("a tree has members")
+    }
+
+    /// Appends this tree's words for a camera at `eye` to `words` (whose first word sits at
+    /// word `base` of the buffer), its members' tests starting at `tests_start`; returns
+    /// the header's word position in the buffer.
+    pub fn append_words(
+        &self,
+        table: &ShapeTable,
+        eye: DVec3,
+        base: u32,
+        tests_start: u32,
+        words: &mut Vec<u32>,
+    ) -> u32 {
+        let family = &table.parallel_families.families[self.family as usize];
+        let header = base + words.len() as u32;
+        let leaves = self.members.len().next_power_of_two();
+        let node_start = header + TREE_HEADER_WORDS as u32;
+        let f = |v: f32| v.to_bits();
+        let [nx, ny, nz] = family.normal.to_array();
+        let [ux, uy, uz] = family.axis_u.to_array();
+        let [vx, vy, vz] = family.axis_v.to_array();
+        words.extend([f(nx), f(ny), f(nz), node_start]);
+        words.extend([f(ux), f(uy), f(uz), leaves as u32]);
+        words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
+        words.extend([tests_start, 0, 0, 0]);
+        let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
+        // Leaves first (heap positions leaves..2·leaves), then the parents bottom-up.
+        let mut nodes = vec![Node::EMPTY; 2 * leaves];
+        for (k, &m) in self.members.iter().enumerate() {
+            let s = &table.shapes[m as usize];
+            let d = s.plane_dist_from(eye);
+            let mut node = Node { offset: [d, d], u: [f64::MAX, f64::MIN], v: [f64::MAX, f64::MIN] };
+            for c in s.corners() {
+                let l = c - eye;
+                let (u, v) = (l.dot(au), l.dot(av));
+                node.u = [node.u[0].min(u), node.u[1].max(u)];
+                node.v = [node.v[0].min(v), node.v[1].max(v)];
+            }
+            nodes[leaves + k] = node;
+        }
+        for k in (1..leaves).rev() {
+            nodes[k] = nodes[2 * k].union(&nodes[2 * k + 1]);
+        }
+        for node in &nodes[1..] {
+            words.extend(node.gpu_words());
+        }
+        debug_assert_eq!(words.len() as u32 + base - header, tree_words(self.members.len()) as u32);
+        header
+    }
+}
+
+/// A node's members: their plane offsets and the box of their corners, camera-relative.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Node {
+    offset: [f64; 2],
+    u: [f64; 2],
+    v: [f64; 2],
+}
+
+impl Node {
+    const EMPTY: Self =
+        Self { offset: [f64::MAX, f64::MIN], u: [f64::MAX, f64::MIN], v: [f64::MAX, f64::MIN] };
+
+    fn union(&self, o: &Self) -> Self {
+        let join = |a: [f64; 2], b: [f64; 2]| [a[0].min(b[0]), a[1].max(b[1])];
+        Self { offset: join(self.offset, o.offset), u: join(self.u, o.u), v: join(self.v, o.v) }
+    }
+
+    /// Rounded outwards to f32; an empty node's lowest offset is f32::MAX, which no pixel
+    /// lies above.
+    fn gpu_words(&self) -> [u32; TREE_NODE_WORDS] {
+        if self.offset[0] > self.offset[1] {
+            return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN].map(f32::to_bits);
+        }
+        [
+            down(self.offset[0]),
+            up(self.offset[1]),
+            down(self.u[0]),
+            up(self.u[1]),
+            down(self.v[0]),
+            up(self.v[1]),
+        ]
+        .map(f32::to_bits)
+    }
+}
+
+/// The largest f32 at or below `x`.
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) <= x { f } else { f.next_down() }
+}
+
+/// The smallest f32 at or above `x`.
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) >= x { f } else { f.next_up() }
+}
+
+/// The CPU model of `tree_pixel` in `projection.wgsl`: the leaves (member positions) a
+/// pixel at camera-relative `p` with on-plane tolerance `tol` reaches, in walk order.
+/// `header` is the tree's header position in `words` (counted from the buffer's start at
+/// `base`).
+pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol: f32) -> Vec<u32> {
+    let w = |i: u32| words[(i - base) as usize];
+    let f = |i: u32| f32::from_bits(w(i));
+    let v3 = |i: u32| Vec3::new(f(i), f(i + 1), f(i + 2));
+    let (n, au, av) = (v3(header), v3(header + 4), v3(header + 8));
+    let (node_start, leaves) = (w(header + 3), w(header + 7));
+    let zp = p.dot(n);
+    let uv = [p.dot(au), p.dot(av)];
+    let reach = zp - 0.5 * tol;
+    let margin = node_margin(uv, zp);
+    let mut out = Vec::new();
+    let mut node = 1u32;
+    loop {
+        let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
+        let lim = [f(at), f(at + 1), f(at + 2), f(at + 3), f(at + 4), f(at + 5)];
+        if node_meets(lim, zp, uv, reach, margin) {
+            if node >= leaves {
+                out.push(node - leaves);
+            } else {
+                node *= 2;
+                continue;
+            }
+        }
+        while node & 1 == 1 {
+            node >>= 1;
+        }
+        if node == 0 {
+            break;
+        }
+        node += 1;
+    }
+    out
+}
+
+/// The slack of a pixel's node tests (`tree_margin` in the shader): a box is widened by
+/// 1e-4 of the pixel's coordinates, far above the f32 rounding of the member tests and of
+/// normals that differ by [`NORMAL_TOLERANCE`].
+fn node_margin(uv: [f32; 2], zp: f32) -> f32 {
+    1e-4 * (uv[0].abs() + uv[1].abs() + zp.abs())
+}
+
+/// `tree_node_meets` of the shader: may a member of the node reflect the pixel?
+fn node_meets(lim: [f32; 6], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> bool {
+    if !(lim[0] < reach) {
+        return false;
+    }
+    let hi = lim[1].min(reach);
+    let ta = lim[0] / (2.0 * lim[0] - zp);
+    let tb = hi / (2.0 * hi - zp);
+    let mut r = [ta.min(tb), ta.max(tb)];
+    r = axis_range(uv[0], lim[2], lim[3], margin, r);
+    r = axis_range(uv[1], lim[4], lim[5], margin, r);
+    r[0] <= r[1]
+}
+
+/// `tree_axis` of the shader: the part of `r` where `t · a` lies in `[lo, hi]` widened by `m`.
+fn axis_range(a: f32, lo: f32, hi: f32, m: f32, r: [f32; 2]) -> [f32; 2] {
+    if a.abs() < 1e-20 {
+        return if lo - m <= 0.0 && 0.0 <= hi + m { r } else { [1.0, 0.0] };
+    }
+    let (x, y) = ((lo - m) / a, (hi + m) / a);
+    [r[0].max(x.min(y)), r[1].min(x.max(y))]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shape_tests::shape_test;
+
+    fn tread(i: u32, center: DVec3, half: [f32; 2]) -> ShapeSource {
+        ShapeSource {
+            id: i,
+            kind: ReflectorKind::Opaque,
+            enabled: true,
+            center,
+            axis_u: Vec3::X,
+            axis_v: Vec3::NEG_Z,
+            normal: Vec3::Y,
+            half_extents: half,
+            parallel_group: 0,
+            normal_map: false,
+            roughness: 0.0,
+        }
+    }
+
+    fn table(shapes: Vec<ShapeSource>) -> ShapeTable {
+        let mut t = ShapeTable { occluder_ranges: vec![0..0; shapes.len()], shapes, ..ShapeTable::default() };
+        t.parallel_families = ParallelFamilies::build(&t.shapes);
+        t
+    }
+
+    /// A stairway of `n` treads rising away along −z, plus scattered shelves.
+    fn stairs_and_shelves(n: u32) -> Vec<ShapeSource> {
+        let mut shapes: Vec<ShapeSource> = (0..n)
+            .map(|i| {
+                let (rise, run) = (2.0 / f64::from(n), 4.0 / f64::from(n));
+                tread(
+                    i,
+                    DVec3::new(0.0, f64::from(i) * rise, -(f64::from(i) + 0.5) * run),
+                    [1.5, (run * 0.5) as f32],
+                )
+            })
+            .collect();
+        for k in 0..12u32 {
+            let x = f64::from(k % 4) * 1.1 - 2.0;
+            shapes.push(tread(
+                n + k,
+                DVec3::new(x, 0.4 + 0.13 * f64::from(k), -1.0 - 0.3 * f64::from(k)),
+                [0.3, 0.2],
+            ));
+        }
+        shapes
+    }
+
+    fn rng(seed: u64) -> impl FnMut() -> f64 {
+        let mut state = seed;
+        move || {
+            state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    #[test]
+    fn families_split_parallel_groups_by_normal_and_sort_by_offset() {
+        let mut shapes = stairs_and_shelves(8);
+        // A ceiling of the same parallel group facing down, a disabled tread, glass.
+        let mut ceiling = tread(100, DVec3::new(0.0, 3.0, 0.0), [1.0, 1.0]);
+        ceiling.normal = Vec3::NEG_Y;
+        ceiling.axis_v = Vec3::Z;
+        let mut ceiling2 = ceiling.clone();
+        ceiling2.center.y = 3.5;
+        let mut off = tread(102, DVec3::new(0.0, 9.0, 0.0), [1.0, 1.0]);
+        off.enabled = false;
+        let mut glass = tread(103, DVec3::new(0.0, 9.5, 0.0), [1.0, 1.0]);
+        glass.kind = ReflectorKind::Transparent;
+        shapes.extend([ceiling, ceiling2, off, glass]);
+        let t = table(shapes);
+        let fams = &t.parallel_families.families;
+        assert_eq!(fams.len(), 2);
+        assert_eq!(fams[0].members.len(), 20);
+        assert_eq!(fams[1].members, vec![20, 21], "facing down: the lower ceiling has the higher offset");
+        let offsets: Vec<f64> = fams[0].members.iter().map(|&m| t.shapes[m as usize].center.y).collect();
+        assert!(offsets.windows(2).all(|w| w[0] >= w[1]), "{offsets:?}");
+        assert!(t.parallel_families.family_of[22..].iter().all(Option::is_none));
+        let (f, rank) = t.parallel_families.family_of[7].unwrap();
+        assert_eq!(fams[f as usize].members[rank as usize], 7);
+    }
+
+    /// Every member whose five-plane test (the plain loop's, in f32 as the shader runs it)
+    /// passes for a pixel is reached by the walk, from cameras around stairs and shelves.
+    #[test]
+    fn the_walk_reaches_every_member_that_reflects_the_pixel() {
+        for n in [3u32, 64, 1000] {
+            let t = table(stairs_and_shelves(n));
+            let family = &t.parallel_families.families[0];
+            let mut next = rng(u64::from(n));
+            let (mut hits, mut reached_total, mut pixels) = (0usize, 0usize, 0usize);
+            for cam in 0..6 {
+                let eye = DVec3::new(
+                    next() * 4.0 - 2.0,
+                    2.5 + next() * 2.0,
+                    1.0 + next() * 3.0 - f64::from(cam) * 0.4,
+                );
+                let tree = FrameTree { family: 0, members: family.members.clone() };
+                let mut words = Vec::new();
+                let base = 40;
+                let header = tree.append_words(&t, eye, base, 0, &mut words);
+                assert_eq!(words.len(), tree_words(tree.members.len()));
+                let tests: Vec<_> =
+                    tree.members.iter().map(|&m| shape_test(&t.shapes[m as usize], m, eye)).collect();
+                for _ in 0..3000 {
+                    let p = (DVec3::new(next() * 5.0 - 2.5, next() * 3.0, -next() * 5.0) - eye).as_vec3();
+                    let tol = 1e-4 * p.length();
+                    let reached = reached_leaves(&words, base, header, p, tol);
+                    pixels += 1;
+                    reached_total += reached.len();
+                    for (k, test) in tests.iter().enumerate() {
+                        let plane = |a: [f32; 4]| p.x * a[0] + p.y * a[1] + p.z * a[2] + a[3];
+                        let dist = plane(test.plane);
+                        let inside = test.sides.iter().map(|&s| plane(s)).fold(f32::MAX, f32::min);
+                        if dist > tol && inside >= 0.0 {
+                            hits += 1;
+                            assert!(
+                                reached.contains(&(k as u32)),
+                                "{n} treads: member {k} reflects {p} but is not reached"
+                            );
+                        }
+                    }
+                }
+            }
+            assert!(hits > 100, "{n} treads: the sample must hit members ({hits})");
+            // The walk prunes: far fewer leaves reached than members.
+            let per_pixel = reached_total as f64 / pixels as f64;
+            assert!(per_pixel < 3.0, "{n} treads: {per_pixel:.1} leaves reached per pixel");
+        }
+    }
+}

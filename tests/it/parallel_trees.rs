@@ -1,0 +1,135 @@
+//! Parallel trees (`ppr_runtime::parallel_trees`): the treads of a stairway and shelves at
+//! other heights, walked as one tree per family, write what testing each of them writes,
+//! under every culling variant, and the plan merges only what it may.
+
+use glam::{DVec3, Vec3};
+use ppr_runtime::{Camera, Choice, Projection, ReflectionRenderer, TestedEntry};
+
+use ppr_tests::harness::{GpuFrame, Output, renderer, run, validated};
+use ppr_tests::scene::{Albedo, AnalyticScene};
+
+const SIZE: [u32; 2] = [128, 96];
+
+/// A stairway of `n` mirror treads with matte risers, mirror shelves beside it at other
+/// heights (the same family: one normal), a patterned wall and boxes to reflect.
+fn stairway(n: usize) -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    let (rise, run) = (2.0 / n as f64, 4.0 / n as f64);
+    s.quad(
+        DVec3::new(0.0, -0.001, -3.0),
+        DVec3::X,
+        DVec3::NEG_Z,
+        [6.0, 6.0],
+        Albedo::Solid(Vec3::splat(0.3)),
+    );
+    s.quad(DVec3::new(0.0, 2.5, -6.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.3));
+    s.cuboid(DVec3::new(-0.6, 2.2, -3.5), DVec3::new(0.2, 2.9, -2.9), Vec3::new(0.9, 0.2, 0.1));
+    s.cuboid(DVec3::new(1.8, 0.0, -2.0), DVec3::new(2.4, 1.6, -1.4), Vec3::new(0.1, 0.3, 0.9));
+    for i in 0..n {
+        let y = (i + 1) as f64 * rise;
+        let z = -1.0 - i as f64 * run;
+        s.quad(DVec3::new(0.0, y - 0.5 * rise, z), DVec3::X, DVec3::Y, [1.2, 0.5 * rise], Albedo::Waves(0.6));
+        s.mirror(
+            &format!("tread {i}"),
+            DVec3::new(0.0, y, z - 0.5 * run),
+            DVec3::X,
+            DVec3::NEG_Z,
+            [1.2, 0.5 * run],
+        );
+    }
+    for k in 0..6 {
+        let c = DVec3::new(-2.6 + 0.2 * k as f64, 0.3 + 0.25 * k as f64, -1.5 - 0.5 * k as f64);
+        s.mirror(&format!("shelf {k}"), c, DVec3::X, DVec3::NEG_Z, [0.5, 0.3]);
+    }
+    s
+}
+
+fn cameras() -> Vec<Camera> {
+    let look = |eye: DVec3, at: DVec3, fov: f32| {
+        Camera::look_at(eye, at, Vec3::Y, Projection { fov_y: fov, ..Default::default() })
+    };
+    vec![
+        look(DVec3::new(0.3, 2.6, 1.5), DVec3::new(0.0, 0.8, -3.0), 1.1),
+        look(DVec3::new(-2.5, 3.2, 0.0), DVec3::new(0.5, 0.8, -3.0), 1.0),
+        look(DVec3::new(2.0, 1.4, 0.5), DVec3::new(-0.5, 1.0, -4.0), 1.0),
+    ]
+}
+
+/// A renderer with the given tree choice and culling, full-screen passes.
+fn configured(trees: Choice, culling: Choice, super_tiles: Choice) -> ReflectionRenderer {
+    let mut r = renderer();
+    r.plan_params.parallel_trees = trees;
+    r.plan_params.tile_culling = culling;
+    r.plan_params.super_tiles = super_tiles;
+    r.plan_params.indirect = Choice::Off;
+    r
+}
+
+fn written(out: &Output) -> usize {
+    out.intermediate.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count()
+}
+
+#[test]
+fn a_walked_tree_writes_what_its_shapes_write() {
+    let scene = stairway(40);
+    let set = validated(&scene.reflector_set());
+    let mut checked = 0usize;
+    for camera in cameras() {
+        let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+        let mut plain = configured(Choice::Off, Choice::Off, Choice::Off);
+        plain.set_reflectors(&set);
+        let a = run(&mut plain, &gpu, &camera);
+        let mut walked = configured(Choice::On, Choice::Off, Choice::Off);
+        walked.set_reflectors(&set);
+        let b = run(&mut walked, &gpu, &camera);
+        eprintln!("{}", b.plan);
+        assert_eq!(b.plan.trees.len(), 1, "treads and shelves share one normal: {}", b.plan);
+        assert_eq!(b.plan.tested, vec![TestedEntry::ParallelTree(0)], "{}", b.plan);
+        assert_eq!(b.plan.trees[0].members.len(), b.plan.visible.len());
+        assert_eq!(a.plan.tested.len(), a.plan.visible.len(), "Off merges nothing");
+        let n = written(&a);
+        let differing = a.intermediate.iter().zip(&b.intermediate).filter(|(x, y)| x != y).count();
+        eprintln!("{} visible, {n} pixels written, {differing} differ", a.plan.visible.len());
+        assert!(n > 800, "the treads must reflect something: {n}");
+        // Each reached member runs the plain loop's own test: the same writes.
+        assert_eq!(differing, 0, "{differing} of {n} written pixels differ");
+        checked += n;
+
+        // Block lists and super-tile lists treat the tree's test like any other.
+        for (culling, super_tiles) in [(Choice::On, Choice::Off), (Choice::On, Choice::On)] {
+            let mut tiled = configured(Choice::On, culling, super_tiles);
+            tiled.set_reflectors(&set);
+            let c = run(&mut tiled, &gpu, &camera);
+            assert!(c.plan.tile_culling, "{}", c.plan);
+            assert_eq!(c.intermediate, b.intermediate, "culling {culling:?}, super-tiles {super_tiles:?}");
+        }
+    }
+    assert!(checked > 5000, "{checked} written pixels over the cameras");
+}
+
+#[test]
+fn the_plan_walks_only_what_it_may() {
+    let scene = stairway(24);
+    let camera = cameras().remove(0);
+    let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+    let mut r = renderer();
+    r.set_reflectors(&validated(&scene.reflector_set()));
+    let out = run(&mut r, &gpu, &camera);
+    let visible = out.plan.visible.len();
+    assert!(visible >= r.plan_params.parallel_tree_min_shapes, "{}", out.plan);
+    assert_eq!(out.plan.tested.len(), 1, "Auto walks the family as a tree: {}", out.plan);
+    assert!(out.plan.to_string().contains("parallel trees:"), "{}", out.plan);
+
+    // Below the threshold, with debug write masks (per shape) or the parallel rule (which
+    // keeps one member per pixel): every visible shape tested alone.
+    r.plan_params.parallel_tree_min_shapes = visible + 1;
+    assert_eq!(run(&mut r, &gpu, &camera).plan.tested.len(), visible);
+    r.plan_params.parallel_tree_min_shapes = 2;
+    r.debug.writes = true;
+    assert_eq!(run(&mut r, &gpu, &camera).plan.tested.len(), visible);
+    r.debug.writes = false;
+    r.plan_params.parallel_rule = Choice::On;
+    let ruled = run(&mut r, &gpu, &camera);
+    assert!(ruled.plan.trees.is_empty(), "{}", ruled.plan);
+    assert_eq!(ruled.plan.tested.len(), visible);
+}
