@@ -71,16 +71,18 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 ];
 
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
-/// (coplanar reflectors merged into plane groups), `fade=`, `replace-far=`,
+/// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
+/// at many plane offsets walked as a tree), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 9] = [
+const PPR_KEYS: [&str; 10] = [
     "culling",
     "indirect",
     "groups",
+    "trees",
     "fade",
     "replace-far",
     "tier",
@@ -315,6 +317,9 @@ pub fn ppr_settings(
     }
     if let Some(v) = spec.param("groups") {
         params.plane_groups = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    if let Some(v) = spec.param("trees") {
+        params.parallel_trees = parse_choice(v).map_err(BenchError::Spec)?;
     }
     Ok(Some((settings, params)))
 }

@@ -59,7 +59,7 @@ pub fn frame_tests(table: &ShapeTable, plan: &FramePlan, eye: DVec3) -> FrameTes
                 member_tests
                     .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
                 let mut test =
-                    shape_test(&table.shapes[tree.lowest() as usize], TREE_TEST_FLAG | header, eye);
+                    shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
                 // Lowered by a margin, so that no member reflects a point the entry's plane
                 // does not (their normals may differ in the last bits).
                 test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;

@@ -9,12 +9,12 @@ use crate::report::csv_file::{CsvTable, num};
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
 use crate::suites::scaling::{
-    CULLING_OFF, CULLING_ON, PLANE_GROUPS, SUPER_TILES, ScalingOutcome, ScalingRow, crossover,
-    indirect_crossover,
+    CULLING_OFF, CULLING_ON, PARALLEL_TREES, PLANE_GROUPS, SUPER_TILES, ScalingOutcome, ScalingRow,
+    crossover, indirect_crossover,
 };
 
 /// The culling variants, in table and plot order.
-const VARIANTS: [&str; 4] = [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS];
+const VARIANTS: [&str; 5] = [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {
@@ -112,9 +112,13 @@ pub fn write_scaling_report(
         "#groups: tests",
         "#groups: projection",
         "#groups: total",
+        "#trees: tests",
+        "#trees: projection",
+        "#trees: total",
         "#on: overhead",
         "#super: overhead",
         "#groups: overhead",
+        "#trees: overhead",
         "#best: overhead",
     ]);
     let first = counts.first().copied().unwrap_or(1);
@@ -137,6 +141,8 @@ pub fn write_scaling_report(
             let sup_ms = |get: fn(&ScalingRow) -> f64| sup.map_or(f64::NAN, get);
             let grp = find(&o.rows, f, n, PLANE_GROUPS);
             let grp_ms = |get: fn(&ScalingRow) -> f64| grp.map_or(f64::NAN, get);
+            let tree = find(&o.rows, f, n, PARALLEL_TREES);
+            let tree_ms = |get: fn(&ScalingRow) -> f64| tree.map_or(f64::NAN, get);
             t.push(vec![
                 f.clone(),
                 n.to_string(),
@@ -150,9 +156,13 @@ pub fn write_scaling_report(
                 grp.map_or("–".into(), |r| r.tested.to_string()),
                 ms(grp_ms(|r| r.pass_ms("projection"))),
                 ms(grp_ms(ScalingRow::total_ms)),
+                tree.map_or("–".into(), |r| r.tested.to_string()),
+                ms(tree_ms(|r| r.pass_ms("projection"))),
+                ms(tree_ms(ScalingRow::total_ms)),
                 ms(on.total_ms() - base(CULLING_ON)),
                 ms(sup_ms(ScalingRow::total_ms) - base(SUPER_TILES)),
                 ms(grp_ms(ScalingRow::total_ms) - base(PLANE_GROUPS)),
+                ms(tree_ms(ScalingRow::total_ms) - base(PARALLEL_TREES)),
                 ms(best(f, n) - best(f, first)),
             ]);
         }
@@ -164,11 +174,13 @@ pub fn write_scaling_report(
         "\n(`off`, `on`, `super`: every visible shape tested alone; `on`: tile lists built \
          from every visible shape; `super`: from 64 × 64-pixel super-tile lists, whose pass \
          is timed inside the projection; `groups`: coplanar shapes merged into plane groups \
-         (`tests`: the projection's tests per pixel loop), culling as the plan picks it.)\n\n\
+         (`tests`: the projection's tests per pixel loop), culling as the plan picks it; \
+         `trees`: parallel families walked as trees, plane groups and culling as the plan \
+         picks them.)\n\n\
          Growth of the total between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
     );
     for f in &families {
-        for v in [CULLING_ON, SUPER_TILES, PLANE_GROUPS] {
+        for v in [CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES] {
             let mut parts = Vec::new();
             for w in counts.windows(2) {
                 if let (Some(a), Some(b)) = (find(&o.rows, f, w[0], v), find(&o.rows, f, w[1], v)) {
@@ -188,6 +200,7 @@ pub fn write_scaling_report(
         "#culling on: total ms",
         "#super-tiles: total ms",
         "#plane groups: total ms",
+        "#parallel trees: total ms",
         "fastest",
     ]);
     let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();
@@ -215,7 +228,7 @@ pub fn write_scaling_report(
     let _ = writeln!(
         md,
         "## Culling thresholds (`PlanParams::tile_culling_min_shapes`, `super_tiles_min_shapes`, \
-         `plane_group_min_shapes`)\n"
+         `plane_group_min_shapes`, `parallel_tree_min_shapes`)\n"
     );
     md.push_str(&t.render());
     for f in &families {
@@ -223,14 +236,17 @@ pub fn write_scaling_report(
         let c = crossover(&o.threshold_rows, f, CULLING_ON, CULLING_OFF);
         let s = crossover(&o.threshold_rows, f, SUPER_TILES, CULLING_ON);
         let g = crossover(&o.threshold_rows, f, PLANE_GROUPS, CULLING_OFF);
+        let p = crossover(&o.threshold_rows, f, PARALLEL_TREES, PLANE_GROUPS);
         let _ = writeln!(
             md,
             "- {f}: culling is never slower than none from {} shapes on; super-tiles never slower \
              than flat tile lists from {} shapes on; plane groups never slower than every shape \
-             alone without culling from {} shapes on",
+             alone without culling from {} shapes on; parallel trees never slower than the plan \
+             without them from {} shapes on",
             c.map_or_else(never, |n| n.to_string()),
             s.map_or_else(never, |n| n.to_string()),
-            g.map_or_else(never, |n| n.to_string())
+            g.map_or_else(never, |n| n.to_string()),
+            p.map_or_else(never, |n| n.to_string())
         );
     }
     let _ = writeln!(md, "\n## Indirect-dispatch threshold (`PlanParams::indirect_max_coverage`)\n");

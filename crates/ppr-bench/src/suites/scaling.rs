@@ -43,7 +43,7 @@ pub struct ScalingRow {
     pub variant: String,
     /// Visible shapes, as the plan saw them.
     pub visible: usize,
-    /// Projection tests (visible shapes, merged plane groups counting one).
+    /// Projection tests (visible shapes, merged plane groups and parallel trees counting one).
     pub tested: usize,
     /// Share of the screen the plan's screen rectangles cover.
     pub coverage: f32,
@@ -134,9 +134,15 @@ impl Measurer<'_> {
     }
 }
 
-/// Culling forced, every visible shape tested alone (no merged plane groups).
+/// Culling forced, every visible shape tested alone (no merged plane groups or trees).
 fn culling(tile_culling: Choice, super_tiles: Choice) -> PlanParams {
-    PlanParams { tile_culling, super_tiles, plane_groups: Choice::Off, ..PlanParams::default() }
+    PlanParams {
+        tile_culling,
+        super_tiles,
+        plane_groups: Choice::Off,
+        parallel_trees: Choice::Off,
+        ..PlanParams::default()
+    }
 }
 
 /// Variant names of the culling sweeps.
@@ -145,8 +151,12 @@ pub const CULLING_OFF: &str = "culling off";
 pub const CULLING_ON: &str = "culling on";
 /// Tile culling with tile lists built from super-tile lists.
 pub const SUPER_TILES: &str = "super-tiles";
-/// Coplanar shapes merged into plane groups (forced on), culling as the plan picks it.
+/// Coplanar shapes merged into plane groups (forced on, no parallel trees), culling as the
+/// plan picks it.
 pub const PLANE_GROUPS: &str = "plane groups";
+/// Parallel families walked as trees (forced on), plane groups and culling as the plan
+/// picks them.
+pub const PARALLEL_TREES: &str = "parallel trees";
 
 /// Runs the suite.
 ///
@@ -162,7 +172,11 @@ pub fn run_scaling(
         (CULLING_OFF, culling(Choice::Off, Choice::Off)),
         (CULLING_ON, culling(Choice::On, Choice::Off)),
         (SUPER_TILES, culling(Choice::On, Choice::On)),
-        (PLANE_GROUPS, PlanParams { plane_groups: Choice::On, ..PlanParams::default() }),
+        (
+            PLANE_GROUPS,
+            PlanParams { plane_groups: Choice::On, parallel_trees: Choice::Off, ..PlanParams::default() },
+        ),
+        (PARALLEL_TREES, PlanParams { parallel_trees: Choice::On, ..PlanParams::default() }),
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {
