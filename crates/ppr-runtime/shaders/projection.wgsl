@@ -131,7 +131,7 @@ fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
 
 // Bit of ShapeTest.shape: the test is a parallel tree's, the rest its header's word.
 const TREE_TEST_FLAG: u32 = 0x40000000u;
-const TREE_NODE_WORDS: u32 = 6u;
+const TREE_NODE_WORDS: u32 = 8u;
 
 // The part of the parameter range `r` where `t * a` lies in [lo - m, hi + m].
 fn tree_axis(a: f32, lo: f32, hi: f32, m: f32, r: vec2<f32>) -> vec2<f32> {
@@ -147,9 +147,13 @@ fn tree_axis(a: f32, lo: f32, hi: f32, m: f32, r: vec2<f32>) -> vec2<f32> {
 }
 
 // Whether a member of the tree node at word `w` may reflect the pixel (its coordinate
-// `zp` along the family's normal, `uv` in its plane; members must lie below `reach`): the
-// reflection point t * uv, over the t of the node's plane offsets, meets the node's box
-// widened by `m`. The CPU model is parallel_trees.rs's node_meets.
+// `zp` along the family's normal, `uv` in its plane; members must lie below `reach`). The
+// reflection point for a plane offset d is t(d) * uv, t(d) = d / (2d - zp), monotone in d:
+// its u over the node's offsets is a segment, tested against the node's u range; its
+// v - alpha * d (alpha: the node's slope of v against d) is a hyperbola plus a line in d,
+// whose range is its values at the ends and, where it turns inside, at its stationary
+// point; tested against the node's range of v - alpha * d. Boxes widened by `m`. The CPU
+// model is parallel_trees.rs's node_meets.
 fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     let lo = group_f32(w);
     if (!(lo < reach)) {
@@ -158,10 +162,29 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     let hi = min(group_f32(w + 1u), reach);
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
-    var r = vec2<f32>(min(ta, tb), max(ta, tb));
-    r = tree_axis(uv.x, group_f32(w + 2u), group_f32(w + 3u), m, r);
-    r = tree_axis(uv.y, group_f32(w + 4u), group_f32(w + 5u), m, r);
-    return r.x <= r.y;
+    let r = tree_axis(uv.x, group_f32(w + 2u), group_f32(w + 3u), m, vec2<f32>(min(ta, tb), max(ta, tb)));
+    if (!(r.x <= r.y)) {
+        return false;
+    }
+    let alpha = group_f32(w + 6u);
+    let wa = ta * uv.y - alpha * lo;
+    let wb = tb * uv.y - alpha * hi;
+    var w0 = min(wa, wb);
+    var w1 = max(wa, wb);
+    var q = 0.0;
+    if (alpha != 0.0) {
+        q = -uv.y * zp / alpha;
+    }
+    if (q > 0.0) {
+        let d = 0.5 * (zp - sqrt(q));
+        if (lo < d && d < hi) {
+            let v = d / (2.0 * d - zp) * uv.y - alpha * d;
+            w0 = min(w0, v);
+            w1 = max(w1, v);
+        }
+    }
+    let mw = m + 1e-5 * abs(alpha) * (abs(lo) + abs(zp));
+    return w1 + mw >= group_f32(w + 4u) && w0 - mw <= group_f32(w + 5u);
 }
 
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
@@ -175,7 +198,7 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let zp = dot(p, n);
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
-    let m = 1e-4 * (abs(uv.x) + abs(uv.y) + abs(zp));
+    let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
     var node = 1u;
     loop {
         if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
