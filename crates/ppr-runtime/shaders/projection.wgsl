@@ -199,55 +199,33 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
-    if (!tree_node_meets(node_start, zp, uv, reach, m)) {
-        return;
-    }
-    // `node` meets and has children; both are tested together (two independent loads a
-    // step). `trail` bit l: the right child at depth l is pending (it met, the walk went
-    // left first). The CPU model is parallel_trees.rs's reached_leaves.
     var node = 1u;
-    var depth = 0u;
-    var trail = 0u;
     loop {
-        let c = 2u * node;
-        let a = tree_node_meets(node_start + (c - 1u) * TREE_NODE_WORDS, zp, uv, reach, m);
-        let b = tree_node_meets(node_start + c * TREE_NODE_WORDS, zp, uv, reach, m);
-        if (c >= leaves) {
-            for (var k = 0u; k < 2u; k++) {
-                if (select(a, b, k == 1u)) {
-                    tree_leaf(tests_start + c + k - leaves, pixel, p, tol);
-                }
+        if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
+            if (node < leaves) {
+                node = node * 2u;
+                continue;
             }
-        } else if (a || b) {
-            if (a && b) {
-                trail |= 1u << (depth + 1u);
+            let t = tests[tests_start + node - leaves];
+            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+            let inside = min(
+                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
+                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
+                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
+                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
+            );
+            if (dist > tol && inside >= 0.0) {
+                reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
-            node = select(c + 1u, c, a);
-            depth += 1u;
-            continue;
         }
-        if (trail == 0u) {
+        // The next node in walk order: up past right children, then the right sibling.
+        while ((node & 1u) == 1u) {
+            node = node >> 1u;
+        }
+        if (node == 0u) {
             break;
         }
-        let l = firstLeadingBit(trail);
-        node = (node >> (depth - l)) + 1u;
-        depth = l;
-        trail &= ~(1u << l);
-    }
-}
-
-// A reached leaf: the member's own test (the plain loop's), and its write where it passes.
-fn tree_leaf(k: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
-    let t = tests[k];
-    let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-    let inside = min(
-        min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
-            p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
-        min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
-            p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
-    );
-    if (dist > tol && inside >= 0.0) {
-        reflect_pixel(pixel, p, dist, t.plane, t.shape);
+        node += 1u;
     }
 }
 

@@ -270,43 +270,28 @@ pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol:
     let uv = [p.dot(au), p.dot(av)];
     let reach = zp - 0.5 * tol;
     let margin = node_margin(uv, zp);
-    let meets = |node: u32| {
-        let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
-        node_meets(std::array::from_fn(|i| f(at + i as u32)), zp, uv, reach, margin)
-    };
     let mut out = Vec::new();
-    let mut tested = 1;
-    if !meets(1) {
-        return (out, tested);
-    }
-    if leaves == 1 {
-        return (vec![0], tested);
-    }
-    // `node` meets and has children; both are tested together (two independent loads a
-    // step). `trail` bit l: the right child at depth l is pending (it met, the walk went
-    // left first).
-    let (mut node, mut depth, mut trail) = (1u32, 0u32, 0u32);
+    let mut node = 1u32;
+    let mut tested = 0;
     loop {
-        let c = 2 * node;
-        let (a, b) = (meets(c), meets(c + 1));
-        tested += 2;
-        if c >= leaves {
-            out.extend([(a, c), (b, c + 1)].into_iter().filter(|x| x.0).map(|x| x.1 - leaves));
-        } else if a || b {
-            if a && b {
-                trail |= 1 << (depth + 1);
+        tested += 1;
+        let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
+        let lim: [f32; 7] = std::array::from_fn(|i| f(at + i as u32));
+        if node_meets(lim, zp, uv, reach, margin) {
+            if node >= leaves {
+                out.push(node - leaves);
+            } else {
+                node *= 2;
+                continue;
             }
-            node = if a { c } else { c + 1 };
-            depth += 1;
-            continue;
         }
-        if trail == 0 {
+        while node & 1 == 1 {
+            node >>= 1;
+        }
+        if node == 0 {
             break;
         }
-        let l = 31 - trail.leading_zeros();
-        node = (node >> (depth - l)) + 1;
-        depth = l;
-        trail &= !(1 << l);
+        node += 1;
     }
     (out, tested)
 }
