@@ -133,19 +133,6 @@ fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
 const TREE_TEST_FLAG: u32 = 0x40000000u;
 const TREE_NODE_WORDS: u32 = 8u;
 
-// The part of the parameter range `r` where `t * a` lies in [lo - m, hi + m].
-fn tree_axis(a: f32, lo: f32, hi: f32, m: f32, r: vec2<f32>) -> vec2<f32> {
-    if (abs(a) < 1e-20) {
-        if (lo - m <= 0.0 && 0.0 <= hi + m) {
-            return r;
-        }
-        return vec2<f32>(1.0, 0.0);
-    }
-    let x = (lo - m) / a;
-    let y = (hi + m) / a;
-    return vec2<f32>(max(r.x, min(x, y)), min(r.y, max(x, y)));
-}
-
 // Whether a member of the tree node at word `w` may reflect the pixel (its coordinate
 // `zp` along the family's normal, `uv` in its plane; members must lie below `reach`). The
 // reflection point for a plane offset d is t(d) * uv, t(d) = d / (2d - zp), monotone in d:
@@ -162,8 +149,10 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     let hi = min(group_f32(w + 1u), reach);
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
-    let r = tree_axis(uv.x, group_f32(w + 2u), group_f32(w + 3u), m, vec2<f32>(min(ta, tb), max(ta, tb)));
-    if (!(r.x <= r.y)) {
+    // u = t * uv.x is linear in t: its range is its values at the ends.
+    let ua = ta * uv.x;
+    let ub = tb * uv.x;
+    if (max(ua, ub) + m < group_f32(w + 2u) || min(ua, ub) - m > group_f32(w + 3u)) {
         return false;
     }
     let alpha = group_f32(w + 6u);
@@ -171,10 +160,9 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     let wb = tb * uv.y - alpha * hi;
     var w0 = min(wa, wb);
     var w1 = max(wa, wb);
-    var q = 0.0;
-    if (alpha != 0.0) {
-        q = -uv.y * zp / alpha;
-    }
+    // The stationary point: (2d - zp)^2 = -uv.y * zp / alpha (word 7 holds 1 / alpha, 0
+    // for alpha = 0).
+    let q = -uv.y * zp * group_f32(w + 7u);
     if (q > 0.0) {
         let d = 0.5 * (zp - sqrt(q));
         if (lo < d && d < hi) {

@@ -27,7 +27,7 @@
 //! [`TREE_HEADER_WORDS`] (normal, node start, u axis, leaf count, v axis, member count,
 //! first member test), then the nodes, [`TREE_NODE_WORDS`] each, in heap order (node 1
 //! the root, children `2k` and `2k + 1`, leaves from the leaf count): lowest and highest
-//! offset, u range, range of `v − α·offset`, `α`, a pad. Empty leaves have an offset range
+//! offset, u range, range of `v − α·offset`, `α`, `1/α`. Empty leaves have an offset range
 //! that no pixel meets. They live in the plane-group buffer, between the groups' headers
 //! and their static grids ([`tree_words_start`]).
 
@@ -217,7 +217,7 @@ impl FrameTree {
 /// A node's words: the range of its members' plane offsets, the u range of their corners,
 /// the slope `α` of their centres' v against the offset (least squares: a stairway's
 /// treads climb along v) and the range of `v − α·offset` over their corners, all rounded
-/// outwards to f32. No members: a lowest offset of f32::MAX, which no pixel lies above.
+/// outwards to f32, and `1/α` (0 for α = 0). No members: a lowest offset of f32::MAX, which no pixel lies above.
 fn node_words(members: &[(f64, f64, [[f64; 2]; 4])]) -> [u32; TREE_NODE_WORDS] {
     if members.is_empty() {
         return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
@@ -241,7 +241,8 @@ fn node_words(members: &[(f64, f64, [[f64; 2]; 4])]) -> [u32; TREE_NODE_WORDS] {
             w = [w[0].min(cv - a * offset), w[1].max(cv - a * offset)];
         }
     }
-    [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, 0.0].map(f32::to_bits)
+    let inv_alpha = if alpha == 0.0 { 0.0 } else { 1.0 / alpha };
+    [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, inv_alpha].map(f32::to_bits)
 }
 
 /// The largest f32 at or below `x`.
@@ -276,7 +277,7 @@ pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol:
     loop {
         tested += 1;
         let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
-        let lim: [f32; 7] = std::array::from_fn(|i| f(at + i as u32));
+        let lim: [f32; 8] = std::array::from_fn(|i| f(at + i as u32));
         if node_meets(lim, zp, uv, reach, margin) {
             if node >= leaves {
                 out.push(node - leaves);
@@ -308,23 +309,23 @@ fn node_margin(uv: [f32; 2], zp: f32) -> f32 {
 /// over the node's offsets below `reach`: its u over the node's range is a segment; its
 /// `v − α·d` is the sum of a hyperbola and a line in `d`, whose range is its values at the
 /// ends and, where it turns inside, at its one stationary point.
-fn node_meets(lim: [f32; 7], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> bool {
+fn node_meets(lim: [f32; 8], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> bool {
     if !(lim[0] < reach) {
         return false;
     }
     let (lo, hi) = (lim[0], lim[1].min(reach));
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
-    let r = axis_range(uv[0], lim[2], lim[3], margin, [ta.min(tb), ta.max(tb)]);
-    if !(r[0] <= r[1]) {
+    let (ua, ub) = (ta * uv[0], tb * uv[0]);
+    if ua.max(ub) + margin < lim[2] || ua.min(ub) - margin > lim[3] {
         return false;
     }
     let alpha = lim[6];
     let wa = ta * uv[1] - alpha * lo;
     let wb = tb * uv[1] - alpha * hi;
     let (mut w0, mut w1) = (wa.min(wb), wa.max(wb));
-    // dw/dD = 0 for D = 2d − zp at D² = −v·zp/α (D < 0 below the pixel).
-    let q = if alpha != 0.0 { -uv[1] * zp / alpha } else { 0.0 };
+    // The stationary point: (2d − zp)² = −v·zp/α (lim[7] holds 1/α, 0 for α = 0).
+    let q = -uv[1] * zp * lim[7];
     if q > 0.0 {
         let d = 0.5 * (zp - q.sqrt());
         if lo < d && d < hi {
@@ -335,15 +336,6 @@ fn node_meets(lim: [f32; 7], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> 
     }
     let m = margin + 1e-5 * alpha.abs() * (lo.abs() + zp.abs());
     w1 + m >= lim[4] && w0 - m <= lim[5]
-}
-
-/// `tree_axis` of the shader: the part of `r` where `t · a` lies in `[lo, hi]` widened by `m`.
-fn axis_range(a: f32, lo: f32, hi: f32, m: f32, r: [f32; 2]) -> [f32; 2] {
-    if a.abs() < 1e-20 {
-        return if lo - m <= 0.0 && 0.0 <= hi + m { r } else { [1.0, 0.0] };
-    }
-    let (x, y) = ((lo - m) / a, (hi + m) / a);
-    [r[0].max(x.min(y)), r[1].min(x.max(y))]
 }
 
 #[cfg(test)]

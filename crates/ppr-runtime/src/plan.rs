@@ -165,7 +165,7 @@ impl Default for PlanParams {
             plane_groups: Choice::Auto,
             plane_group_min_shapes: 4,
             parallel_trees: Choice::Auto,
-            parallel_tree_min_shapes: 16,
+            parallel_tree_min_shapes: 256,
         }
     }
 }
