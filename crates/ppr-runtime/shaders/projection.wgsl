@@ -187,52 +187,33 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
-    // The walk stops at each member that reflects the pixel and writes after the inner loop,
-    // so that the lanes of a warp write together (the write path is long) instead of each
-    // at its own step of the walk.
     var node = 1u;
     loop {
-        var hit = NO_SHAPE;
-        var dist = 0.0;
-        loop {
-            if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
-                if (node < leaves) {
-                    node = node * 2u;
-                    continue;
-                }
-                let k = tests_start + node - leaves;
-                let t = tests[k];
-                let d = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-                let inside = min(
-                    min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
-                        p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
-                    min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
-                        p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
-                );
-                if (d > tol && inside >= 0.0) {
-                    hit = k;
-                    dist = d;
-                }
+        if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
+            if (node < leaves) {
+                node = node * 2u;
+                continue;
             }
-            // The next node in walk order: up past right children, then the right sibling
-            // (none after the last: node 0).
-            while ((node & 1u) == 1u) {
-                node = node >> 1u;
-            }
-            if (node != 0u) {
-                node += 1u;
-            }
-            if (hit != NO_SHAPE || node == 0u) {
-                break;
+            let t = tests[tests_start + node - leaves];
+            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+            let inside = min(
+                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
+                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
+                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
+                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
+            );
+            if (dist > tol && inside >= 0.0) {
+                reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
         }
-        if (hit != NO_SHAPE) {
-            let t = tests[hit];
-            reflect_pixel(pixel, p, dist, t.plane, t.shape);
+        // The next node in walk order: up past right children, then the right sibling.
+        while ((node & 1u) == 1u) {
+            node = node >> 1u;
         }
         if (node == 0u) {
             break;
         }
+        node += 1u;
     }
 }
 
