@@ -310,7 +310,8 @@ fn node_margin(uv: [f32; 2], zp: f32) -> f32 {
 /// `v − α·d` is the sum of a hyperbola and a line in `d`, whose range is its values at the
 /// ends and, where it turns inside, at its one stationary point.
 fn node_meets(lim: [f32; 8], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> bool {
-    if !(lim[0] < reach) {
+    // NaN (a broken pixel) meets nothing.
+    if lim[0].partial_cmp(&reach) != Some(std::cmp::Ordering::Less) {
         return false;
     }
     let (lo, hi) = (lim[0], lim[1].min(reach));

@@ -84,8 +84,10 @@ pub fn write_scaling_report(
         md,
         "Generated levels (`ppr-bench`'s `scaling::level_family`): a stairway of mirror treads \
          (6 m wide, 6 m rise over a 12 m run, occluders: treads above within 3 step depths), \
-         puddles on a 16 m × 16 m tiled floor (one per tile, 50–90 % of it, one plane) and \
-         windows on a 20 m × 16 m facade (one plane); the overall extent is fixed, so the \
+         puddles on a 16 m × 16 m tiled floor (one per tile, 50–90 % of it, one plane), \
+         windows on a 20 m × 16 m facade (one plane) and rooms and corridors on a 3D grid, \
+         each turned its own way, every panel a mirror on both faces (`room_maze`); the \
+         overall extent is fixed, so the \
          reflecting screen area stays about the same while the count grows. Times are \
          medians of GPU timestamps (PPR with every reflection step on); `overhead` is the \
          frame's total minus the same family's total with one shape.\n"
