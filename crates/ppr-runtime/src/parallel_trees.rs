@@ -61,7 +61,6 @@ pub struct ParallelFamily {
     pub normal: Vec3,
     pub axis_u: Vec3,
     pub axis_v: Vec3,
-    pub parallel_group: u32,
 }
 
 /// Every family of a table.
@@ -108,7 +107,6 @@ impl ParallelFamilies {
                 normal: first.normal,
                 axis_u: first.axis_u,
                 axis_v: first.axis_v,
-                parallel_group: first.parallel_group,
                 members,
             });
         }
@@ -345,19 +343,7 @@ mod tests {
     use crate::shape_tests::shape_test;
 
     fn tread(i: u32, center: DVec3, half: [f32; 2]) -> ShapeSource {
-        ShapeSource {
-            id: i,
-            kind: ReflectorKind::Opaque,
-            enabled: true,
-            center,
-            axis_u: Vec3::X,
-            axis_v: Vec3::NEG_Z,
-            normal: Vec3::Y,
-            half_extents: half,
-            parallel_group: 0,
-            normal_map: false,
-            roughness: 0.0,
-        }
+        crate::shapes::floor_mirror(i, center, half, 0)
     }
 
     fn table(shapes: Vec<ShapeSource>) -> ShapeTable {

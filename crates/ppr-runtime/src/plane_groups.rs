@@ -279,19 +279,7 @@ mod tests {
     use super::*;
 
     fn tile(i: u32, center: DVec3, half: [f32; 2], group: u32) -> ShapeSource {
-        ShapeSource {
-            id: i,
-            kind: ReflectorKind::Opaque,
-            enabled: true,
-            center,
-            axis_u: Vec3::X,
-            axis_v: Vec3::NEG_Z,
-            normal: Vec3::Y,
-            half_extents: half,
-            parallel_group: group,
-            normal_map: false,
-            roughness: 0.0,
-        }
+        crate::shapes::floor_mirror(i, center, half, group)
     }
 
     /// The CPU model of the shader's lookup: the member whose rectangle holds `p` (a

@@ -59,7 +59,7 @@ pub struct ShapeTable {
     pub occluder_indices: Vec<u32>,
     /// The groups of coplanar shapes and their grids (built with the table).
     pub plane_groups: PlaneGroups,
-    /// The families of parallel shapes with one normal, sorted by plane offset (built with
+    /// The families of parallel shapes with one normal, in tree order (built with
     /// the table; a frame merges a family's visible members into a parallel tree).
     pub parallel_families: ParallelFamilies,
 }
@@ -131,4 +131,27 @@ impl ShapeTable {
 /// Whether a shape of this kind is opaque to reflections written into the main buffer.
 pub fn blocks_main_buffer(kind: ReflectorKind) -> bool {
     !matches!(kind, ReflectorKind::Transparent)
+}
+
+/// A mirror of the unit tests: facing +y, u along +x, v along −z.
+#[cfg(test)]
+pub(crate) fn floor_mirror(
+    id: u32,
+    center: DVec3,
+    half_extents: [f32; 2],
+    parallel_group: u32,
+) -> ShapeSource {
+    ShapeSource {
+        id,
+        kind: ReflectorKind::Opaque,
+        enabled: true,
+        center,
+        axis_u: Vec3::X,
+        axis_v: Vec3::NEG_Z,
+        normal: Vec3::Y,
+        half_extents,
+        parallel_group,
+        normal_map: false,
+        roughness: 0.0,
+    }
 }
