@@ -9,4 +9,11 @@ mod glossy;
 mod parallel_trees;
 mod plane_groups;
 mod reflection;
+mod subgroup_cull;
 mod tiles;
+
+/// This binary runs on the adapter `WGPU_BACKEND` names (llvmpipe through GL in CI).
+fn select_backends() {}
+
+/// Whether the adapter must have subgroups (the `subgroups` binary's lavapipe has).
+const REQUIRE_SUBGROUPS: bool = false;

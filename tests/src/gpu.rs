@@ -8,11 +8,25 @@ pub struct TestGpu {
     pub info: wgpu::AdapterInfo,
 }
 
-/// The shared test device (created once per test binary).
+/// Backends a test binary asks for instead of `WGPU_BACKEND` (set before the first [`gpu`]).
+static BACKENDS: OnceLock<wgpu::Backends> = OnceLock::new();
+
+/// Makes this test binary's device come from `backends` (every test of the binary calls it
+/// before [`gpu`]; the first call wins).
+pub fn use_backends(backends: wgpu::Backends) {
+    let _ = BACKENDS.set(backends);
+}
+
+/// The shared test device (created once per test binary), with timestamps and subgroups
+/// where the adapter has them.
 pub fn gpu() -> &'static TestGpu {
     static GPU: OnceLock<TestGpu> = OnceLock::new();
     GPU.get_or_init(|| {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        if let Some(&b) = BACKENDS.get() {
+            desc.backends = b;
+        }
+        let instance = wgpu::Instance::new(desc);
         let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))
             .expect(
                 "no GPU adapter found: GPU tests need one (Mesa's llvmpipe through wgpu's GL backend \
@@ -20,7 +34,7 @@ pub fn gpu() -> &'static TestGpu {
             );
         let info = adapter.get_info();
         eprintln!("test adapter: {} ({:?}, {:?})", info.name, info.backend, info.device_type);
-        let features = adapter.features() & wgpu::Features::TIMESTAMP_QUERY;
+        let features = adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SUBGROUP);
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("ppr-runtime tests"),
             required_features: features,

@@ -8,4 +8,5 @@
 pub mod gpu;
 pub mod harness;
 pub mod masks;
+pub mod random_scenes;
 pub mod scene;

@@ -72,17 +72,19 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
 /// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
-/// at many plane offsets walked as a tree), `fade=`, `replace-far=`,
+/// at many plane offsets walked as a tree), `subgroups=on|off|auto` (the projection's
+/// subgroup culling), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 10] = [
+const PPR_KEYS: [&str; 11] = [
     "culling",
     "indirect",
     "groups",
     "trees",
+    "subgroups",
     "fade",
     "replace-far",
     "tier",
@@ -320,6 +322,9 @@ pub fn ppr_settings(
     }
     if let Some(v) = spec.param("trees") {
         params.parallel_trees = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    if let Some(v) = spec.param("subgroups") {
+        params.subgroup_cull = parse_choice(v).map_err(BenchError::Spec)?;
     }
     Ok(Some((settings, params)))
 }

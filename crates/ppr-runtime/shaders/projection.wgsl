@@ -3,10 +3,11 @@
 // encoded screen offset into the intermediate buffer where the pixel is reflected.
 // Seed: PPR_ProjectionPassWrite, and the bonus slides' "multiple parallel shapes".
 //
-// Each workgroup covers a 32x32-pixel block, each thread four pixels (one in each 16x16
-// quarter, so that every load of the block is coalesced): the four depths are loaded
-// before any work, and each shape's test (five planes, ShapeTest in tile_test.wgsl) is
-// loaded once for the four pixels.
+// Each workgroup covers a 32x32-pixel block, each thread four pixels (two rows of two
+// pixels 16 apart, so that every load of the block is coalesced; QUAD_ROW_STEP in
+// tile_test.wgsl says how far apart the rows are): the four depths are loaded before any
+// work, and each shape's test (five planes, ShapeTest in tile_test.wgsl) is loaded once
+// for the four pixels.
 //
 // Variants (pipeline-overridable constants, chosen by the FramePlan):
 // - TILE_CULLING: each block's pixels test only the block's list of the visible shapes
@@ -32,6 +33,12 @@
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
 // - UNIFORM_TESTS: the shape tests are read from a uniform copy (constant cache) instead
 //   of the storage buffer.
+// - SUBGROUP_CULL: each subgroup takes the box of its pixels' positions and tests its
+//   candidates' boxes against it, one candidate per invocation (subgroup_cull.wgsl, a
+//   ballot per 32 candidates, no barrier): the loop then visits only the candidates that
+//   may reflect some pixel of the subgroup. The block-list pass's test at the subgroup's
+//   scale, without its pass; with subgroup_cull_fallback.wgsl (no subgroup operations)
+//   each invocation alone, for the tests.
 // - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
 //   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
 //   without writing.
@@ -56,6 +63,7 @@ override DEBUG_TILE_LISTS: bool = false;
 override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
+override SUBGROUP_CULL: bool = false;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;
@@ -502,6 +510,89 @@ fn block_meets_source_box(k: u32, lo: vec2<u32>, hi: vec2<u32>) -> bool {
     return all(b.xy < hi) && all(lo < b.zw);
 }
 
+// Where the loop takes its candidates: a block list from `list_start`, or `cand` (a
+// super-tile's list or every visible shape).
+struct LoopCandidates {
+    cand: Candidates,
+    use_list: bool,
+    list_start: u32,
+}
+
+// Position in `visible` of the loop's candidate `i`, NO_SHAPE when the block [lo, hi)
+// misses its source box.
+fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
+    if (c.use_list) {
+        return block_lists[c.list_start + i];
+    }
+    let k = candidate(c.cand, i);
+    if (!block_meets_source_box(k, lo, hi)) {
+        return NO_SHAPE;
+    }
+    return k;
+}
+
+// Most candidates subgroup culling sorts (a bit each); beyond, the loop visits them all.
+const CULL_CAPACITY: u32 = 128u;
+
+// Per 32 candidates of the loop, a bit for each that may reflect some pixel of the
+// subgroup (the conservative box test of tile_test.wgsl against the box of the
+// subgroup's positions). Call from uniform control flow, `count` <= CULL_CAPACITY.
+fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi: vec2<u32>) -> vec4<u32> {
+    let valid = q.tolerance > vec4<f32>(0.0);
+    let far = vec4<f32>(3.0e38);
+    let own_lo = vec3<f32>(
+        min4(select(far, q.x, valid)),
+        min4(select(far, q.y, valid)),
+        min4(select(far, q.z, valid)),
+    );
+    let own_hi = vec3<f32>(
+        max4(select(-far, q.x, valid)),
+        max4(select(-far, q.y, valid)),
+        max4(select(-far, q.z, valid)),
+    );
+    let b = subgroup_box(own_lo, own_hi);
+    let empty = b.lo.x > b.hi.x;
+    let lane = subgroup_lane();
+    var masks = vec4<u32>(0u);
+    for (var w = 0u; w < 4u && w * 32u < count; w++) {
+        var m = 0u;
+        for (var r = 0u; r < 32u; r += lane.y) {
+            let slot = r + lane.x;
+            let i = w * 32u + slot;
+            var passes = false;
+            if (!empty && slot < 32u && i < count) {
+                let k = loop_candidate(c, i, lo, hi);
+                passes = k != NO_SHAPE && box_may_reflect(shape_test(k), b.lo, b.hi);
+            }
+            m |= subgroup_ballot32(passes) << r;
+        }
+        masks = select(masks, vec4<u32>(m), lane_mask(w));
+    }
+    return masks;
+}
+
+fn min4(v: vec4<f32>) -> f32 {
+    return min(min(v.x, v.y), min(v.z, v.w));
+}
+
+fn max4(v: vec4<f32>) -> f32 {
+    return max(max(v.x, v.y), max(v.z, v.w));
+}
+
+// The first candidate from `i` on whose bit is set in `masks` (`count` when none).
+fn next_culled(masks: vec4<u32>, i: u32, count: u32) -> u32 {
+    for (var w = i / 32u; w < 4u; w++) {
+        var m = lane_u32(masks, w);
+        if (w == i / 32u) {
+            m &= 0xffffffffu << (i % 32u);
+        }
+        if (m != 0u) {
+            return min(w * 32u + firstTrailingBit(m), count);
+        }
+    }
+    return count;
+}
+
 @compute @workgroup_size(16, 16)
 fn main(
     @builtin(local_invocation_id) local: vec3<u32>,
@@ -512,7 +603,7 @@ fn main(
     }
     let lo = wid.xy * BLOCK_SIZE;
     let hi = lo + vec2<u32>(BLOCK_SIZE);
-    let base = lo + local.xy;
+    let base = quad_base(lo, local.xy);
     let q = load_quad(base);
     if (ABLATION == 2u) {
         if (any(q.x == vec4<f32>(1234.5))) {
@@ -556,16 +647,19 @@ fn main(
     var written = vec4<u32>(0u);
     var tested = vec4<f32>(0.0);
     var group = NO_SHAPE;
+    let loop_cand = LoopCandidates(cand, use_list, list_start);
+    let culled = SUBGROUP_CULL && count <= CULL_CAPACITY;
+    var masks = vec4<u32>(0u);
+    if (culled) {
+        masks = subgroup_cull_masks(q, loop_cand, count, lo, hi);
+    }
     for (var i = 0u; i <= count; i++) {
+        if (culled && i < count) {
+            i = next_culled(masks, i, count);
+        }
         var k = NO_SHAPE;
         if (i < count) {
-            k = candidate(cand, i);
-            if (use_list) {
-                k = block_lists[list_start + i];
-            }
-            if (!use_list && !block_meets_source_box(k, lo, hi)) {
-                k = NO_SHAPE;
-            }
+            k = loop_candidate(loop_cand, i, lo, hi);
         }
         // Loaded unconditionally (the sentinel step reads entry 0): a conditional load
         // into a variable may cost a trip through local memory.
@@ -639,7 +733,11 @@ fn main(
         }
     }
     if (DEBUG_WRITES) {
-        let n = select(0xffffffffu, count, use_list);
+        var n = select(0xffffffffu, count, use_list);
+        if (culled) {
+            // With subgroup culling: the candidates the pixel's subgroup visits.
+            n = dot(countOneBits(masks), vec4<u32>(1u));
+        }
         for (var j = 0u; j < 4u; j++) {
             let pixel = quad_pixel(base, j);
             if (all(pixel < frame.size)) {

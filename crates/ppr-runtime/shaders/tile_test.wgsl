@@ -192,9 +192,24 @@ fn block_grid() -> vec2<u32> {
     return vec2<u32>(cols, cols * rows);
 }
 
-// Pixel `j` (0..3) of the thread at `base` (its pixel in the block's first quarter).
+// Rows between a thread's pixels 0, 1 and its pixels 2, 3: 16 puts one pixel in each
+// 16x16 quarter of the block; 2 (the projection's compact layout) gives the threads of
+// thread rows 2w and 2w + 1 (one 32-wide subgroup) the block rows 4w to 4w + 3, so a
+// subgroup's pixels are close together. Every load stays coalesced either way (16
+// threads read 16 adjacent pixels of one row).
+override QUAD_ROW_STEP: u32 = 16u;
+
+// Pixel `j` (0..3) of the thread whose first pixel is `base` (quad_base).
 fn quad_pixel(base: vec2<u32>, j: u32) -> vec2<u32> {
-    return base + vec2<u32>((j & 1u) * QUARTER, (j >> 1u) * QUARTER);
+    return base + vec2<u32>((j & 1u) * QUARTER, (j >> 1u) * QUAD_ROW_STEP);
+}
+
+// The first pixel of thread `local` (16x16 threads) of the block at `lo`.
+fn quad_base(lo: vec2<u32>, local: vec2<u32>) -> vec2<u32> {
+    if (QUAD_ROW_STEP == QUARTER) {
+        return lo + local;
+    }
+    return lo + vec2<u32>(local.x, (local.y & ~1u) * 2u + (local.y & 1u));
 }
 
 // Super-tiles of the viewport: (columns, count).

@@ -138,6 +138,16 @@ pub struct PlanParams {
     /// the per-shape loads of every pixel go through the constant cache. `Auto`: on
     /// whenever they fit.
     pub uniform_tests: Choice,
+    /// Each subgroup of the projection tests its candidates' boxes against the box of its
+    /// pixels' positions, one candidate per invocation, and visits only those that pass
+    /// (the block lists' test at the scale of a subgroup, without their pass). `Auto`: on
+    /// when the device has [`wgpu::Features::SUBGROUP`] (the renderer turns `Auto` off
+    /// without it; `On` there runs the same bookkeeping per invocation: the same image,
+    /// slower).
+    pub subgroup_cull: Choice,
+    /// With subgroup culling, `Auto` tile culling runs from this many tested entries on
+    /// (instead of [`Self::tile_culling_min_shapes`]).
+    pub subgroup_tile_culling_min_shapes: usize,
 }
 
 /// Default [`PlanParams::max_roughness`]: the extractor's own limit for metals (0.5), so
@@ -170,6 +180,8 @@ impl Default for PlanParams {
             plane_group_min_shapes: 4,
             parallel_trees: Choice::Auto,
             parallel_tree_min_shapes: 1000,
+            subgroup_cull: Choice::Auto,
+            subgroup_tile_culling_min_shapes: 64,
         }
     }
 }
@@ -246,6 +258,8 @@ pub struct FramePlan {
     /// Whether the projection reads the shape tests from the uniform copy
     /// ([`PlanParams::uniform_tests`]).
     pub uniform_tests: bool,
+    /// The projection's subgroups cull their candidates ([`PlanParams::subgroup_cull`]).
+    pub subgroup_cull: bool,
     /// Whether tiles are classified and the clear and reflection passes run indirectly.
     pub indirect: bool,
     /// Share of the screen the visible shapes' screen rectangles cover (summed, at most 1).
@@ -298,6 +312,7 @@ impl FramePlan {
             super_tiles: false,
             parallel_rule: false,
             uniform_tests: false,
+            subgroup_cull: false,
             indirect: false,
             coverage: 0.0,
             layers: Vec::new(),
@@ -365,7 +380,13 @@ impl FramePlan {
         plan.merge_plane_groups(table, params);
         plan.merge_parallel_trees(table, params);
         let tested = plan.tested.len();
-        plan.tile_culling = params.tile_culling.decide(tested >= params.tile_culling_min_shapes);
+        plan.subgroup_cull = params.subgroup_cull.decide(true);
+        let culling_from = if plan.subgroup_cull {
+            params.subgroup_tile_culling_min_shapes
+        } else {
+            params.tile_culling_min_shapes
+        };
+        plan.tile_culling = params.tile_culling.decide(tested >= culling_from);
         plan.super_tiles =
             plan.tile_culling && params.super_tiles.decide(tested >= params.super_tiles_min_shapes);
         plan.uniform_tests =

@@ -101,7 +101,8 @@ pub struct DebugOptions {
     /// [`ReflectionRenderer::debug_writes_buffer`]).
     pub writes: bool,
     /// With `writes`: record each pixel's tile candidate-list length (0xffffffff: the list
-    /// overflowed or there is none) instead of the write bits.
+    /// overflowed or there is none; with subgroup culling, the candidates the pixel's
+    /// subgroup visits) instead of the write bits.
     pub tile_lists: bool,
     /// Use this encoding instead of the one the plan picks for the viewport (e.g. the
     /// seed's layout, or fraction mirroring off to show the swimming artefact). It must
@@ -110,6 +111,9 @@ pub struct DebugOptions {
     /// Leave parts of the projection pass out, to time the rest (bench only; the image
     /// is wrong with anything but [`Ablation::None`]).
     pub projection_ablation: Ablation,
+    /// The projection's threads take one pixel in each 16 × 16 quarter of their block
+    /// (the layout before the compact one; bench only, the same image).
+    pub spread_quads: bool,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
@@ -240,6 +244,9 @@ impl ReflectionRenderer {
             // The last encode gave the layers nowhere to go: do not compute them.
             params.layers = Choice::Off;
         }
+        if params.subgroup_cull == Choice::Auto && !crate::passes::projection::has_subgroups(&self.device) {
+            params.subgroup_cull = Choice::Off;
+        }
         if self.debug.writes {
             // Debug write masks record each visible shape; a merged group writes as one.
             params.plane_groups = Choice::Off;
@@ -295,6 +302,8 @@ impl ReflectionRenderer {
             source_boxes: !plan.source_rects.is_empty(),
             uniform_tests: plan.uniform_tests,
             parallel_trees: !plan.trees.is_empty(),
+            subgroup_cull: plan.subgroup_cull,
+            spread_quads: self.debug.spread_quads,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -15,6 +15,13 @@ pub const VIEW: &str = include_str!("../shaders/view.wgsl");
 /// (needs `frame`, `depth_tex` and [`VIEW`]).
 pub const TILE_TEST: &str = include_str!("../shaders/tile_test.wgsl");
 
+/// Subgroup culling's subgroup box, lane and ballot, with subgroup operations (only on
+/// devices with [`wgpu::Features::SUBGROUP`]; needs [`TILE_TEST`]).
+pub const SUBGROUP_CULL: &str = include_str!("../shaders/subgroup_cull.wgsl");
+
+/// The same functions as [`SUBGROUP_CULL`] for a subgroup of one invocation (any device).
+pub const SUBGROUP_CULL_FALLBACK: &str = include_str!("../shaders/subgroup_cull_fallback.wgsl");
+
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
@@ -63,7 +70,8 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
         ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
         ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
-        ("projection", source_with(&[VIEW, TILE_TEST], projection::WGSL)),
+        ("projection", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], projection::WGSL)),
+        ("projection (subgroups)", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
@@ -130,7 +138,10 @@ mod tests {
         use naga::Literal::{I32, U32};
         use ppr_format::ReflectorKind;
 
-        let source = super::source_with(&[super::VIEW, super::TILE_TEST], crate::passes::projection::WGSL);
+        let source = super::source_with(
+            &[super::VIEW, super::TILE_TEST, super::SUBGROUP_CULL_FALLBACK],
+            crate::passes::projection::WGSL,
+        );
         let module =
             naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
         let constant = |name: &str| {

@@ -22,9 +22,11 @@ pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
 }
 
-/// Optional features requested when the adapter has them (never required).
-const OPTIONAL_FEATURES: wgpu::Features =
-    wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+/// Optional features requested when the adapter has them (never required): timestamps,
+/// and subgroups for the projection's subgroup culling.
+const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
+    .union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
+    .union(wgpu::Features::SUBGROUP);
 
 impl GpuContext {
     /// Creates a headless context on the adapter wgpu picks (honouring `WGPU_BACKEND`,

@@ -8,7 +8,7 @@ use anyhow::{Result, anyhow};
 use ppr_scene_gpu::{DeviceRequest, GpuDevice, GpuInitError, request_device};
 
 /// Features used when the adapter has them (never required): per-pass GPU times.
-const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY;
+const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::SUBGROUP);
 
 /// What the device-lost callback and the error handler report, shared with the render loop.
 #[derive(Debug, Default)]

@@ -9,12 +9,13 @@ use crate::report::csv_file::{CsvTable, num};
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
 use crate::suites::scaling::{
-    CULLING_OFF, CULLING_ON, PARALLEL_TREES, PLANE_GROUPS, SUPER_TILES, ScalingOutcome, ScalingRow,
-    crossover, indirect_crossover,
+    CULLING_OFF, CULLING_ON, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUPER_TILES, ScalingOutcome,
+    ScalingRow, crossover, indirect_crossover,
 };
 
 /// The culling variants, in table and plot order.
-const VARIANTS: [&str; 5] = [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES];
+const VARIANTS: [&str; 6] =
+    [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES, NO_SUBGROUPS];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {
@@ -117,6 +118,7 @@ pub fn write_scaling_report(
         "#trees: tests",
         "#trees: projection",
         "#trees: total",
+        "#no subgroups: total",
         "#on: overhead",
         "#super: overhead",
         "#groups: overhead",
@@ -161,6 +163,7 @@ pub fn write_scaling_report(
                 tree.map_or("–".into(), |r| r.tested.to_string()),
                 ms(tree_ms(|r| r.pass_ms("projection"))),
                 ms(tree_ms(ScalingRow::total_ms)),
+                ms(find(&o.rows, f, n, NO_SUBGROUPS).map_or(f64::NAN, ScalingRow::total_ms)),
                 ms(on.total_ms() - base(CULLING_ON)),
                 ms(sup_ms(ScalingRow::total_ms) - base(SUPER_TILES)),
                 ms(grp_ms(ScalingRow::total_ms) - base(PLANE_GROUPS)),
@@ -178,7 +181,8 @@ pub fn write_scaling_report(
          is timed inside the projection; `groups`: coplanar shapes merged into plane groups \
          (`tests`: the projection's tests per pixel loop), culling as the plan picks it; \
          `trees`: parallel families walked as trees, plane groups and culling as the plan \
-         picks them.)\n\n\
+         picks them; every variant with the projection's subgroup culling where the device \
+         has subgroups, but `no subgroups`: the plan's own choices without it.)\n\n\
          Growth of the total between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
     );
     for f in &families {
@@ -203,6 +207,7 @@ pub fn write_scaling_report(
         "#super-tiles: total ms",
         "#plane groups: total ms",
         "#parallel trees: total ms",
+        "#no subgroup culling: total ms",
         "fastest",
     ]);
     let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();

@@ -66,6 +66,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("occlusion off", Choice::Auto, Ablation::None),
         ("occluder lists", Choice::Auto, Ablation::None),
         ("storage tests", Choice::Auto, Ablation::None),
+        ("no subgroup culling", Choice::Auto, Ablation::None),
+        ("spread quads", Choice::Auto, Ablation::None),
+        ("spread quads, no subgroup culling", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -188,11 +191,16 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                 } else if name == "storage tests" {
                     params.uniform_tests = Choice::Off;
-                } else if name == "occluder lists" {
+                }
+                if name.contains("no subgroup culling") {
+                    params.subgroup_cull = Choice::Off;
+                }
+                let spread_quads = name.starts_with("spread quads");
+                if name == "occluder lists" {
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                let debug = DebugOptions { projection_ablation: ablation, ..tuning };
+                let debug = DebugOptions { projection_ablation: ablation, spread_quads, ..tuning };
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, all));
             }
         }

@@ -157,6 +157,8 @@ pub const PLANE_GROUPS: &str = "plane groups";
 /// Parallel families walked as trees (forced on), plane groups and culling as the plan
 /// picks them.
 pub const PARALLEL_TREES: &str = "parallel trees";
+/// The plan's own choices with the projection's subgroup culling off (what it buys).
+pub const NO_SUBGROUPS: &str = "no subgroup culling";
 
 /// Runs the suite.
 ///
@@ -177,6 +179,7 @@ pub fn run_scaling(
             PlanParams { plane_groups: Choice::On, parallel_trees: Choice::Off, ..PlanParams::default() },
         ),
         (PARALLEL_TREES, PlanParams { parallel_trees: Choice::On, ..PlanParams::default() }),
+        (NO_SUBGROUPS, PlanParams { subgroup_cull: Choice::Off, ..PlanParams::default() }),
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {

@@ -17,6 +17,11 @@ pub fn block_groups([w, h]: [u32; 2]) -> (u32, u32) {
     (w.div_ceil(BLOCK), h.div_ceil(BLOCK))
 }
 
+/// Whether `device` has subgroup operations (the projection's subgroup culling uses them).
+pub fn has_subgroups(device: &wgpu::Device) -> bool {
+    device.features().contains(wgpu::Features::SUBGROUP)
+}
+
 /// Which projection shader runs (the WGSL's override constants).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub struct ProjectionVariant {
@@ -43,6 +48,13 @@ pub struct ProjectionVariant {
     pub uniform_tests: bool,
     /// Some test stands for a parallel tree (`crate::parallel_trees`): its pixels walk it.
     pub parallel_trees: bool,
+    /// Each subgroup visits only the candidates whose box test passes against the box of
+    /// its pixels' positions (`subgroup_cull.wgsl`; on a device without
+    /// [`wgpu::Features::SUBGROUP`] each invocation alone: the same writes, slower).
+    pub subgroup_cull: bool,
+    /// Bench only: a thread's four pixels one in each 16 × 16 quarter of the block (the
+    /// layout before the compact one, whose subgroups cover 32 × 4 pixels).
+    pub spread_quads: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -108,6 +120,8 @@ pub struct ProjectionBindings<'a> {
 /// The projection pass.
 pub struct ProjectionPass {
     module: wgpu::ShaderModule,
+    /// The module with subgroup operations, on devices with [`wgpu::Features::SUBGROUP`].
+    subgroup_module: Option<wgpu::ShaderModule>,
     layout: wgpu::BindGroupLayout,
     pipelines: HashMap<ProjectionVariant, wgpu::ComputePipeline>,
 }
@@ -133,13 +147,12 @@ impl ProjectionPass {
                 storage_entry(13, true),
             ],
         });
-        let module = crate::shader::module_with(
-            device,
-            "ppr projection",
-            &[crate::shader::VIEW, crate::shader::TILE_TEST],
-            WGSL,
-        );
-        let mut pass = Self { module, layout, pipelines: HashMap::new() };
+        use crate::shader::{SUBGROUP_CULL, SUBGROUP_CULL_FALLBACK, TILE_TEST, VIEW, module_with};
+        let module = module_with(device, "ppr projection", &[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], WGSL);
+        let subgroup_module = has_subgroups(device).then(|| {
+            module_with(device, "ppr projection (subgroups)", &[VIEW, TILE_TEST, SUBGROUP_CULL], WGSL)
+        });
+        let mut pass = Self { module, subgroup_module, layout, pipelines: HashMap::new() };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
     }
@@ -161,10 +174,16 @@ impl ProjectionPass {
             ("SOURCE_BOXES", flag(v.source_boxes)),
             ("UNIFORM_TESTS", flag(v.uniform_tests)),
             ("PARALLEL_TREES", flag(v.parallel_trees)),
+            ("SUBGROUP_CULL", flag(v.subgroup_cull)),
+            ("QUAD_ROW_STEP", if v.spread_quads { 16.0 } else { 2.0 }),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
-        let pipeline = compute_pipeline(device, &label, &self.layout, &self.module, "main", &constants);
+        let module = match &self.subgroup_module {
+            Some(m) if v.subgroup_cull => m,
+            _ => &self.module,
+        };
+        let pipeline = compute_pipeline(device, &label, &self.layout, module, "main", &constants);
         self.pipelines.insert(v, pipeline);
     }
 
