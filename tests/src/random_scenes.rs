@@ -6,17 +6,17 @@ use ppr_runtime::{Camera, Projection};
 
 use crate::scene::{Albedo, AnalyticScene};
 
-/// xorshift64*: deterministic test randomness.
+/// xorshift64*: deterministic test randomness (`unit`: uniform in [0, 1)).
 pub struct Rng(pub u64);
 impl Rng {
-    pub fn next(&mut self) -> f64 {
+    pub fn unit(&mut self) -> f64 {
         self.0 ^= self.0 >> 12;
         self.0 ^= self.0 << 25;
         self.0 ^= self.0 >> 27;
         (self.0.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
     }
     pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.next()
+        lo + (hi - lo) * self.unit()
     }
 }
 
@@ -34,7 +34,7 @@ pub fn puddle_floor(rng: &mut Rng) -> AnalyticScene {
     s.quad(DVec3::new(0.0, 3.0, -10.0), DVec3::X, DVec3::Y, [12.0, 3.0], Albedo::Waves(0.3));
     for _ in 0..3 {
         let c = DVec3::new(rng.range(-4.0, 4.0), 0.0, rng.range(-8.0, 0.0));
-        let colour = Vec3::new(rng.next() as f32, rng.next() as f32, rng.next() as f32);
+        let colour = Vec3::new(rng.unit() as f32, rng.unit() as f32, rng.unit() as f32);
         s.cuboid(c - DVec3::new(0.4, 0.0, 0.4), c + DVec3::new(0.4, rng.range(0.5, 2.0), 0.4), colour);
     }
     for i in 0..24 {
@@ -60,14 +60,14 @@ pub fn random_scene(rng: &mut Rng, parallel: bool) -> AnalyticScene {
     for _ in 0..4 {
         let c = DVec3::new(rng.range(-5.0, 5.0), 0.0, rng.range(-8.0, 2.0));
         let size = DVec3::new(rng.range(0.3, 1.5), rng.range(0.3, 2.5), rng.range(0.3, 1.5));
-        let colour = Vec3::new(rng.next() as f32, rng.next() as f32, rng.next() as f32);
+        let colour = Vec3::new(rng.unit() as f32, rng.unit() as f32, rng.unit() as f32);
         s.cuboid(
             c - DVec3::new(size.x, 0.0, size.z) * 0.5,
             c + DVec3::new(size.x * 0.5, size.y, size.z * 0.5),
             colour,
         );
     }
-    let count = 5 + (rng.next() * 4.0) as usize;
+    let count = 5 + (rng.unit() * 4.0) as usize;
     for i in 0..count {
         let name = format!("mirror {i}");
         if parallel {

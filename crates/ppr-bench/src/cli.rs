@@ -93,7 +93,8 @@ pub struct RuntimeArgs {
     #[arg(long)]
     pub features_off: bool,
     /// Also run every scene with each projection tuning and ablation (rows
-    /// `<scene> [<tuning>]`): where the projection pass's time goes, part by part.
+    /// `<scene> [<tuning>]`): where the projection pass's time goes, part by part (and,
+    /// rows `[reflection: …]`, the reflection pass's).
     #[arg(long)]
     pub projection_profile: bool,
     /// Also time full-screen `Rgba16Float` writes (compute storage texture in several

@@ -27,6 +27,9 @@
 override INDIRECT: bool = false;
 override NORMAL_MAPS: bool = false;
 override GLOSSY: bool = false;
+// Bench only (never a correct image): 1 returns at once; 2 stores the chosen offset (no
+// colour read, no blur); 3 stores the sharp colour (no glossy blur).
+override ABLATION: u32 = 0u;
 
 // Reads the intermediate buffer; outside the viewport, and (with indirect dispatch) in
 // a tile that was not cleared this frame, reads as "no data".
@@ -113,6 +116,9 @@ fn main(
     @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
+    if (ABLATION == 1u) {
+        return;
+    }
     var gid = global_id.xy;
     if (INDIRECT) {
         let slot = ppr_active_slot(wid);
@@ -141,7 +147,16 @@ fn main(
         }
         chosen = ppr_choose_wide(w);
     }
+    if (ABLATION == 2u) {
+        let d = ppr_decoded_offset(ppr_decode(chosen.value, frame.encoding));
+        textureStore(output, vpos, vec4<f32>(d, vec2<f32>(chosen.holes_offset)));
+        return;
+    }
     var colour = ppr_reflected_colour(vpos, chosen);
+    if (ABLATION == 3u) {
+        textureStore(output, vpos, colour);
+        return;
+    }
     if (NORMAL_MAPS && colour.a > 0.0) {
         colour = normal_mapped(vpos, chosen, colour);
     }

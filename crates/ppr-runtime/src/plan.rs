@@ -143,10 +143,19 @@ pub struct PlanParams {
     /// (the block lists' test at the scale of a subgroup, without their pass). `Auto`: on
     /// when the device has [`wgpu::Features::SUBGROUP`] (the renderer turns `Auto` off
     /// without it; `On` there runs the same bookkeeping per invocation: the same image,
-    /// slower).
+    /// slower), from [`Self::subgroup_cull_min_shapes`] tested entries and without tile
+    /// culling.
     pub subgroup_cull: Choice,
-    /// With subgroup culling, `Auto` tile culling runs from this many tested entries on
-    /// (instead of [`Self::tile_culling_min_shapes`]).
+    /// With `Auto`, subgroup culling runs from this many tested entries on. Measured on
+    /// the H200 at 3840×2160 (docs/perf/scaling.md, sixth session): it costs 0.01–0.025 ms
+    /// at 1 to 6 entries, is even at 8–9 (the demo room) and 0.01–0.05 ms faster than tile
+    /// lists from 16 on.
+    pub subgroup_cull_min_shapes: usize,
+    /// With subgroups, `Auto` tile culling runs from this many tested entries on (instead
+    /// of [`Self::tile_culling_min_shapes`]): below, subgroup culling is faster than the
+    /// block-list pass (rooms at 128: 0.34 against 0.40 ms; the stairway at 128 is the
+    /// first count where lists win, 0.43 against 0.47). Subgroup culling sorts at most 128
+    /// candidates.
     pub subgroup_tile_culling_min_shapes: usize,
 }
 
@@ -181,7 +190,8 @@ impl Default for PlanParams {
             parallel_trees: Choice::Auto,
             parallel_tree_min_shapes: 1000,
             subgroup_cull: Choice::Auto,
-            subgroup_tile_culling_min_shapes: 64,
+            subgroup_cull_min_shapes: 16,
+            subgroup_tile_culling_min_shapes: 128,
         }
     }
 }
@@ -380,13 +390,13 @@ impl FramePlan {
         plan.merge_plane_groups(table, params);
         plan.merge_parallel_trees(table, params);
         let tested = plan.tested.len();
-        plan.subgroup_cull = params.subgroup_cull.decide(true);
-        let culling_from = if plan.subgroup_cull {
-            params.subgroup_tile_culling_min_shapes
-        } else {
-            params.tile_culling_min_shapes
-        };
+        // The renderer turns `Auto` subgroup culling off on devices without subgroups.
+        let subgroups = params.subgroup_cull != Choice::Off;
+        let culling_from =
+            if subgroups { params.subgroup_tile_culling_min_shapes } else { params.tile_culling_min_shapes };
         plan.tile_culling = params.tile_culling.decide(tested >= culling_from);
+        plan.subgroup_cull =
+            params.subgroup_cull.decide(!plan.tile_culling && tested >= params.subgroup_cull_min_shapes);
         plan.super_tiles =
             plan.tile_culling && params.super_tiles.decide(tested >= params.super_tiles_min_shapes);
         plan.uniform_tests =
@@ -567,10 +577,13 @@ impl FramePlan {
             (true, true) => "clear (tiles)",
             (true, false) => "clear",
         });
-        passes.push(match (self.tile_culling, self.super_tiles) {
-            (true, true) => "projection (super-tiles, tiled)",
-            (true, false) => "projection (tiled)",
-            (false, _) => "projection",
+        passes.push(match (self.tile_culling, self.super_tiles, self.subgroup_cull) {
+            (true, true, false) => "projection (super-tiles, tiled)",
+            (true, false, false) => "projection (tiled)",
+            (false, _, false) => "projection",
+            (true, true, true) => "projection (super-tiles, tiled, subgroup culling)",
+            (true, false, true) => "projection (tiled, subgroup culling)",
+            (false, _, true) => "projection (subgroup culling)",
         });
         if has_main {
             passes.push(match (self.indirect, self.normal_maps, !self.glossy.is_empty()) {
@@ -722,5 +735,63 @@ impl fmt::Display for FramePlan {
             l.minor_int_bits,
             l.minor_frac_bits,
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DVec2, DVec3, Vec3};
+    use ppr_format::{Reflector, ReflectorKind, ReflectorSet};
+
+    use super::{Choice, FramePlan, PlanParams};
+    use crate::camera::{Camera, Projection};
+    use crate::shapes::ShapeTable;
+
+    /// `n` small floor mirrors in a grid in front of the camera, each tested alone.
+    fn plan(n: usize, params: &PlanParams) -> FramePlan {
+        let mut set = ReflectorSet::new("grid");
+        for k in 0..n {
+            let center = DVec3::new((k % 16) as f64 * 0.5 - 4.0, 0.0, -2.0 - (k / 16) as f64 * 0.5);
+            set.reflectors.push(Reflector::new(
+                k as u32,
+                format!("tile {k}"),
+                ReflectorKind::Opaque,
+                center,
+                DVec3::Y,
+                DVec3::X,
+                DVec2::splat(0.2),
+            ));
+        }
+        let camera = Camera::look_at(
+            DVec3::new(0.0, 4.0, 2.0),
+            DVec3::new(0.0, 0.0, -4.0),
+            Vec3::Y,
+            Projection::default(),
+        );
+        let params = PlanParams { plane_groups: Choice::Off, ..*params };
+        FramePlan::build(&ShapeTable::from_set(&set), &camera, [320, 180], &params)
+    }
+
+    #[test]
+    fn subgroup_culling_takes_the_counts_between_its_thresholds() {
+        let d = PlanParams::default();
+        for (n, subgroup, tiles) in [
+            (d.subgroup_cull_min_shapes - 1, false, false),
+            (d.subgroup_cull_min_shapes, true, false),
+            (d.subgroup_tile_culling_min_shapes - 1, true, false),
+            (d.subgroup_tile_culling_min_shapes, false, true),
+        ] {
+            let p = plan(n, &d);
+            assert_eq!(p.tested.len(), n, "every mirror visible: {p}");
+            assert_eq!((p.subgroup_cull, p.tile_culling), (subgroup, tiles), "{n} shapes: {p}");
+        }
+        // Without subgroups (the renderer turns Auto off) tile culling keeps its own
+        // threshold; `On` culls by subgroup beside tile lists too.
+        let off = PlanParams { subgroup_cull: Choice::Off, ..d };
+        let p = plan(d.tile_culling_min_shapes, &off);
+        assert!(!p.subgroup_cull && p.tile_culling, "{p}");
+        let on = PlanParams { subgroup_cull: Choice::On, ..d };
+        let p = plan(d.subgroup_tile_culling_min_shapes, &on);
+        assert!(p.subgroup_cull && p.tile_culling, "{p}");
     }
 }

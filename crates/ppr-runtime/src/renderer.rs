@@ -17,7 +17,7 @@ use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
-use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
+use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::upsample::UpsampleBindings;
@@ -114,6 +114,9 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
+    /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
+    /// wrong with anything but [`ReflectionAblation::None`]).
+    pub reflection_ablation: ReflectionAblation,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
@@ -259,6 +262,7 @@ impl ReflectionRenderer {
             }
             if !plan.is_empty() {
                 self.projection.prepare_variant(&self.device, self.variant(&plan));
+                self.reflection.prepare_ablation(&self.device, self.debug.reflection_ablation);
             }
             Arc::new(plan)
         });
@@ -585,6 +589,7 @@ impl ReflectionRenderer {
             let variant = ReflectionVariant {
                 normal_maps: plan.normal_maps && normals.is_some(),
                 glossy: self.settings.glossy && !plan.glossy.is_empty(),
+                ablation: self.debug.reflection_ablation,
             };
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),

@@ -2,7 +2,7 @@
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
 use ppr_runtime::passes::Ablation;
-use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionSettings};
+use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionAblation, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
@@ -48,7 +48,8 @@ pub const GLOSSY_PROBE_TAPS: [u32; 4] = [0, 1, 4, 8];
 /// The roughness every reflector gets in the `--glossy` rows.
 pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 
-/// The projection variants of `--projection-profile`: (name, source boxes, ablation).
+/// The projection variants of `--projection-profile`: (name, source boxes, ablation); the
+/// `reflection: …` rows ablate the reflection pass instead.
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -68,7 +69,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("storage tests", Choice::Auto, Ablation::None),
         ("no subgroup culling", Choice::Auto, Ablation::None),
         ("spread quads", Choice::Auto, Ablation::None),
-        ("spread quads, no subgroup culling", Choice::Auto, Ablation::None),
+        ("reflection: empty", Choice::Auto, Ablation::None),
+        ("reflection: no colour", Choice::Auto, Ablation::None),
+        ("reflection: no glossy", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -200,7 +203,18 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                let debug = DebugOptions { projection_ablation: ablation, spread_quads, ..tuning };
+                let reflection_ablation = match name {
+                    "reflection: empty" => ReflectionAblation::Empty,
+                    "reflection: no colour" => ReflectionAblation::NoColour,
+                    "reflection: no glossy" => ReflectionAblation::NoGlossy,
+                    _ => ReflectionAblation::None,
+                };
+                let debug = DebugOptions {
+                    projection_ablation: ablation,
+                    spread_quads,
+                    reflection_ablation,
+                    ..tuning
+                };
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, all));
             }
         }

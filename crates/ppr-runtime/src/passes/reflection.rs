@@ -2,6 +2,8 @@
 
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
+use std::collections::HashMap;
+
 pub const WGSL: &str = include_str!("../../shaders/reflection.wgsl");
 
 /// Format of the reflection output (colour + confidence alpha).
@@ -29,6 +31,36 @@ pub struct ReflectionVariant {
     pub normal_maps: bool,
     /// Blur the reflections of reflectors with roughness (`glossy.wgsl`).
     pub glossy: bool,
+    /// Leave parts out to time the rest (bench only).
+    pub ablation: ReflectionAblation,
+}
+
+/// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
+/// --projection-profile` times each to show where the pass's time goes; never a correct
+/// image).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ReflectionAblation {
+    /// The real pass.
+    #[default]
+    None,
+    /// Returns at once: the launch.
+    Empty,
+    /// Reads the intermediate buffer, fills holes and decodes, and stores the offset: no
+    /// colour read, no glossy blur.
+    NoColour,
+    /// Also reads the colour (filtered, unfiltered, anti-bleeding), but no glossy blur.
+    NoGlossy,
+}
+
+impl ReflectionAblation {
+    fn code(self) -> f64 {
+        match self {
+            Self::None => 0.0,
+            Self::Empty => 1.0,
+            Self::NoColour => 2.0,
+            Self::NoGlossy => 3.0,
+        }
+    }
 }
 
 impl ReflectionVariant {
@@ -41,6 +73,9 @@ impl ReflectionVariant {
 pub struct ReflectionPass {
     /// Pipelines by indirect, then [`ReflectionVariant::index`].
     pipelines: [[wgpu::ComputePipeline; 4]; 2],
+    /// Ablated pipelines (bench only), built by [`Self::prepare_ablation`].
+    ablated: HashMap<(bool, usize, ReflectionAblation), wgpu::ComputePipeline>,
+    module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -91,15 +126,11 @@ impl ReflectionPass {
             &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let pipeline = |indirect: bool, index: usize| {
-            let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
-            let label =
-                format!("ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy}");
-            let constants =
-                [("INDIRECT", flag(indirect)), ("NORMAL_MAPS", flag(normal_maps)), ("GLOSSY", flag(glossy))];
-            compute_pipeline(device, &label, &layout, &module, "main", &constants)
-        };
-        let pipelines = [false, true].map(|indirect| std::array::from_fn(|index| pipeline(indirect, index)));
+        let pipelines = [false, true].map(|indirect| {
+            std::array::from_fn(|index| {
+                Self::pipeline(device, &layout, &module, indirect, index, ReflectionAblation::None)
+            })
+        });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -108,7 +139,51 @@ impl ReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipelines, layout, sampler }
+        Self { pipelines, ablated: HashMap::new(), module, layout, sampler }
+    }
+
+    fn pipeline(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        module: &wgpu::ShaderModule,
+        indirect: bool,
+        index: usize,
+        ablation: ReflectionAblation,
+    ) -> wgpu::ComputePipeline {
+        let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
+        let label = format!(
+            "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} ablation={ablation:?}"
+        );
+        let constants = [
+            ("INDIRECT", flag(indirect)),
+            ("NORMAL_MAPS", flag(normal_maps)),
+            ("GLOSSY", flag(glossy)),
+            ("ABLATION", ablation.code()),
+        ];
+        compute_pipeline(device, &label, layout, module, "main", &constants)
+    }
+
+    /// Builds the pipelines of `ablation` (every dispatch and variant) unless they exist.
+    pub fn prepare_ablation(&mut self, device: &wgpu::Device, ablation: ReflectionAblation) {
+        if ablation == ReflectionAblation::None {
+            return;
+        }
+        for indirect in [false, true] {
+            for index in 0..4 {
+                if !self.ablated.contains_key(&(indirect, index, ablation)) {
+                    let p = Self::pipeline(device, &self.layout, &self.module, indirect, index, ablation);
+                    self.ablated.insert((indirect, index, ablation), p);
+                }
+            }
+        }
+    }
+
+    fn pipeline_for(&self, indirect: bool, variant: ReflectionVariant) -> &wgpu::ComputePipeline {
+        let index = variant.index();
+        if variant.ablation == ReflectionAblation::None {
+            return &self.pipelines[usize::from(indirect)][index];
+        }
+        self.ablated.get(&(indirect, index, variant.ablation)).expect("ablation prepared in prepare()")
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
@@ -139,7 +214,7 @@ impl ReflectionPass {
         variant: ReflectionVariant,
     ) {
         let (x, y) = tile_groups(viewport);
-        pass.set_pipeline(&self.pipelines[0][variant.index()]);
+        pass.set_pipeline(self.pipeline_for(false, variant));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }
@@ -152,7 +227,7 @@ impl ReflectionPass {
         args: &wgpu::Buffer,
         variant: ReflectionVariant,
     ) {
-        pass.set_pipeline(&self.pipelines[1][variant.index()]);
+        pass.set_pipeline(self.pipeline_for(true, variant));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups_indirect(args, 0);
     }
