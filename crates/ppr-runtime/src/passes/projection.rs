@@ -53,10 +53,22 @@ pub struct ProjectionVariant {
     /// [`wgpu::Features::SUBGROUP`] each invocation alone: the same writes, slower).
     pub subgroup_cull: bool,
     /// Bench only: a thread's four pixels one in each 16 × 16 quarter of the block (the
-    /// layout before the compact one, whose subgroups cover 32 × 4 pixels).
+    /// layout before the compact one, whose subgroups cover 32 × 4 pixels). Frames that
+    /// walk parallel trees take it anyway ([`Self::spread_quads`]).
     pub spread_quads: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
+}
+
+impl ProjectionVariant {
+    /// Whether a thread's four pixels lie in the four quarters of the block rather than
+    /// in two nearby rows: asked for, or walking parallel trees without subgroup culling
+    /// (on the H200 the 10 000-tread stairway's walk took 2.65 ms in the compact layout
+    /// against 2.36 spread; every other frame is as fast or faster compact,
+    /// docs/perf/runtime.md).
+    pub fn spread_quads(&self) -> bool {
+        self.spread_quads || (self.parallel_trees && !self.subgroup_cull)
+    }
 }
 
 /// What an ablated projection leaves out (bench only: `ppr-bench runtime
@@ -175,7 +187,7 @@ impl ProjectionPass {
             ("UNIFORM_TESTS", flag(v.uniform_tests)),
             ("PARALLEL_TREES", flag(v.parallel_trees)),
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
-            ("QUAD_ROW_STEP", if v.spread_quads { 16.0 } else { 2.0 }),
+            ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
