@@ -3,7 +3,7 @@
 # shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
 # `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
 # `.gpu/scenes/`) carried; results go to $OUT/results.tar.gz (only 8 files come back from
-# the device, so everything travels as one archive). About 540 s of device time in all; split it into two calls (profile, scaling and compare; then rooms and collision), as each call may run at most 600 s.
+# the device, so everything travels as one archive). About 700 s of device time in all (2026-12-03: profile 81 s, scaling 132, collision 80, compare 205, rooms 173, bounces 67); split it into calls of at most 600 s each (profile, scaling, collision; compare; rooms and bounces).
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -19,7 +19,7 @@ step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
   timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
   echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"; }
 step profile 90 $B runtime $C --projection-profile --write-probe --frames 20 --out $R/profile
-step scaling 150 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,512 --coverages 0.1,0.2,0.3,0.4,0.5
+step scaling 250 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5
 T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
 step compare 480 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 # The device answers a command after at most 600 s: the rooms and the real level were a
@@ -27,5 +27,5 @@ step compare 480 $B compare $C --out $R/compare --reference mirror --scene demo 
 step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
 # Mirror facing mirror (docs/perf/comparison.md; 1080p in the 2026-12-02 run):
 step bounces 200 $B compare $C --out $R/bounces --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 1080p --frames 20 --technique ppr --technique ppr:reference-bounces=2 --technique ppr:bounces=2 --technique ppr:tier=half,bounces=2 --technique ssr-brute:reference-bounces=2 --technique exact --technique exact:bounces=2
-step collision 150 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
+step collision 150 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
 tar czf "$OUT/results.tar.gz" -C /tmp results
