@@ -9,6 +9,7 @@ mod glossy;
 mod parallel_trees;
 mod plane_groups;
 mod reflection;
+mod reflection_quads;
 mod subgroup_cull;
 mod tiles;
 

@@ -117,6 +117,9 @@ pub struct DebugOptions {
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
+    /// The reflection pass takes one pixel per invocation instead of two by two sharing
+    /// their neighbourhood reads (the layout before the quads; bench only, the same image).
+    pub reflection_pixel_per_thread: bool,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
@@ -262,7 +265,7 @@ impl ReflectionRenderer {
             }
             if !plan.is_empty() {
                 self.projection.prepare_variant(&self.device, self.variant(&plan));
-                self.reflection.prepare_ablation(&self.device, self.debug.reflection_ablation);
+                self.reflection.prepare_variant(&self.device, self.reflection_variant(false, false));
             }
             Arc::new(plan)
         });
@@ -291,6 +294,16 @@ impl ReflectionRenderer {
     /// The plan of the last [`Self::prepare`].
     pub fn plan(&self) -> Option<&FramePlan> {
         self.views.first().map(|v| v.plan.as_ref())
+    }
+
+    /// The reflection pass's variant for a frame with (or without) normal maps and glossy.
+    fn reflection_variant(&self, normal_maps: bool, glossy: bool) -> ReflectionVariant {
+        ReflectionVariant {
+            normal_maps,
+            glossy,
+            ablation: self.debug.reflection_ablation,
+            pixel_per_thread: self.debug.reflection_pixel_per_thread,
+        }
     }
 
     fn variant(&self, plan: &FramePlan) -> ProjectionVariant {
@@ -586,11 +599,10 @@ impl ReflectionRenderer {
                     glossy: &b.glossy,
                 },
             );
-            let variant = ReflectionVariant {
-                normal_maps: plan.normal_maps && normals.is_some(),
-                glossy: self.settings.glossy && !plan.glossy.is_empty(),
-                ablation: self.debug.reflection_ablation,
-            };
+            let variant = self.reflection_variant(
+                plan.normal_maps && normals.is_some(),
+                self.settings.glossy && !plan.glossy.is_empty(),
+            );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),

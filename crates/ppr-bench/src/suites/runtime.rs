@@ -72,6 +72,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
+        ("reflection: one pixel per thread", Choice::Auto, Ablation::None),
+        ("reflection: one pixel per thread, empty", Choice::Auto, Ablation::None),
+        ("reflection: one pixel per thread, no glossy", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -203,16 +206,18 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                let reflection_ablation = match name {
-                    "reflection: empty" => ReflectionAblation::Empty,
-                    "reflection: no colour" => ReflectionAblation::NoColour,
-                    "reflection: no glossy" => ReflectionAblation::NoGlossy,
+                let reflection_ablation = match name.strip_prefix("reflection: ") {
+                    Some(r) if r.ends_with("empty") => ReflectionAblation::Empty,
+                    Some(r) if r.ends_with("no colour") => ReflectionAblation::NoColour,
+                    Some(r) if r.ends_with("no glossy") => ReflectionAblation::NoGlossy,
                     _ => ReflectionAblation::None,
                 };
+                let reflection_pixel_per_thread = name.starts_with("reflection: one pixel per thread");
                 let debug = DebugOptions {
                     projection_ablation: ablation,
                     spread_quads,
                     reflection_ablation,
+                    reflection_pixel_per_thread,
                     ..tuning
                 };
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, all));

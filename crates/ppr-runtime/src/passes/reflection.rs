@@ -1,6 +1,6 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
-use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+use super::{TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
 use std::collections::HashMap;
 
@@ -33,6 +33,9 @@ pub struct ReflectionVariant {
     pub glossy: bool,
     /// Leave parts out to time the rest (bench only).
     pub ablation: ReflectionAblation,
+    /// One pixel per invocation (`main`) instead of two by two sharing their neighbourhood
+    /// reads (`main_quads`, the default); the same image (bench only).
+    pub pixel_per_thread: bool,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -67,14 +70,24 @@ impl ReflectionVariant {
     fn index(self) -> usize {
         usize::from(self.normal_maps) | usize::from(self.glossy) << 1
     }
+
+    /// What selects a pipeline besides direct or indirect dispatch and `index`.
+    fn layout(self) -> (bool, ReflectionAblation) {
+        (self.pixel_per_thread, self.ablation)
+    }
 }
+
+/// Pipelines by indirect, [`ReflectionVariant::index`] and [`ReflectionVariant::layout`].
+type PipelineKey = (bool, usize, (bool, ReflectionAblation));
+
+/// Quads per workgroup side in direct dispatch (16 x 16 invocations, 32 x 32 pixels).
+const QUAD_GROUP: u32 = 16;
 
 /// The reflection pass.
 pub struct ReflectionPass {
-    /// Pipelines by indirect, then [`ReflectionVariant::index`].
-    pipelines: [[wgpu::ComputePipeline; 4]; 2],
-    /// Ablated pipelines (bench only), built by [`Self::prepare_ablation`].
-    ablated: HashMap<(bool, usize, ReflectionAblation), wgpu::ComputePipeline>,
+    /// Pipelines: the default layout's built at once, others (bench only) by
+    /// [`Self::prepare_variant`].
+    pipelines: HashMap<PipelineKey, wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
@@ -126,11 +139,6 @@ impl ReflectionPass {
             &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let pipelines = [false, true].map(|indirect| {
-            std::array::from_fn(|index| {
-                Self::pipeline(device, &layout, &module, indirect, index, ReflectionAblation::None)
-            })
-        });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -139,51 +147,56 @@ impl ReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipelines, ablated: HashMap::new(), module, layout, sampler }
+        let mut pass = Self { pipelines: HashMap::new(), module, layout, sampler };
+        pass.prepare_variant(device, ReflectionVariant::default());
+        pass
     }
 
     fn pipeline(
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         module: &wgpu::ShaderModule,
-        indirect: bool,
-        index: usize,
-        ablation: ReflectionAblation,
+        (indirect, index, (pixel_per_thread, ablation)): PipelineKey,
     ) -> wgpu::ComputePipeline {
         let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
         let label = format!(
-            "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} ablation={ablation:?}"
+            "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} \
+             pixel_per_thread={pixel_per_thread} ablation={ablation:?}"
         );
-        let constants = [
+        let group = if indirect { f64::from(TILE / 2) } else { f64::from(QUAD_GROUP) };
+        let mut constants = vec![
             ("INDIRECT", flag(indirect)),
             ("NORMAL_MAPS", flag(normal_maps)),
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
         ];
-        compute_pipeline(device, &label, layout, module, "main", &constants)
+        let entry = if pixel_per_thread {
+            "main"
+        } else {
+            constants.extend([("QUAD_GROUP_X", group), ("QUAD_GROUP_Y", group)]);
+            "main_quads"
+        };
+        compute_pipeline(device, &label, layout, module, entry, &constants)
     }
 
-    /// Builds the pipelines of `ablation` (every dispatch and variant) unless they exist.
-    pub fn prepare_ablation(&mut self, device: &wgpu::Device, ablation: ReflectionAblation) {
-        if ablation == ReflectionAblation::None {
-            return;
-        }
+    /// Builds the pipelines of `variant`'s layout and ablation (every dispatch, normal-map
+    /// and glossy variant) unless they exist.
+    pub fn prepare_variant(&mut self, device: &wgpu::Device, variant: ReflectionVariant) {
         for indirect in [false, true] {
             for index in 0..4 {
-                if !self.ablated.contains_key(&(indirect, index, ablation)) {
-                    let p = Self::pipeline(device, &self.layout, &self.module, indirect, index, ablation);
-                    self.ablated.insert((indirect, index, ablation), p);
+                let key = (indirect, index, variant.layout());
+                if !self.pipelines.contains_key(&key) {
+                    let p = Self::pipeline(device, &self.layout, &self.module, key);
+                    self.pipelines.insert(key, p);
                 }
             }
         }
     }
 
     fn pipeline_for(&self, indirect: bool, variant: ReflectionVariant) -> &wgpu::ComputePipeline {
-        let index = variant.index();
-        if variant.ablation == ReflectionAblation::None {
-            return &self.pipelines[usize::from(indirect)][index];
-        }
-        self.ablated.get(&(indirect, index, variant.ablation)).expect("ablation prepared in prepare()")
+        self.pipelines
+            .get(&(indirect, variant.index(), variant.layout()))
+            .expect("variant prepared in prepare()")
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
@@ -213,7 +226,12 @@ impl ReflectionPass {
         viewport: [u32; 2],
         variant: ReflectionVariant,
     ) {
-        let (x, y) = tile_groups(viewport);
+        let (x, y) = if variant.pixel_per_thread {
+            tile_groups(viewport)
+        } else {
+            let [w, h] = viewport;
+            (w.div_ceil(2 * QUAD_GROUP), h.div_ceil(2 * QUAD_GROUP))
+        };
         pass.set_pipeline(self.pipeline_for(false, variant));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
