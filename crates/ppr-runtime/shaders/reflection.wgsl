@@ -207,29 +207,33 @@ fn main_quads(
         return;
     }
     let b = vec2<i32>(base);
-    // r[row][col] holds the value at b + (col - 1, row); r[2][0] is never used.
-    var r: array<array<u32, 4>, 3>;
-    for (var row = 0; row < 2; row++) {
-        for (var col = 0; col < 4; col++) {
-            r[row][col] = read_value(b + vec2<i32>(col - 1, row));
-        }
+    // r<row><col> is the value at b + (col - 1, row); written out, not a private array
+    // indexed in loops (which a driver may keep in local memory).
+    let r00 = read_value(b + vec2<i32>(-1, 0));
+    let r01 = read_value(b);
+    let r02 = read_value(b + vec2<i32>(1, 0));
+    let r03 = read_value(b + vec2<i32>(2, 0));
+    let r10 = read_value(b + vec2<i32>(-1, 1));
+    let r11 = read_value(b + vec2<i32>(0, 1));
+    let r12 = read_value(b + vec2<i32>(1, 1));
+    let r13 = read_value(b + vec2<i32>(2, 1));
+    let r21 = read_value(b + vec2<i32>(0, 2));
+    let r22 = read_value(b + vec2<i32>(1, 2));
+    let r23 = read_value(b + vec2<i32>(2, 2));
+    // Each pixel's own value, then right, below, below right, left (PPR_HOLE_OFFSETS).
+    let c00 = reflect_pixel(b, array<u32, 5>(r01, r02, r11, r12, r00));
+    let c10 = reflect_pixel(b + vec2<i32>(1, 0), array<u32, 5>(r02, r03, r12, r13, r01));
+    let c01 = reflect_pixel(b + vec2<i32>(0, 1), array<u32, 5>(r11, r12, r21, r22, r10));
+    let c11 = reflect_pixel(b + vec2<i32>(1, 1), array<u32, 5>(r12, r13, r22, r23, r11));
+    let size = vec2<i32>(frame.size);
+    textureStore(output, b, c00);
+    if (b.x + 1 < size.x) {
+        textureStore(output, b + vec2<i32>(1, 0), c10);
     }
-    for (var col = 1; col < 4; col++) {
-        r[2][col] = read_value(b + vec2<i32>(col - 1, 2));
-    }
-    for (var j = 0; j < 2; j++) {
-        for (var i = 0; i < 2; i++) {
-            let vpos = b + vec2<i32>(i, j);
-            if (any(vpos >= vec2<i32>(frame.size))) {
-                continue;
-            }
-            var v: array<u32, 5>;
-            v[0] = r[j][1 + i];
-            v[1] = r[j][2 + i];
-            v[2] = r[j + 1][1 + i];
-            v[3] = r[j + 1][2 + i];
-            v[4] = r[j][i];
-            textureStore(output, vpos, reflect_pixel(vpos, v));
+    if (b.y + 1 < size.y) {
+        textureStore(output, b + vec2<i32>(0, 1), c01);
+        if (b.x + 1 < size.x) {
+            textureStore(output, b + vec2<i32>(1, 1), c11);
         }
     }
 }
