@@ -114,6 +114,9 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
+    /// With subgroup culling, test every pixel against all five planes of a shape even
+    /// where its subgroup's box lies inside the shape's pyramid (bench only, the same image).
+    pub no_inside_skip: bool,
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
@@ -321,6 +324,7 @@ impl ReflectionRenderer {
             parallel_trees: !plan.trees.is_empty(),
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
+            no_inside_skip: self.debug.no_inside_skip,
             ablation: self.debug.projection_ablation,
         }
     }

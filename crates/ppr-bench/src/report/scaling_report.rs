@@ -9,13 +9,13 @@ use crate::report::csv_file::{CsvTable, num};
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
 use crate::suites::scaling::{
-    CULLING_OFF, CULLING_ON, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUPER_TILES, ScalingOutcome,
-    ScalingRow, crossover, indirect_crossover,
+    CULLING_OFF, CULLING_ON, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUBGROUPS_ON, SUPER_TILES,
+    ScalingOutcome, ScalingRow, crossover, indirect_crossover,
 };
 
 /// The culling variants, in table and plot order.
-const VARIANTS: [&str; 6] =
-    [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES, NO_SUBGROUPS];
+const VARIANTS: [&str; 7] =
+    [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES, NO_SUBGROUPS, SUBGROUPS_ON];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {
@@ -208,6 +208,7 @@ pub fn write_scaling_report(
         "#plane groups: total ms",
         "#parallel trees: total ms",
         "#no subgroup culling: total ms",
+        "#subgroup culling on: total ms",
         "fastest",
     ]);
     let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();

@@ -159,6 +159,9 @@ pub const PLANE_GROUPS: &str = "plane groups";
 pub const PARALLEL_TREES: &str = "parallel trees";
 /// The plan's own choices with the projection's subgroup culling off (what it buys).
 pub const NO_SUBGROUPS: &str = "no subgroup culling";
+/// The plan's own choices with the projection's subgroup culling forced on (where its
+/// threshold comes from).
+pub const SUBGROUPS_ON: &str = "subgroup culling on";
 
 /// Runs the suite.
 ///
@@ -180,6 +183,7 @@ pub fn run_scaling(
         ),
         (PARALLEL_TREES, PlanParams { parallel_trees: Choice::On, ..PlanParams::default() }),
         (NO_SUBGROUPS, PlanParams { subgroup_cull: Choice::Off, ..PlanParams::default() }),
+        (SUBGROUPS_ON, PlanParams { subgroup_cull: Choice::On, ..PlanParams::default() }),
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {
