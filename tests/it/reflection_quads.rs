@@ -1,7 +1,8 @@
-//! The reflection pass's two layouts, one pixel per invocation and two by two pixels
-//! sharing their neighbourhood reads, store the same image bit for bit: direct and
-//! indirect dispatch, glossy and sharp, the seed's far-replacement rule on and off, and a
-//! viewport that is no multiple of the quads' 32 × 32 pixels.
+//! The reflection pass's two layouts in direct dispatch, one pixel per invocation and two
+//! by two pixels sharing their neighbourhood reads, store the same image bit for bit:
+//! glossy and sharp, the seed's far-replacement rule on and off, and a viewport that is no
+//! multiple of the quads' 32 × 32 pixels; indirect dispatch (one pixel per invocation
+//! either way) stores it too.
 
 use ppr_runtime::{Choice, ReflectionSettings};
 use ppr_tests::harness::{GpuFrame, renderer, run, validated};

@@ -64,8 +64,6 @@ override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
 override SUBGROUP_CULL: bool = false;
-// With SUBGROUP_CULL: candidates whose pyramid holds the subgroup's box skip the sides (bench: off).
-override INSIDE_SKIP: bool = true;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;
@@ -442,12 +440,6 @@ fn quad_plane(q: Quad, pl: vec4<f32>) -> vec4<f32> {
     return q.x * pl.x + q.y * pl.y + q.z * pl.z + pl.w;
 }
 
-// quad_test where subgroup culling found the subgroup's box inside the shape's pyramid: the
-// same values with only the plane's distance computed.
-fn quad_test_inside(q: Quad, t: ShapeTest) -> vec4<f32> {
-    return select(vec4<f32>(-1.0), quad_plane(q, t.plane), q.tolerance > vec4<f32>(0.0));
-}
-
 // Each pixel's distance from the shape's plane where the shape reflects it into its
 // rectangle (in front of the plane by more than the tolerance, inside the pyramid), else -1.
 fn quad_test(q: Quad, t: ShapeTest) -> vec4<f32> {
@@ -542,18 +534,10 @@ fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u3
 // Most candidates subgroup culling sorts (a bit each); beyond, the loop visits them all.
 const CULL_CAPACITY: u32 = 128u;
 
-// Subgroup culling's bits, per 32 candidates of the loop: `visit`, a candidate that may
-// reflect some pixel of the subgroup (the conservative box test of tile_test.wgsl against
-// the box of the subgroup's positions); `inside`, one that reflects every valid pixel of
-// it (the box inside its pyramid): there the per-pixel test needs only the distance from
-// the plane, the sides cannot fail.
-struct CullMasks {
-    visit: vec4<u32>,
-    inside: vec4<u32>,
-}
-
-// Call from uniform control flow, `count` <= CULL_CAPACITY.
-fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi: vec2<u32>) -> CullMasks {
+// Per 32 candidates of the loop, a bit for each that may reflect some pixel of the
+// subgroup (the conservative box test of tile_test.wgsl against the box of the
+// subgroup's positions). Call from uniform control flow, `count` <= CULL_CAPACITY.
+fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi: vec2<u32>) -> vec4<u32> {
     let valid = q.tolerance > vec4<f32>(0.0);
     let far = vec4<f32>(3.0e38);
     let own_lo = vec3<f32>(
@@ -567,38 +551,24 @@ fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi
         max4(select(-far, q.z, valid)),
     );
     let b = subgroup_box(own_lo, own_hi);
-    let max_tolerance = subgroup_max_f32(max4(q.tolerance));
     let empty = b.lo.x > b.hi.x;
     let lane = subgroup_lane();
-    var masks = CullMasks(vec4<u32>(0u), vec4<u32>(0u));
+    var masks = vec4<u32>(0u);
     for (var w = 0u; w < 4u && w * 32u < count; w++) {
         var m = 0u;
-        var m_inside = 0u;
         for (var r = 0u; r < 32u; r += lane.y) {
             let slot = r + lane.x;
             let i = w * 32u + slot;
             var passes = false;
-            var inside = false;
             if (!empty && slot < 32u && i < count) {
                 let k = loop_candidate(c, i, lo, hi);
-                if (k != NO_SHAPE) {
-                    let t = shape_test(k);
-                    passes = box_may_reflect(t, b.lo, b.hi);
-                    inside = passes && box_inside_pyramid(t, b.lo, b.hi, max_tolerance);
-                }
+                passes = k != NO_SHAPE && box_may_reflect(shape_test(k), b.lo, b.hi);
             }
             m |= subgroup_ballot32(passes) << r;
-            m_inside |= subgroup_ballot32(inside) << r;
         }
-        masks.visit = select(masks.visit, vec4<u32>(m), lane_mask(w));
-        masks.inside = select(masks.inside, vec4<u32>(m_inside), lane_mask(w));
+        masks = select(masks, vec4<u32>(m), lane_mask(w));
     }
     return masks;
-}
-
-// Whether candidate `i`'s bit is set in `m`.
-fn mask_bit(m: vec4<u32>, i: u32) -> bool {
-    return ((lane_u32(m, i / 32u) >> (i % 32u)) & 1u) != 0u;
 }
 
 fn min4(v: vec4<f32>) -> f32 {
@@ -679,13 +649,13 @@ fn main(
     var group = NO_SHAPE;
     let loop_cand = LoopCandidates(cand, use_list, list_start);
     let culled = SUBGROUP_CULL && count <= CULL_CAPACITY;
-    var masks = CullMasks(vec4<u32>(0u), vec4<u32>(0u));
+    var masks = vec4<u32>(0u);
     if (culled) {
         masks = subgroup_cull_masks(q, loop_cand, count, lo, hi);
     }
     for (var i = 0u; i <= count; i++) {
         if (culled && i < count) {
-            i = next_culled(masks.visit, i, count);
+            i = next_culled(masks, i, count);
         }
         var k = NO_SHAPE;
         if (i < count) {
@@ -721,12 +691,7 @@ fn main(
         if (k == NO_SHAPE) {
             continue;
         }
-        var dist: vec4<f32>;
-        if (culled && INSIDE_SKIP && mask_bit(masks.inside, i)) {
-            dist = quad_test_inside(q, t);
-        } else {
-            dist = quad_test(q, t);
-        }
+        let dist = quad_test(q, t);
         if (PARALLEL_TREES && (t.shape & TREE_TEST_FLAG) != 0u) {
             // In front of the family's lowest plane: walk its tree.
             for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
@@ -771,7 +736,7 @@ fn main(
         var n = select(0xffffffffu, count, use_list);
         if (culled) {
             // With subgroup culling: the candidates the pixel's subgroup visits.
-            n = dot(countOneBits(masks.visit), vec4<u32>(1u));
+            n = dot(countOneBits(masks), vec4<u32>(1u));
         }
         for (var j = 0u; j < 4u; j++) {
             let pixel = quad_pixel(base, j);

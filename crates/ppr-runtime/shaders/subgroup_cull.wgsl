@@ -11,11 +11,6 @@ fn subgroup_box(lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
     return TileBox(subgroupMin(lo), subgroupMax(hi));
 }
 
-// The largest `x` of the subgroup's invocations.
-fn subgroup_max_f32(x: f32) -> f32 {
-    return subgroupMax(x);
-}
-
 // (this invocation's index in its subgroup, the subgroup's size).
 fn subgroup_lane() -> vec2<u32> {
     return vec2<u32>(subgroupExclusiveAdd(1u), subgroupAdd(1u));

@@ -8,10 +8,6 @@ fn subgroup_box(lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
     return TileBox(lo, hi);
 }
 
-fn subgroup_max_f32(x: f32) -> f32 {
-    return x;
-}
-
 fn subgroup_lane() -> vec2<u32> {
     return vec2<u32>(0u, 1u);
 }

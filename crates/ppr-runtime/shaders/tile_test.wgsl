@@ -44,27 +44,6 @@ fn ppr_box_plane_max(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
     return dot(c, pl.xyz) + dot(h, a) + pl.w + 1e-5 * reach;
 }
 
-// The smallest value of a plane over the box, minus the same margin.
-fn ppr_box_plane_min(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
-    let a = abs(pl.xyz);
-    let reach = dot(abs(c) + h, a) + abs(pl.w);
-    return dot(c, pl.xyz) - dot(h, a) + pl.w - 1e-5 * reach;
-}
-
-// Does the shape reflect every point of the box [lo, hi] whose on-plane tolerance is at
-// most `max_tolerance` into its rectangle? Only when the whole box lies in front of the
-// plane by more than that and inside every side of the pyramid, with a margin for the f32
-// rounding of the per-pixel values: a pixel of such a box passes its five-plane test.
-fn box_inside_pyramid(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>, max_tolerance: f32) -> bool {
-    let c = 0.5 * (lo + hi);
-    let h = 0.5 * (hi - lo);
-    return ppr_box_plane_min(t.plane, c, h) > max_tolerance
-        && ppr_box_plane_min(t.side0, c, h) >= 0.0
-        && ppr_box_plane_min(t.side1, c, h) >= 0.0
-        && ppr_box_plane_min(t.side2, c, h) >= 0.0
-        && ppr_box_plane_min(t.side3, c, h) >= 0.0;
-}
-
 // Conservative box test: may some point of the box [lo, hi] (a block's pixel positions)
 // be reflected by the shape into its rectangle? It may unless the whole box lies behind
 // the plane or outside one side of the pyramid. Monotone in the box: a box holding

@@ -114,18 +114,17 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
-    /// With subgroup culling, test every pixel against all five planes of a shape even
-    /// where its subgroup's box lies inside the shape's pyramid (bench only, the same image).
-    pub no_inside_skip: bool,
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
-    /// The reflection pass takes one pixel per invocation instead of two by two sharing
-    /// their neighbourhood reads (the layout before the quads; bench only, the same image).
+    /// The reflection pass takes one pixel per invocation in direct dispatch too, instead of
+    /// two by two sharing their neighbourhood reads (the layout before the quads; bench
+    /// only, the same image).
     pub reflection_pixel_per_thread: bool,
-    /// The most taps per pixel of the glossy blur instead of the default (12): what the
-    /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
-    /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
+    /// The most taps per pixel of the glossy blur instead of the default (12; at most 16,
+    /// the tap table's patterns): what the blur's cost and accuracy are made of (0 and 1
+    /// leave the image sharp: 0 stops after the reflector lookup, 1 after the footprint,
+    /// for the bench's cost profile).
     pub glossy_taps: Option<u32>,
 }
 
@@ -324,7 +323,6 @@ impl ReflectionRenderer {
             parallel_trees: !plan.trees.is_empty(),
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
-            no_inside_skip: self.debug.no_inside_skip,
             ablation: self.debug.projection_ablation,
         }
     }

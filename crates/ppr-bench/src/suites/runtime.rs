@@ -70,8 +70,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("no subgroup culling", Choice::Auto, Ablation::None),
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
-        ("subgroup culling on, no inside skip", Choice::Auto, Ablation::None),
-        ("no inside skip", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -206,7 +204,7 @@ pub fn run_runtime(
                 } else if name.starts_with("subgroup culling on") {
                     params.subgroup_cull = Choice::On;
                 }
-                let no_inside_skip = name.ends_with("no inside skip");
+
                 let spread_quads = name.starts_with("spread quads");
                 if name == "occluder lists" {
                     params.depth_occlusion = Choice::Off;
@@ -222,7 +220,6 @@ pub fn run_runtime(
                 let debug = DebugOptions {
                     projection_ablation: ablation,
                     spread_quads,
-                    no_inside_skip,
                     reflection_ablation,
                     reflection_pixel_per_thread,
                     ..tuning

@@ -56,9 +56,6 @@ pub struct ProjectionVariant {
     /// layout before the compact one, whose subgroups cover 32 × 4 pixels). Frames that
     /// walk parallel trees take it anyway ([`Self::spread_quads`]).
     pub spread_quads: bool,
-    /// Bench only: with subgroup culling, test every pixel against all five planes even
-    /// where the subgroup's box lies inside the shape's pyramid (the same writes).
-    pub no_inside_skip: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -190,7 +187,6 @@ impl ProjectionPass {
             ("UNIFORM_TESTS", flag(v.uniform_tests)),
             ("PARALLEL_TREES", flag(v.parallel_trees)),
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
-            ("INSIDE_SKIP", flag(!v.no_inside_skip)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("ABLATION", v.ablation.code()),
         ];

@@ -1,6 +1,6 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
-use super::{TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
 use std::collections::HashMap;
 
@@ -33,8 +33,9 @@ pub struct ReflectionVariant {
     pub glossy: bool,
     /// Leave parts out to time the rest (bench only).
     pub ablation: ReflectionAblation,
-    /// One pixel per invocation (`main`) instead of two by two sharing their neighbourhood
-    /// reads (`main_quads`, the default); the same image (bench only).
+    /// One pixel per invocation (`main`) in direct dispatch too, instead of two by two
+    /// sharing their neighbourhood reads (`main_quads`); the same image (bench only).
+    /// Indirect dispatch always takes one pixel per invocation.
     pub pixel_per_thread: bool,
 }
 
@@ -71,17 +72,24 @@ impl ReflectionVariant {
         usize::from(self.normal_maps) | usize::from(self.glossy) << 1
     }
 
-    /// What selects a pipeline besides direct or indirect dispatch and `index`.
-    fn layout(self) -> (bool, ReflectionAblation) {
-        (self.pixel_per_thread, self.ablation)
+    /// The pipeline of this variant under direct or indirect dispatch (indirect dispatch
+    /// always takes one pixel per invocation).
+    fn key(self, indirect: bool) -> PipelineKey {
+        (indirect, self.index(), (self.pixel_per_thread || indirect, self.ablation))
+    }
+
+    /// Whether direct dispatch runs `main_quads`.
+    fn quads(self) -> bool {
+        !self.pixel_per_thread
     }
 }
 
-/// Pipelines by indirect, [`ReflectionVariant::index`] and [`ReflectionVariant::layout`].
+/// Pipelines by indirect, [`ReflectionVariant::index`], one pixel per invocation and
+/// ablation ([`ReflectionVariant::key`]).
 type PipelineKey = (bool, usize, (bool, ReflectionAblation));
 
-/// Quads per workgroup side in direct dispatch (16 x 16 invocations, 32 x 32 pixels).
-const QUAD_GROUP: u32 = 16;
+/// Pixels per workgroup side of `main_quads` (16 x 16 invocations of 2 x 2 pixels).
+const QUAD_BLOCK: u32 = 32;
 
 /// The reflection pass.
 pub struct ReflectionPass {
@@ -163,19 +171,13 @@ impl ReflectionPass {
             "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} \
              pixel_per_thread={pixel_per_thread} ablation={ablation:?}"
         );
-        let group = if indirect { f64::from(TILE / 2) } else { f64::from(QUAD_GROUP) };
-        let mut constants = vec![
+        let constants = [
             ("INDIRECT", flag(indirect)),
             ("NORMAL_MAPS", flag(normal_maps)),
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
         ];
-        let entry = if pixel_per_thread {
-            "main"
-        } else {
-            constants.extend([("QUAD_GROUP_X", group), ("QUAD_GROUP_Y", group)]);
-            "main_quads"
-        };
+        let entry = if pixel_per_thread { "main" } else { "main_quads" };
         compute_pipeline(device, &label, layout, module, entry, &constants)
     }
 
@@ -184,7 +186,8 @@ impl ReflectionPass {
     pub fn prepare_variant(&mut self, device: &wgpu::Device, variant: ReflectionVariant) {
         for indirect in [false, true] {
             for index in 0..4 {
-                let key = (indirect, index, variant.layout());
+                let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
+                let key = ReflectionVariant { normal_maps, glossy, ..variant }.key(indirect);
                 if !self.pipelines.contains_key(&key) {
                     let p = Self::pipeline(device, &self.layout, &self.module, key);
                     self.pipelines.insert(key, p);
@@ -194,9 +197,7 @@ impl ReflectionPass {
     }
 
     fn pipeline_for(&self, indirect: bool, variant: ReflectionVariant) -> &wgpu::ComputePipeline {
-        self.pipelines
-            .get(&(indirect, variant.index(), variant.layout()))
-            .expect("variant prepared in prepare()")
+        self.pipelines.get(&variant.key(indirect)).expect("variant prepared in prepare()")
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
@@ -226,11 +227,11 @@ impl ReflectionPass {
         viewport: [u32; 2],
         variant: ReflectionVariant,
     ) {
-        let (x, y) = if variant.pixel_per_thread {
-            tile_groups(viewport)
-        } else {
+        let (x, y) = if variant.quads() {
             let [w, h] = viewport;
-            (w.div_ceil(2 * QUAD_GROUP), h.div_ceil(2 * QUAD_GROUP))
+            (w.div_ceil(QUAD_BLOCK), h.div_ceil(QUAD_BLOCK))
+        } else {
+            tile_groups(viewport)
         };
         pass.set_pipeline(self.pipeline_for(false, variant));
         pass.set_bind_group(0, bind_group, &[]);
