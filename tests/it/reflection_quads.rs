@@ -1,8 +1,8 @@
-//! The reflection pass's two layouts in direct dispatch, one pixel per invocation and two
-//! by two pixels sharing their neighbourhood reads, store the same image bit for bit:
-//! glossy and sharp, the seed's far-replacement rule on and off, and a viewport that is no
-//! multiple of the quads' 32 × 32 pixels; indirect dispatch (one pixel per invocation
-//! either way) stores it too.
+//! The reflection pass's two layouts for mirrors in direct dispatch, one pixel per
+//! invocation and two by two pixels sharing their neighbourhood reads, store the same image
+//! bit for bit: the seed's far-replacement rule on and off, and a viewport that is no
+//! multiple of the quads' 32 × 32 pixels; the frames that always take one pixel per
+//! invocation (indirect dispatch, glossy) store it too.
 
 use ppr_runtime::{Choice, ReflectionSettings};
 use ppr_tests::harness::{GpuFrame, renderer, run, validated};
@@ -18,7 +18,7 @@ fn quads_store_the_same_image_as_one_pixel_per_invocation() {
         let frame = scene.render(&camera, size);
         let gpu = GpuFrame::upload(&frame);
         for indirect in [Choice::Off, Choice::On] {
-            for (glossy, replace_far) in [(true, false), (false, true)] {
+            for (glossy, replace_far) in [(false, false), (false, true), (true, false)] {
                 let render = |pixel_per_thread: bool| {
                     let mut r = renderer();
                     r.plan_params.indirect = indirect;

@@ -35,69 +35,37 @@ struct GlossyShape {
     rect: vec4<f32>,
 }
 
-// Entries of the tap table: for each tap count n from 2 to GLOSSY_TABLE_MAX_TAPS, n
-// offsets (two per vec4).
-const GLOSSY_TABLE_MAX_TAPS: u32 = 16u;
-const GLOSSY_TABLE_VEC4S: u32 = 68u;
-
 struct GlossyShapes {
     count: u32,
     // The largest footprint radius, pixels.
     max_radius_px: f32,
-    // The most taps per pixel (at most GLOSSY_TABLE_MAX_TAPS).
+    // The most taps per pixel.
     max_taps: u32,
     _pad: u32,
     shapes: array<GlossyShape, GLOSSY_CAPACITY>,
-    // Tap k of n (from n(n - 1)/2 - 1 + k): the unit footprint's offset r (cos φ, sin φ) with
-    // r = sqrt(ξ / (1 - ξ)), ξ = (k + 0.5) / n, φ = k × the golden angle, computed on the
-    // CPU (crates/ppr-runtime/src/glossy.rs) so that no pixel evaluates them.
-    taps: array<vec4<f32>, GLOSSY_TABLE_VEC4S>,
 }
 
-// Offset k of the n-tap pattern (2 <= n <= GLOSSY_TABLE_MAX_TAPS).
-fn ppr_glossy_tap(n: u32, k: u32) -> vec2<f32> {
-    let e = n * (n - 1u) / 2u - 1u + k;
-    let v = glossy.taps[e / 2u];
-    return select(v.xy, v.zw, (e & 1u) != 0u);
-}
-
-// A bit for each glossy reflector whose screen rectangle meets the box of pixel centres
-// [lo, hi] (no depth needed: pixels outside every one are mirrors).
-fn ppr_glossy_rect_mask(lo: vec2<f32>, hi: vec2<f32>) -> u32 {
-    var m = 0u;
+// Whether the pixel centre `c` is inside some glossy reflector's screen rectangle (no
+// depth needed: pixels outside every one are mirrors).
+fn ppr_glossy_candidate(c: vec2<f32>) -> bool {
     for (var i = 0u; i < glossy.count; i++) {
         let r = glossy.shapes[i].rect;
-        if (all(hi >= r.xy) && all(lo <= r.zw)) {
-            m |= 1u << i;
-        }
-    }
-    return m;
-}
-
-// The bits of `candidates` whose rectangle holds the pixel centre `c`.
-fn ppr_glossy_pixel_mask(candidates: u32, c: vec2<f32>) -> u32 {
-    var m = candidates;
-    var own = 0u;
-    while (m != 0u) {
-        let i = firstTrailingBit(m);
-        m &= m - 1u;
-        let r = glossy.shapes[i].rect;
         if (all(c >= r.xy) && all(c <= r.zw)) {
-            own |= 1u << i;
+            return true;
         }
     }
-    return own;
+    return false;
 }
 
-// The roughness of the first glossy reflector of `mask` (lowest bit first) the
-// camera-relative point `p` lies on, 0 when none.
-fn ppr_glossy_roughness(p: vec3<f32>, mask: u32) -> f32 {
+// The roughness of the glossy reflector the camera-relative point `p` (at pixel centre `c`)
+// lies on, 0 when none.
+fn ppr_glossy_roughness(p: vec3<f32>, c: vec2<f32>) -> f32 {
     let tolerance = 2e-3 * length(p) + 1e-3;
-    var m = mask;
-    while (m != 0u) {
-        let i = firstTrailingBit(m);
-        m &= m - 1u;
+    for (var i = 0u; i < glossy.count; i++) {
         let s = glossy.shapes[i];
+        if (any(c < s.rect.xy) || any(c > s.rect.zw)) {
+            continue;
+        }
         let d = p - s.center.xyz;
         if (abs(dot(s.plane.xyz, p) + s.plane.w) <= tolerance
             && abs(dot(d, s.axis_u.xyz)) <= s.axis_u.w + tolerance
@@ -110,12 +78,10 @@ fn ppr_glossy_roughness(p: vec3<f32>, mask: u32) -> f32 {
 
 // The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
 // from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
-// is under a pixel. `candidates`: the glossy reflectors whose rectangles may hold the pixel
-// (ppr_glossy_rect_mask of the pixel or of a box around it).
-fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, candidates: u32) -> vec4<f32> {
+// is under a pixel.
+fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     let c = vec2<f32>(vpos) + 0.5;
-    let mask = ppr_glossy_pixel_mask(candidates, c);
-    if (mask == 0u) {
+    if (!ppr_glossy_candidate(c)) {
         return sharp;
     }
     let d_here = valid_depth_at(vpos);
@@ -124,7 +90,7 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, candidates: u32
     }
     // Mirrors leave here, before the reflected point's depth is read.
     let p = ppr_unproject(c, d_here);
-    let roughness = ppr_glossy_roughness(p, mask);
+    let roughness = ppr_glossy_roughness(p, c);
     // max_taps 0: the lookup only (the bench's cost profile).
     if (!(roughness > 0.0) || glossy.max_taps == 0u) {
         return sharp;
@@ -164,8 +130,10 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, candidates: u32
     let cos_i = clamp(dot(-v, n_flat), 0.05, 1.0);
     var sum = sharp.rgb;
     for (var k = 0u; k < taps; k++) {
-        let t = ppr_glossy_tap(taps, k);
-        let offset = radius * (t.x * along + t.y * cos_i * side);
+        let xi = (f32(k) + 0.5) / f32(taps);
+        let r = sqrt(xi / (1.0 - xi));
+        let phi = f32(k) * 2.39996323;
+        let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
         let uv = (src + offset) * frame.resolution.zw;
         sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
     }

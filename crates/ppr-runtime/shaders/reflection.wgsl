@@ -112,9 +112,8 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
 
 // The reflection at `vpos` from its own intermediate value and its neighbours' (`v[0]` the
 // pixel's, `v[1..4]` at PPR_HOLE_OFFSETS): hole filling, the second ring where the first has
-// no data, colour, normal maps and glossy blur (over `glossy_candidates`, a bit per glossy
-// reflector whose rectangle may hold the pixel). What `main` and `main_quads` store.
-fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>, glossy_candidates: u32) -> vec4<f32> {
+// no data, colour, normal maps and glossy blur. What `main` and `main_quads` store.
+fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>) -> vec4<f32> {
     let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
     var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     if (holes && chosen.value == PPR_CLEAR_VALUE) {
@@ -138,7 +137,7 @@ fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>, glossy_candidates: u32) -> v
     if (GLOSSY && colour.a > 0.0) {
         let decoded = ppr_decode(chosen.value, frame.encoding);
         let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
-        colour = ppr_glossy(vpos, src, colour, glossy_candidates);
+        colour = ppr_glossy(vpos, src, colour);
     }
     return colour;
 }
@@ -173,17 +172,14 @@ fn main(
     for (var k = 0u; k < 4u; k++) {
         v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-    // Every glossy reflector: the pixel's own are found when it has a reflection.
-    let every_glossy = select((1u << glossy.count) - 1u, 0xffffffffu, glossy.count >= 32u);
-    textureStore(output, vpos, reflect_pixel(vpos, v, every_glossy));
+    textureStore(output, vpos, reflect_pixel(vpos, v));
 }
 
 // Two by two pixels per invocation, sharing their neighbourhood: the four pixels' first
 // rings (PPR_HOLE_OFFSETS: right, below, below right, left) lie in a 4 x 3 block of which
 // 11 values are used, read once instead of 20 times; and a quarter of the invocations to
-// launch. Direct dispatch only, 32 x 32 pixels per workgroup; the same image as `main`, bit
-// for bit. (On the H200 at 4K the mirror pass went from 0.153-0.159 to 0.125-0.133 ms on
-// full-screen cameras; over active tiles, 8 x 8 invocations a tile were slower than `main`.)
+// launch. Mirrors in direct dispatch (ReflectionVariant::quads says why only they), 32 x 32
+// pixels per workgroup; the same image as `main`, bit for bit.
 @compute @workgroup_size(16, 16)
 fn main_quads(@builtin(global_invocation_id) global_id: vec3<u32>) {
     if (ABLATION == 1u) {
@@ -207,17 +203,11 @@ fn main_quads(@builtin(global_invocation_id) global_id: vec3<u32>) {
     let r21 = read_value(b + vec2<i32>(0, 2));
     let r22 = read_value(b + vec2<i32>(1, 2));
     let r23 = read_value(b + vec2<i32>(2, 2));
-    // The glossy reflectors whose rectangles meet the four pixel centres, found once.
-    var g = 0u;
-    if (GLOSSY) {
-        let centre = vec2<f32>(b) + 0.5;
-        g = ppr_glossy_rect_mask(centre, centre + 1.0);
-    }
     // Each pixel's own value, then right, below, below right, left (PPR_HOLE_OFFSETS).
-    let c00 = reflect_pixel(b, array<u32, 5>(r01, r02, r11, r12, r00), g);
-    let c10 = reflect_pixel(b + vec2<i32>(1, 0), array<u32, 5>(r02, r03, r12, r13, r01), g);
-    let c01 = reflect_pixel(b + vec2<i32>(0, 1), array<u32, 5>(r11, r12, r21, r22, r10), g);
-    let c11 = reflect_pixel(b + vec2<i32>(1, 1), array<u32, 5>(r12, r13, r22, r23, r11), g);
+    let c00 = reflect_pixel(b, array<u32, 5>(r01, r02, r11, r12, r00));
+    let c10 = reflect_pixel(b + vec2<i32>(1, 0), array<u32, 5>(r02, r03, r12, r13, r01));
+    let c01 = reflect_pixel(b + vec2<i32>(0, 1), array<u32, 5>(r11, r12, r21, r22, r10));
+    let c11 = reflect_pixel(b + vec2<i32>(1, 1), array<u32, 5>(r12, r13, r22, r23, r11));
     let size = vec2<i32>(frame.size);
     textureStore(output, b, c00);
     if (b.x + 1 < size.x) {

@@ -3,9 +3,7 @@
 
 use glam::DVec3;
 
-use crate::gpu_types::{
-    GLOSSY_CAPACITY, GLOSSY_TABLE_MAX_TAPS, GLOSSY_TABLE_VEC4S, GpuGlossyShape, GpuGlossyShapes,
-};
+use crate::gpu_types::{GLOSSY_CAPACITY, GpuGlossyShape, GpuGlossyShapes};
 use crate::plan::FramePlan;
 use crate::shapes::ShapeTable;
 
@@ -19,35 +17,8 @@ pub const MAX_FOOTPRINT: f32 = 0.25;
 /// Default most taps per pixel of the glossy blur ([`crate::DebugOptions::glossy_taps`]).
 pub const GLOSSY_TAPS: u32 = 12;
 
-/// The golden angle, radians: tap k of a pattern turns by k times it.
-const GOLDEN_ANGLE: f64 = 2.399_963_229_728_653;
-
-/// The blur's tap offsets on a unit footprint, for every tap count n from 2 to
-/// [`GLOSSY_TABLE_MAX_TAPS`] (entry n(n − 1)/2 − 1 + k, two per `[f32; 4]`): tap k of n at
-/// radius r = √(ξ / (1 − ξ)), the GGX inverse CDF of the tangent at ξ = (k + ½) / n, and
-/// azimuth φ = k × the golden angle, as r (cos φ, sin φ). Computed here in f64 so that no
-/// pixel evaluates a square root, a sine or a cosine per tap.
-pub fn tap_table() -> [[f32; 4]; GLOSSY_TABLE_VEC4S] {
-    let mut flat = Vec::with_capacity(2 * GLOSSY_TABLE_VEC4S);
-    for n in 2..=GLOSSY_TABLE_MAX_TAPS {
-        for k in 0..n {
-            let xi = (f64::from(k) + 0.5) / f64::from(n);
-            let r = (xi / (1.0 - xi)).sqrt();
-            let phi = f64::from(k) * GOLDEN_ANGLE;
-            flat.push([(r * phi.cos()) as f32, (r * phi.sin()) as f32]);
-        }
-    }
-    let mut table = [[0.0; 4]; GLOSSY_TABLE_VEC4S];
-    for (e, [x, y]) in flat.into_iter().enumerate() {
-        table[e / 2][2 * (e % 2)] = x;
-        table[e / 2][2 * (e % 2) + 1] = y;
-    }
-    table
-}
-
 /// The plan's glossy shapes (at most [`GLOSSY_CAPACITY`]) as the shader reads them,
-/// relative to `eye`, each with its screen rectangle grown by a pixel; `max_taps` at most
-/// [`GLOSSY_TABLE_MAX_TAPS`].
+/// relative to `eye`, each with its screen rectangle grown by a pixel.
 pub fn glossy_shapes(table: &ShapeTable, plan: &FramePlan, eye: DVec3, max_taps: u32) -> GpuGlossyShapes {
     let [w, h] = plan.viewport;
     let glossy = &plan.glossy;
@@ -70,10 +41,9 @@ pub fn glossy_shapes(table: &ShapeTable, plan: &FramePlan, eye: DVec3, max_taps:
     GpuGlossyShapes {
         count: glossy.len().min(GLOSSY_CAPACITY) as u32,
         max_radius_px: MAX_FOOTPRINT * w.min(h) as f32,
-        max_taps: max_taps.min(GLOSSY_TABLE_MAX_TAPS),
+        max_taps,
         _pad: 0,
         shapes,
-        taps: tap_table(),
     }
 }
 
@@ -122,34 +92,6 @@ mod tests {
         let mirrors = plan([0.0; 3], &PlanParams::default());
         assert!(mirrors.glossy.is_empty(), "{mirrors}");
         assert!(!mirrors.passes().iter().any(|pass| pass.contains("glossy")), "{:?}", mirrors.passes());
-    }
-
-    #[test]
-    fn the_tap_table_holds_each_pattern_where_the_shader_looks() {
-        let table = super::tap_table();
-        // The shader's lookup: entry n(n - 1)/2 - 1 + k, two per vec4.
-        let tap = |n: u32, k: u32| {
-            let e = (n * (n - 1) / 2 - 1 + k) as usize;
-            let v = table[e / 2];
-            if e.is_multiple_of(2) { [v[0], v[1]] } else { [v[2], v[3]] }
-        };
-        for n in 2..=crate::gpu_types::GLOSSY_TABLE_MAX_TAPS {
-            for k in 0..n {
-                let xi = (f64::from(k) + 0.5) / f64::from(n);
-                let r = (xi / (1.0 - xi)).sqrt();
-                let [x, y] = tap(n, k);
-                assert!((f64::from(x).hypot(f64::from(y)) - r).abs() < 1e-5, "tap {k} of {n}: radius");
-                let phi = f64::from(y).atan2(f64::from(x));
-                let turn = (phi - f64::from(k) * 2.39996323).rem_euclid(std::f64::consts::TAU);
-                assert!(
-                    !(1e-4..=std::f64::consts::TAU - 1e-4).contains(&turn),
-                    "tap {k} of {n}: azimuth {phi}"
-                );
-            }
-        }
-        // The last pattern's last entry is the table's last.
-        let last = 16 * 17 / 2 - 1 - 1;
-        assert_eq!(last / 2 + 1, table.len());
     }
 
     #[test]

@@ -144,15 +144,5 @@ pub struct GpuGlossyShapes {
     pub max_taps: u32,
     pub _pad: u32,
     pub shapes: [GpuGlossyShape; GLOSSY_CAPACITY],
-    /// The blur's tap offsets, two per entry (`crate::glossy::tap_table`).
-    pub taps: [[f32; 4]; GLOSSY_TABLE_VEC4S],
 }
-const _: () =
-    assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 80 * GLOSSY_CAPACITY + 16 * GLOSSY_TABLE_VEC4S);
-
-/// Most taps per pixel the glossy tap table holds (`GLOSSY_TABLE_MAX_TAPS` of glossy.wgsl).
-pub const GLOSSY_TABLE_MAX_TAPS: u32 = 16;
-/// Entries of the tap table: n offsets for each n from 2 to [`GLOSSY_TABLE_MAX_TAPS`], two
-/// per entry.
-pub const GLOSSY_TABLE_VEC4S: usize =
-    ((GLOSSY_TABLE_MAX_TAPS * (GLOSSY_TABLE_MAX_TAPS + 1) / 2 - 1) as usize).div_ceil(2);
+const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 80 * GLOSSY_CAPACITY);

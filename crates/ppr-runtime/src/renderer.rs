@@ -121,10 +121,9 @@ pub struct DebugOptions {
     /// two by two sharing their neighbourhood reads (the layout before the quads; bench
     /// only, the same image).
     pub reflection_pixel_per_thread: bool,
-    /// The most taps per pixel of the glossy blur instead of the default (12; at most 16,
-    /// the tap table's patterns): what the blur's cost and accuracy are made of (0 and 1
-    /// leave the image sharp: 0 stops after the reflector lookup, 1 after the footprint,
-    /// for the bench's cost profile).
+    /// The most taps per pixel of the glossy blur instead of the default (12): what the
+    /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
+    /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
     pub glossy_taps: Option<u32>,
 }
 

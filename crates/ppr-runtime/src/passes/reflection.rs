@@ -33,9 +33,10 @@ pub struct ReflectionVariant {
     pub glossy: bool,
     /// Leave parts out to time the rest (bench only).
     pub ablation: ReflectionAblation,
-    /// One pixel per invocation (`main`) in direct dispatch too, instead of two by two
-    /// sharing their neighbourhood reads (`main_quads`); the same image (bench only).
-    /// Indirect dispatch always takes one pixel per invocation.
+    /// One pixel per invocation (`main`) for mirrors in direct dispatch too, instead of two
+    /// by two sharing their neighbourhood reads (`main_quads`); the same image (bench
+    /// only). Indirect dispatch, glossy and normal maps always take one pixel per
+    /// invocation ([`Self::quads`]).
     pub pixel_per_thread: bool,
 }
 
@@ -72,15 +73,18 @@ impl ReflectionVariant {
         usize::from(self.normal_maps) | usize::from(self.glossy) << 1
     }
 
-    /// The pipeline of this variant under direct or indirect dispatch (indirect dispatch
-    /// always takes one pixel per invocation).
+    /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
-        (indirect, self.index(), (self.pixel_per_thread || indirect, self.ablation))
+        (indirect, self.index(), (!self.quads(indirect), self.ablation))
     }
 
-    /// Whether direct dispatch runs `main_quads`.
-    fn quads(self) -> bool {
-        !self.pixel_per_thread
+    /// Whether the pass runs `main_quads`: mirrors in direct dispatch. On the H200 quads
+    /// took the mirror pass from 0.153-0.159 to 0.130-0.138 ms on full-screen 4K cameras
+    /// (1080p: within 0.002 ms); with the glossy blur they were slower at 1080p (0.063 ->
+    /// 0.075 ms on the demo's `cam_steps`) and mixed at 4K, and over active tiles 8 x 8
+    /// invocations a tile were slower than one pixel each (docs/perf/runtime.md).
+    fn quads(self, indirect: bool) -> bool {
+        !(self.pixel_per_thread || indirect || self.glossy || self.normal_maps)
     }
 }
 
@@ -227,7 +231,7 @@ impl ReflectionPass {
         viewport: [u32; 2],
         variant: ReflectionVariant,
     ) {
-        let (x, y) = if variant.quads() {
+        let (x, y) = if variant.quads(false) {
             let [w, h] = viewport;
             (w.div_ceil(QUAD_BLOCK), h.div_ceil(QUAD_BLOCK))
         } else {
