@@ -302,6 +302,7 @@ impl ReflectionRenderer {
         ReflectionVariant {
             normal_maps,
             glossy,
+            holes: self.settings.holes,
             ablation: self.debug.reflection_ablation,
             pixel_per_thread: self.debug.reflection_pixel_per_thread,
         }

@@ -31,12 +31,15 @@ pub struct ReflectionVariant {
     pub normal_maps: bool,
     /// Blur the reflections of reflectors with roughness (`glossy.wgsl`).
     pub glossy: bool,
+    /// The frame fills holes (`ReflectionSettings::holes`; a uniform flag, the pipeline
+    /// only picks the layout by it).
+    pub holes: bool,
     /// Leave parts out to time the rest (bench only).
     pub ablation: ReflectionAblation,
     /// One pixel per invocation (`main`) for mirrors in direct dispatch too, instead of two
     /// by two sharing their neighbourhood reads (`main_quads`); the same image (bench
-    /// only). Indirect dispatch, glossy and normal maps always take one pixel per
-    /// invocation ([`Self::quads`]).
+    /// only). Indirect dispatch, glossy, normal maps and frames without hole filling always
+    /// take one pixel per invocation ([`Self::quads`]).
     pub pixel_per_thread: bool,
 }
 
@@ -78,13 +81,14 @@ impl ReflectionVariant {
         (indirect, self.index(), (!self.quads(indirect), self.ablation))
     }
 
-    /// Whether the pass runs `main_quads`: mirrors in direct dispatch. On the H200 quads
-    /// took the mirror pass from 0.153-0.159 to 0.130-0.138 ms on full-screen 4K cameras
-    /// (1080p: within 0.002 ms); with the glossy blur they were slower at 1080p (0.063 ->
-    /// 0.075 ms on the demo's `cam_steps`) and mixed at 4K, and over active tiles 8 x 8
-    /// invocations a tile were slower than one pixel each (docs/perf/runtime.md).
+    /// Whether the pass runs `main_quads`: mirrors with hole filling in direct dispatch. On
+    /// the H200 quads took that pass from 0.147-0.159 to 0.121-0.133 ms on full-screen 4K
+    /// cameras (1080p: 0.000-0.002 ms slower); without hole filling they were slower
+    /// (0.069 -> 0.082 ms), with the glossy blur slower at 1080p (0.063 -> 0.075 ms on the
+    /// demo's `cam_steps`) and mixed at 4K, and over active tiles 8 x 8 invocations a tile
+    /// were slower than one pixel each (docs/perf/runtime.md, comparison.md).
     fn quads(self, indirect: bool) -> bool {
-        !(self.pixel_per_thread || indirect || self.glossy || self.normal_maps)
+        self.holes && !(self.pixel_per_thread || indirect || self.glossy || self.normal_maps)
     }
 }
 
@@ -185,16 +189,19 @@ impl ReflectionPass {
         compute_pipeline(device, &label, layout, module, entry, &constants)
     }
 
-    /// Builds the pipelines of `variant`'s layout and ablation (every dispatch, normal-map
-    /// and glossy variant) unless they exist.
+    /// Builds the pipelines of `variant`'s layout and ablation (every dispatch, normal-map,
+    /// glossy and hole-filling variant, so that settings may change after `prepare`) unless
+    /// they exist.
     pub fn prepare_variant(&mut self, device: &wgpu::Device, variant: ReflectionVariant) {
         for indirect in [false, true] {
             for index in 0..4 {
-                let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
-                let key = ReflectionVariant { normal_maps, glossy, ..variant }.key(indirect);
-                if !self.pipelines.contains_key(&key) {
-                    let p = Self::pipeline(device, &self.layout, &self.module, key);
-                    self.pipelines.insert(key, p);
+                for holes in [false, true] {
+                    let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
+                    let key = ReflectionVariant { normal_maps, glossy, holes, ..variant }.key(indirect);
+                    if !self.pipelines.contains_key(&key) {
+                        let p = Self::pipeline(device, &self.layout, &self.module, key);
+                        self.pipelines.insert(key, p);
+                    }
                 }
             }
         }
