@@ -80,9 +80,10 @@ pub struct PlanParams {
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
     /// at most this share of the screen. Measured on the H200 at 3840×2160
-    /// (docs/perf/scaling.md, 2026-12-02): the classification and the per-tile clear and
-    /// reflection are never slower than the full-screen passes up to 0.4 and slower from
-    /// 0.5 on.
+    /// (docs/perf/scaling.md, 2026-12-03): since the full-screen reflection runs two by two
+    /// pixels per invocation, the classification and the per-tile clear and reflection are
+    /// faster up to 0.3 (0.190 against 0.207 ms) and slower from 0.4 (0.214 against 0.207);
+    /// 0.35 lies between.
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
@@ -176,7 +177,7 @@ impl Default for PlanParams {
             super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
-            indirect_max_coverage: 0.4,
+            indirect_max_coverage: 0.35,
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
