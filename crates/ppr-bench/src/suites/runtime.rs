@@ -49,7 +49,9 @@ pub const GLOSSY_PROBE_TAPS: [u32; 4] = [0, 1, 4, 8];
 pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation); the
-/// `reflection: …` rows ablate the reflection pass instead.
+/// `reflection: …` rows ablate the reflection pass instead, the `reflection: mirrors …`
+/// rows without the glossy blur (two by two pixels per invocation in direct dispatch, or
+/// one pixel with `one pixel per thread`).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -73,9 +75,10 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
-        ("reflection: one pixel per thread", Choice::Auto, Ablation::None),
-        ("reflection: one pixel per thread, empty", Choice::Auto, Ablation::None),
-        ("reflection: one pixel per thread, no glossy", Choice::Auto, Ablation::None),
+        ("reflection: mirrors", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, empty", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, one pixel per thread", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, one pixel per thread, empty", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -216,7 +219,14 @@ pub fn run_runtime(
                     Some(r) if r.ends_with("no glossy") => ReflectionAblation::NoGlossy,
                     _ => ReflectionAblation::None,
                 };
-                let reflection_pixel_per_thread = name.starts_with("reflection: one pixel per thread");
+                let reflection_pixel_per_thread = name.contains("one pixel per thread");
+                // The `mirrors` rows leave the glossy blur off, as a set without roughness:
+                // the frames whose reflection pass runs two by two pixels per invocation.
+                let settings = if name.starts_with("reflection: mirrors") {
+                    ReflectionSettings { glossy: false, ..all }
+                } else {
+                    all
+                };
                 let debug = DebugOptions {
                     projection_ablation: ablation,
                     spread_quads,
@@ -224,7 +234,7 @@ pub fn run_runtime(
                     reflection_pixel_per_thread,
                     ..tuning
                 };
-                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, all));
+                variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, settings));
             }
         }
         for (suffix, params, reflectors, tuning, settings) in variants {
