@@ -774,6 +774,42 @@ mod tests {
     }
 
     #[test]
+    fn indirect_dispatch_runs_up_to_the_coverage_threshold() {
+        let d = PlanParams::default();
+        let camera =
+            Camera::look_at(DVec3::new(0.0, 4.0, 0.01), DVec3::ZERO, Vec3::NEG_Z, Projection::default());
+        let (mut direct, mut indirect) = (0, 0);
+        // One floor mirror seen from above, growing until it fills the screen.
+        for half in [0.2, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0] {
+            let mut set = ReflectorSet::new("floor");
+            set.reflectors.push(Reflector::new(
+                0,
+                "floor",
+                ReflectorKind::Opaque,
+                DVec3::ZERO,
+                DVec3::Y,
+                DVec3::X,
+                DVec2::splat(half),
+            ));
+            let table = ShapeTable::from_set(&set);
+            let p = FramePlan::build(&table, &camera, [320, 180], &d);
+            assert_eq!(p.indirect, p.coverage <= d.indirect_max_coverage, "half extent {half}: {p}");
+            if p.indirect {
+                indirect += 1;
+            } else {
+                direct += 1;
+            }
+            let forced =
+                FramePlan::build(&table, &camera, [320, 180], &PlanParams { indirect: Choice::On, ..d });
+            assert!(forced.indirect, "{forced}");
+        }
+        assert!(
+            direct > 0 && indirect > 0,
+            "the sizes span the threshold: {direct} direct, {indirect} indirect"
+        );
+    }
+
+    #[test]
     fn subgroup_culling_takes_the_counts_between_its_thresholds() {
         let d = PlanParams::default();
         for (n, subgroup, tiles) in [
