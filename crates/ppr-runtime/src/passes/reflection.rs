@@ -82,7 +82,7 @@ impl ReflectionVariant {
     }
 
     /// Whether the pass runs `main_quads`: mirrors with hole filling in direct dispatch. On
-    /// the H200 quads took that pass from 0.147-0.159 to 0.121-0.133 ms on full-screen 4K
+    /// the H200 quads took that pass from 0.147-0.159 to 0.121-0.134 ms on full-screen 4K
     /// cameras (1080p: 0.000-0.002 ms slower); without hole filling they were slower
     /// (0.069 -> 0.082 ms), with the glossy blur slower at 1080p (0.063 -> 0.075 ms on the
     /// demo's `cam_steps`) and mixed at 4K, and over active tiles 8 x 8 invocations a tile
