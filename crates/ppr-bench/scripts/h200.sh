@@ -15,9 +15,11 @@ C="--scenes-dir .gpu/scenes"
 R=/tmp/results
 mkdir -p "$R"
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
+# Each step packs the archive again, so that a call cut short brings back what it measured.
 step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
   timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
-  echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"; }
+  echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"
+  tar czf "$OUT/results.tar.gz" -C /tmp results; }
 step profile 90 $B runtime $C --projection-profile --write-probe --frames 20 --out $R/profile
 step scaling 250 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5
 T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
@@ -28,4 +30,3 @@ step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-r
 # Mirror facing mirror (docs/perf/comparison.md; 1080p in the 2026-12-02 run):
 step bounces 200 $B compare $C --out $R/bounces --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 1080p --frames 20 --technique ppr --technique ppr:reference-bounces=2 --technique ppr:bounces=2 --technique ppr:tier=half,bounces=2 --technique ssr-brute:reference-bounces=2 --technique exact --technique exact:bounces=2
 step collision 150 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
-tar czf "$OUT/results.tar.gz" -C /tmp results
