@@ -73,19 +73,18 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
 /// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
 /// at many plane offsets walked as a tree), `subgroups=on|off|auto` (the projection's
-/// subgroup culling), `hidden=on|off|auto` (hidden-shape culling), `fade=`, `replace-far=`,
+/// subgroup culling), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 12] = [
+const PPR_KEYS: [&str; 11] = [
     "culling",
     "indirect",
     "groups",
     "trees",
     "subgroups",
-    "hidden",
     "fade",
     "replace-far",
     "tier",
@@ -326,9 +325,6 @@ pub fn ppr_settings(
     }
     if let Some(v) = spec.param("subgroups") {
         params.subgroup_cull = parse_choice(v).map_err(BenchError::Spec)?;
-    }
-    if let Some(v) = spec.param("hidden") {
-        params.hidden_culling = parse_choice(v).map_err(BenchError::Spec)?;
     }
     Ok(Some((settings, params)))
 }

@@ -2,14 +2,11 @@
 // the projection skips them (many reflectors behind walls: mazes, real levels).
 //
 // With depth occlusion, a write of the projection lands at a pixel of its reflector's
-// projected rectangle, and only where the surface seen there does not lie in front of the
+// screen rectangle, and only where the surface seen there does not lie in front of the
 // reflector's plane by more than its on-plane tolerance (projection.wgsl's occluded_at; a
 // pixel on a glass layer or without a surface never hides). A test for which every pixel of
 // its rectangle, widened by a pixel for rounding, shows a surface in front of its plane
 // takes no write at all: skipping it leaves the intermediate buffer the same, bit for bit.
-// Its region (crates/ppr-runtime/src/hidden_regions.rs) is the projected quadrilateral, as
-// a bounding box widened by a pixel and four edges widened by EDGE_MARGIN_PX, so that a
-// pixel centre tests for the whole pixel.
 //
 // `mark` (one workgroup per 32x32 block, four pixels per thread) sets `seen` for each test
 // whose rectangle meets the block and that some pixel of the block does not hide: first
@@ -18,8 +15,8 @@
 // empties the source box of each test left unseen; every reader of source boxes (the
 // super-tile and block lists, the projection's loop and its subgroup culling) then skips it.
 //
-// A region with rect.x = KEEP belongs to a test never skipped (a parallel tree: its
-// members' planes differ).
+// Layout: `hidden_rects`, per test, its screen rectangle (min.xy, max.xy exclusive), or
+// x = KEEP for a test never skipped (a parallel tree: its members' planes differ).
 
 override LAYERS: bool = false;
 
@@ -28,21 +25,12 @@ override LAYERS: bool = false;
 @group(0) @binding(2) var<storage, read> shapes: array<Shape>;
 @group(0) @binding(3) var<storage, read> tests: array<ShapeTest>;
 @group(0) @binding(4) var<storage, read> layers: array<Layer>;
-@group(0) @binding(5) var<storage, read> regions: array<HiddenRegion>;
+@group(0) @binding(5) var<storage, read> hidden_rects: array<vec4<u32>>;
 // Per test: 1 once some pixel may show it (cleared to 0 before `mark`).
 @group(0) @binding(6) var<storage, read_write> seen: array<atomic<u32>>;
 @group(0) @binding(7) var<storage, read_write> source_boxes: array<vec4<u32>>;
 
 const KEEP: u32 = 0xffffffffu;
-// hidden_regions.rs's EDGE_MARGIN_PX.
-const EDGE_MARGIN_PX: f32 = 1.5;
-
-// A test's screen region: the bounding box (min.xy, max.xy exclusive) and four edge
-// functions (a, b, c): a pixel centre (x, y) is inside when a x + b y + c >= -EDGE_MARGIN_PX.
-struct HiddenRegion {
-    rect: vec4<u32>,
-    edges: array<vec4<f32>, 4>,
-}
 
 // The block's candidates of one chunk that its box does not settle, and which of them
 // some pixel shows.
@@ -54,15 +42,9 @@ var<workgroup> hits: array<atomic<u32>, 8>;
 var<workgroup> block_open: atomic<u32>;
 var<workgroup> block_tolerance: atomic<u32>;
 
-// Whether pixel `p` lies in the region: its box widened by a pixel on every side, and
-// its centre within the margin of every edge.
-fn in_region(g: HiddenRegion, p: vec2<u32>) -> bool {
-    if (!(all(p + 1u >= g.rect.xy) && all(p < g.rect.zw + 1u))) {
-        return false;
-    }
-    let c = vec3<f32>(vec2<f32>(p) + 0.5, 1.0);
-    return dot(g.edges[0].xyz, c) >= -EDGE_MARGIN_PX && dot(g.edges[1].xyz, c) >= -EDGE_MARGIN_PX
-        && dot(g.edges[2].xyz, c) >= -EDGE_MARGIN_PX && dot(g.edges[3].xyz, c) >= -EDGE_MARGIN_PX;
+// Whether pixel `p` lies in rectangle `r` widened by a pixel on every side.
+fn in_rect(r: vec4<u32>, p: vec2<u32>) -> bool {
+    return all(p + 1u >= r.xy) && all(p < r.zw + 1u);
 }
 
 // Whether the block [lo, hi) meets rectangle `r` widened by a pixel.
@@ -115,9 +97,9 @@ fn hiding_position(p: vec2<u32>) -> vec4<f32> {
     return q;
 }
 
-// Whether pixel `p` at `q` (hiding_position) shows the test with region `g`, plane `pl`.
-fn pixel_shows(p: vec2<u32>, q: vec4<f32>, g: HiddenRegion, pl: vec4<f32>) -> bool {
-    return q.w > 0.0 && in_region(g, p) && shows(q, pl);
+// Whether pixel `p` at `q` (hiding_position) shows the test with rectangle `r`, plane `pl`.
+fn pixel_shows(p: vec2<u32>, q: vec4<f32>, r: vec4<u32>, pl: vec4<f32>) -> bool {
+    return q.w > 0.0 && in_rect(r, p) && shows(q, pl);
 }
 
 @compute @workgroup_size(16, 16)
@@ -161,7 +143,7 @@ fn mark(
     for (var first = 0u; first < count; first += TILE_GROUP_THREADS) {
         let k = first + lid;
         if (k < count) {
-            let r = regions[k].rect;
+            let r = hidden_rects[k];
             if (r.x != KEEP && rect_meets(r, lo, hi) && atomicLoad(&seen[k]) == 0u) {
                 let pl = tests[k].plane;
                 if (open) {
@@ -177,10 +159,10 @@ fn mark(
         let n = atomicLoad(&list_len);
         for (var i = 0u; i < n; i++) {
             let t = list[i];
-            let g = regions[t];
+            let r = hidden_rects[t];
             let pl = tests[t].plane;
-            if (pixel_shows(p0, q0, g, pl) || pixel_shows(p1, q1, g, pl) || pixel_shows(p2, q2, g, pl)
-                || pixel_shows(p3, q3, g, pl)) {
+            if (pixel_shows(p0, q0, r, pl) || pixel_shows(p1, q1, r, pl) || pixel_shows(p2, q2, r, pl)
+                || pixel_shows(p3, q3, r, pl)) {
                 atomicOr(&hits[i / 32u], 1u << (i % 32u));
             }
         }
@@ -202,7 +184,7 @@ fn mark(
 @compute @workgroup_size(64)
 fn apply(@builtin(global_invocation_id) gid: vec3<u32>) {
     let k = gid.x;
-    if (k < frame.tested_count && regions[k].rect.x != KEEP && atomicLoad(&seen[k]) == 0u) {
+    if (k < frame.tested_count && hidden_rects[k].x != KEEP && atomicLoad(&seen[k]) == 0u) {
         source_boxes[k] = vec4<u32>(0u);
     }
 }

@@ -23,7 +23,7 @@ pub(crate) enum UploadTarget {
     Tests,
     UniformTests,
     SourceRects,
-    HiddenRegions,
+    HiddenRects,
     PlaneGroups,
     Glossy,
 }
@@ -39,7 +39,7 @@ impl UploadTarget {
             Self::Tests => &b.tests,
             Self::UniformTests => &b.uniform_tests,
             Self::SourceRects => &b.source_rects,
-            Self::HiddenRegions => &b.hidden_regions,
+            Self::HiddenRects => &b.hidden_rects,
             Self::PlaneGroups => &b.plane_groups,
             Self::Glossy => &b.glossy,
         }

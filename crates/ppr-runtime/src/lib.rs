@@ -21,7 +21,6 @@ mod frame_upload;
 mod glossy;
 #[doc(hidden)]
 pub mod gpu_types;
-pub mod hidden_regions;
 #[doc(hidden)]
 pub mod parallel_trees;
 #[doc(hidden)]
@@ -50,7 +49,6 @@ mod wgpu_compat;
 
 pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
-pub use hidden_regions::HiddenRegion;
 pub use passes::projection::Ablation;
 pub use passes::reflection::{OUTPUT_FORMAT, ReflectionAblation};
 pub use plan::{Choice, FramePlan, PlanParams, ScreenRect, TestedEntry};

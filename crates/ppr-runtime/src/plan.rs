@@ -7,7 +7,6 @@ use ppr_format::ReflectorKind;
 
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
-use crate::hidden_regions::HiddenRegion;
 use crate::parallel_trees::FrameTree;
 use crate::shapes::{ShapeSource, ShapeTable};
 use crate::source_box::source_rect;
@@ -260,9 +259,10 @@ pub struct FramePlan {
     pub source_rects: Vec<ScreenRect>,
     /// Whether the hidden-shape pass runs ([`PlanParams::hidden_culling`]).
     pub hidden_culling: bool,
-    /// With hidden-shape culling, per entry of `tested`, the screen region its writes land
-    /// in ([`HiddenRegion::KEEP`] for a parallel tree: never skipped).
-    pub hidden_regions: Vec<HiddenRegion>,
+    /// With hidden-shape culling, per entry of `tested`, the screen rectangle its writes land
+    /// in (min x, min y, max x, max y, exclusive), or
+    /// [`crate::passes::hidden_shapes::KEEP_RECT`] for a parallel tree (never skipped).
+    pub hidden_rects: Vec<[u32; 4]>,
     /// Shapes disabled in the set.
     pub disabled: usize,
     /// Shapes whose reflecting side faces away from the camera (or the camera is on the plane).
@@ -332,7 +332,7 @@ impl FramePlan {
             trees: Vec::new(),
             source_rects: Vec::new(),
             hidden_culling: false,
-            hidden_regions: Vec::new(),
+            hidden_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
             culled_frustum: 0,
@@ -444,16 +444,20 @@ impl FramePlan {
             && !plan.occluder_tests
             && !plan.parallel_rule;
         if plan.hidden_culling {
-            let region = |s: &ShapeSource| HiddenRegion::of(s, camera.position, &clip_from_rel, viewport);
-            plan.hidden_regions = plan
+            let rect = |s: &ShapeSource| {
+                let clip = s.corners().map(|c| clip_from_rel * (c - camera.position).as_vec3().extend(1.0));
+                let r = screen_rect(&clip, viewport);
+                [r.min[0], r.min[1], r.max[0], r.max[1]]
+            };
+            plan.hidden_rects = plan
                 .tested
                 .iter()
                 .map(|e| match *e {
-                    TestedEntry::Shape(i) => region(&table.shapes[i as usize]),
+                    TestedEntry::Shape(i) => rect(&table.shapes[i as usize]),
                     TestedEntry::PlaneGroup(g) => {
-                        region(&table.plane_groups.groups[g as usize].bounding_shape())
+                        rect(&table.plane_groups.groups[g as usize].bounding_shape())
                     }
-                    TestedEntry::ParallelTree(_) => HiddenRegion::KEEP,
+                    TestedEntry::ParallelTree(_) => crate::passes::hidden_shapes::KEEP_RECT,
                 })
                 .collect();
         }

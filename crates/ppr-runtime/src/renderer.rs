@@ -396,7 +396,7 @@ impl ReflectionRenderer {
                     if plan.uniform_tests { bytemuck::cast_slice(&tests.tests[..tests.looped]) } else { &[] },
                 ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
-                (UploadTarget::HiddenRegions, bytemuck::cast_slice(&plan.hidden_regions)),
+                (UploadTarget::HiddenRects, bytemuck::cast_slice(&plan.hidden_rects)),
                 (UploadTarget::PlaneGroups, bytemuck::cast_slice(&tests.group_words)),
                 (
                     UploadTarget::Glossy,
@@ -569,7 +569,7 @@ impl ReflectionRenderer {
                         shapes: &b.shapes,
                         tests: &b.tests,
                         layers: &b.layers,
-                        hidden_regions: &b.hidden_regions,
+                        hidden_rects: &b.hidden_rects,
                         seen: &b.seen,
                         source_boxes: &b.source_rects,
                     },

@@ -126,26 +126,6 @@ mod tests {
         assert_eq!(size("EncodingParams"), std::mem::size_of::<crate::encoding::EncodingParams>());
     }
 
-    /// The hidden-shape pass reads the regions the plan builds: the struct's size and the
-    /// edge margin agree.
-    #[test]
-    fn hidden_regions_match_their_rust_mirror() {
-        use crate::hidden_regions::{EDGE_MARGIN_PX, HiddenRegion};
-        let source = super::source_with(&[super::VIEW, super::TILE_TEST], crate::passes::hidden_shapes::WGSL);
-        let module =
-            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
-        assert_eq!(struct_size(&module, "HiddenRegion"), std::mem::size_of::<HiddenRegion>());
-        let margin = module
-            .constants
-            .iter()
-            .find(|(_, c)| c.name.as_deref() == Some("EDGE_MARGIN_PX"))
-            .map(|(_, c)| &module.global_expressions[c.init]);
-        assert!(
-            matches!(margin, Some(naga::Expression::Literal(naga::Literal::F32(m))) if *m == EDGE_MARGIN_PX),
-            "{margin:?}"
-        );
-    }
-
     /// The constants both sides use have the same values (flags, kinds, tile and block
     /// sizes, list capacities, the encoding's bit counts), and the shape tests and the
     /// uniform copy of them have their Rust sizes.

@@ -9,22 +9,13 @@ use crate::report::csv_file::{CsvTable, num};
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
 use crate::suites::scaling::{
-    CULLING_OFF, CULLING_ON, HIDDEN_ON, NO_HIDDEN, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUBGROUPS_ON,
-    SUPER_TILES, ScalingOutcome, ScalingRow, crossover, indirect_crossover,
+    CULLING_OFF, CULLING_ON, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUBGROUPS_ON, SUPER_TILES,
+    ScalingOutcome, ScalingRow, crossover, indirect_crossover,
 };
 
 /// The culling variants, in table and plot order.
-const VARIANTS: [&str; 9] = [
-    CULLING_OFF,
-    CULLING_ON,
-    SUPER_TILES,
-    PLANE_GROUPS,
-    PARALLEL_TREES,
-    NO_SUBGROUPS,
-    SUBGROUPS_ON,
-    NO_HIDDEN,
-    HIDDEN_ON,
-];
+const VARIANTS: [&str; 7] =
+    [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES, NO_SUBGROUPS, SUBGROUPS_ON];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {
@@ -128,9 +119,6 @@ pub fn write_scaling_report(
         "#trees: projection",
         "#trees: total",
         "#no subgroups: total",
-        "#no hidden: total",
-        "#hidden on: skipped",
-        "#hidden on: total",
         "#on: overhead",
         "#super: overhead",
         "#groups: overhead",
@@ -176,11 +164,6 @@ pub fn write_scaling_report(
                 ms(tree_ms(|r| r.pass_ms("projection"))),
                 ms(tree_ms(ScalingRow::total_ms)),
                 ms(find(&o.rows, f, n, NO_SUBGROUPS).map_or(f64::NAN, ScalingRow::total_ms)),
-                ms(find(&o.rows, f, n, NO_HIDDEN).map_or(f64::NAN, ScalingRow::total_ms)),
-                find(&o.rows, f, n, HIDDEN_ON)
-                    .and_then(|r| r.skipped.map(|k| format!("{k} / {}", r.tested)))
-                    .unwrap_or_else(|| "–".into()),
-                ms(find(&o.rows, f, n, HIDDEN_ON).map_or(f64::NAN, ScalingRow::total_ms)),
                 ms(on.total_ms() - base(CULLING_ON)),
                 ms(sup_ms(ScalingRow::total_ms) - base(SUPER_TILES)),
                 ms(grp_ms(ScalingRow::total_ms) - base(PLANE_GROUPS)),
@@ -199,9 +182,7 @@ pub fn write_scaling_report(
          (`tests`: the projection's tests per pixel loop), culling as the plan picks it; \
          `trees`: parallel families walked as trees, plane groups and culling as the plan \
          picks them; every variant with the projection's subgroup culling where the device \
-         has subgroups, but `no subgroups`: the plan's own choices without it; `no hidden`: \
-         the plan's own choices without hidden-shape culling, `hidden on`: with it forced on \
-         (`skipped`: the tests its pass found that no pixel shows, of all tests).)\n\n\
+         has subgroups, but `no subgroups`: the plan's own choices without it.)\n\n\
          Growth of the total between successive counts, as the exponent k of time ∝ shapesᵏ:\n"
     );
     for f in &families {
@@ -228,8 +209,6 @@ pub fn write_scaling_report(
         "#parallel trees: total ms",
         "#no subgroup culling: total ms",
         "#subgroup culling on: total ms",
-        "#no hidden culling: total ms",
-        "#hidden culling on: total ms",
         "fastest",
     ]);
     let mut tcounts: Vec<usize> = o.threshold_rows.iter().map(|r| r.shapes).collect();
@@ -266,19 +245,16 @@ pub fn write_scaling_report(
         let s = crossover(&o.threshold_rows, f, SUPER_TILES, CULLING_ON);
         let g = crossover(&o.threshold_rows, f, PLANE_GROUPS, CULLING_OFF);
         let p = crossover(&o.threshold_rows, f, PARALLEL_TREES, PLANE_GROUPS);
-        let h = crossover(&o.threshold_rows, f, HIDDEN_ON, NO_HIDDEN);
         let _ = writeln!(
             md,
             "- {f}: culling is never slower than none from {} shapes on; super-tiles never slower \
              than flat tile lists from {} shapes on; plane groups never slower than every shape \
              alone without culling from {} shapes on; parallel trees never slower than the plan \
-             without them from {} shapes on; hidden-shape culling never slower than the plan \
-             without it from {} shapes on",
+             without them from {} shapes on",
             c.map_or_else(never, |n| n.to_string()),
             s.map_or_else(never, |n| n.to_string()),
             g.map_or_else(never, |n| n.to_string()),
-            p.map_or_else(never, |n| n.to_string()),
-            h.map_or_else(never, |n| n.to_string())
+            p.map_or_else(never, |n| n.to_string())
         );
     }
     let _ = writeln!(md, "\n## Indirect-dispatch threshold (`PlanParams::indirect_max_coverage`)\n");

@@ -72,7 +72,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("no subgroup culling", Choice::Auto, Ablation::None),
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
-        ("hidden culling on", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -207,9 +206,6 @@ pub fn run_runtime(
                     params.subgroup_cull = Choice::Off;
                 } else if name.starts_with("subgroup culling on") {
                     params.subgroup_cull = Choice::On;
-                }
-                if name == "hidden culling on" {
-                    params.hidden_culling = Choice::On;
                 }
 
                 let spread_quads = name.starts_with("spread quads");

@@ -47,8 +47,6 @@ pub struct ScalingRow {
     pub tested: usize,
     /// Share of the screen the plan's screen rectangles cover.
     pub coverage: f32,
-    /// With hidden-shape culling, the tests its pass found that no pixel shows (skipped).
-    pub skipped: Option<usize>,
     /// Passes the plan ran.
     pub passes: String,
     pub timings: TimingSeries,
@@ -114,10 +112,6 @@ impl Measurer<'_> {
                 PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params)?;
             let run = self.frames.run(device, queue, &mut ppr, &frame, &g.camera, self.size);
             let plan = ppr.renderer().plan().cloned();
-            let skipped = match &plan {
-                Some(p) if p.hidden_culling => Some(skipped_tests(self.gpu, &mut ppr, p)?),
-                _ => None,
-            };
             eprintln!(
                 "scaling: {} {} shapes, {variant}: {:.3} ms",
                 g.family.as_str(),
@@ -131,7 +125,6 @@ impl Measurer<'_> {
                 visible: plan.as_ref().map_or(0, |p| p.visible.len()),
                 tested: plan.as_ref().map_or(0, |p| p.tested.len()),
                 coverage: plan.as_ref().map_or(0.0, |p| p.coverage),
-                skipped,
                 passes: plan.as_ref().map_or(String::new(), |p| p.passes().join(" → ")),
                 timings: run.timings,
                 source: run.source,
@@ -139,25 +132,6 @@ impl Measurer<'_> {
         }
         Ok(rows)
     }
-}
-
-/// How many of the last frame's tests the hidden-shape pass left unseen (never a parallel
-/// tree's, which it does not look at).
-fn skipped_tests(
-    gpu: &GpuContext,
-    ppr: &mut PprRunner,
-    plan: &ppr_runtime::FramePlan,
-) -> Result<usize, BenchError> {
-    let Some(buffer) = ppr.renderer().seen_tests_buffer() else {
-        return Ok(0);
-    };
-    let seen = crate::buffer_readback::read_buffer_u32(&gpu.device, &gpu.queue, buffer)?;
-    Ok(plan
-        .hidden_regions
-        .iter()
-        .zip(&seen)
-        .filter(|&(r, &s)| *r != ppr_runtime::HiddenRegion::KEEP && s == 0)
-        .count())
 }
 
 /// Culling forced, every visible shape tested alone (no merged plane groups or trees).
@@ -188,11 +162,6 @@ pub const NO_SUBGROUPS: &str = "no subgroup culling";
 /// The plan's own choices with the projection's subgroup culling forced on (where its
 /// threshold comes from).
 pub const SUBGROUPS_ON: &str = "subgroup culling on";
-/// The plan's own choices without hidden-shape culling (what it buys).
-pub const NO_HIDDEN: &str = "no hidden culling";
-/// The plan's own choices with hidden-shape culling forced on (where its threshold comes
-/// from).
-pub const HIDDEN_ON: &str = "hidden culling on";
 
 /// Runs the suite.
 ///
@@ -215,8 +184,6 @@ pub fn run_scaling(
         (PARALLEL_TREES, PlanParams { parallel_trees: Choice::On, ..PlanParams::default() }),
         (NO_SUBGROUPS, PlanParams { subgroup_cull: Choice::Off, ..PlanParams::default() }),
         (SUBGROUPS_ON, PlanParams { subgroup_cull: Choice::On, ..PlanParams::default() }),
-        (NO_HIDDEN, PlanParams { hidden_culling: Choice::Off, ..PlanParams::default() }),
-        (HIDDEN_ON, PlanParams { hidden_culling: Choice::On, ..PlanParams::default() }),
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {

@@ -7,6 +7,9 @@ use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_
 
 pub const WGSL: &str = include_str!("../../shaders/hidden_shapes.wgsl");
 
+/// The `hidden_rects` entry of a test that is never skipped (a parallel tree).
+pub const KEEP_RECT: [u32; 4] = [u32::MAX; 4];
+
 /// Buffers and views the pass reads and writes.
 pub struct HiddenShapeBindings<'a> {
     pub uniforms: &'a wgpu::Buffer,
@@ -15,9 +18,8 @@ pub struct HiddenShapeBindings<'a> {
     /// Per test, its planes (`ShapeTest`).
     pub tests: &'a wgpu::Buffer,
     pub layers: &'a wgpu::Buffer,
-    /// Per test, the screen region its writes land in
-    /// ([`crate::hidden_regions::HiddenRegion`]).
-    pub hidden_regions: &'a wgpu::Buffer,
+    /// Per test, the screen rectangle its writes land in ([`KEEP_RECT`]: never skipped).
+    pub hidden_rects: &'a wgpu::Buffer,
     /// Per test, whether some pixel may show it (cleared before the pass).
     pub seen: &'a wgpu::Buffer,
     /// Per test, its source box: emptied for the tests no pixel shows.
@@ -78,7 +80,7 @@ impl HiddenShapePass {
                 entry(2, b.shapes),
                 entry(3, b.tests),
                 entry(4, b.layers),
-                entry(5, b.hidden_regions),
+                entry(5, b.hidden_rects),
                 entry(6, b.seen),
                 entry(7, b.source_boxes),
             ],
