@@ -93,12 +93,3 @@ struct Shape {
     _pad1: u32,
     _pad2: u32,
 }
-
-// Whether the camera-relative position `q` (its on-plane tolerance in w) lies on shape
-// `s`'s rectangle.
-fn ppr_on_shape(q: vec4<f32>, s: Shape) -> bool {
-    let l = q.xyz - s.center;
-    return abs(dot(q.xyz, s.normal) - s.plane_dist) <= q.w
-        && abs(dot(l, s.axis_u)) <= s.half_u + q.w
-        && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
-}

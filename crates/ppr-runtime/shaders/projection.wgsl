@@ -290,11 +290,19 @@ fn occluded_at(t: vec2<u32>, n: vec3<f32>, d: f32) -> bool {
         return false;
     }
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
-        if (layers[l].kind == PPR_KIND_TRANSPARENT && ppr_on_shape(q, shapes[layers[l].shape])) {
+        if (layers[l].kind == PPR_KIND_TRANSPARENT && on_shape(q, shapes[layers[l].shape])) {
             return false;
         }
     }
     return true;
+}
+
+// Whether the position `q` (its on-plane tolerance in w) lies on shape `s`'s rectangle.
+fn on_shape(q: vec4<f32>, s: Shape) -> bool {
+    let l = q.xyz - s.center;
+    return abs(dot(q.xyz, s.normal) - s.plane_dist) <= q.w
+        && abs(dot(l, s.axis_u)) <= s.half_u + q.w
+        && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
 }
 
 // Writes the reflection of `pixel` into the main intermediate buffer (not where the plane

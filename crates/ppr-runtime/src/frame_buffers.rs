@@ -19,10 +19,6 @@ pub(crate) struct FrameBuffers {
     pub screen_rects: wgpu::Buffer,
     /// Per visible shape, the screen box of the pixels that may reflect into it.
     pub source_rects: wgpu::Buffer,
-    /// Per projection test, the screen rectangle the hidden-shape pass looks at.
-    pub hidden_rects: wgpu::Buffer,
-    /// Per projection test, whether some pixel may show it (the hidden-shape pass).
-    pub seen: wgpu::Buffer,
     /// Per projection test and layer, then per parallel tree member, its test planes.
     pub tests: wgpu::Buffer,
     /// The first [`UNIFORM_TESTS_CAPACITY`] of `tests`, as a uniform buffer.
@@ -85,8 +81,6 @@ impl FrameBuffers {
             visible: buffer("ppr visible shapes", 4 * n, storage),
             screen_rects: buffer("ppr screen rects", 16 * n, storage),
             source_rects: buffer("ppr source rects", 16 * n, storage),
-            hidden_rects: buffer("ppr hidden-shape rects", 16 * n, storage),
-            seen: buffer("ppr seen tests", 4 * n, readable),
             // The loop's tests (entries and layers), then the parallel trees' members: each
             // shape at most once, plus one entry per tree.
             tests: buffer("ppr shape tests", 2 * n * std::mem::size_of::<GpuShapeTest>() as u64, storage),

@@ -23,7 +23,6 @@ pub(crate) enum UploadTarget {
     Tests,
     UniformTests,
     SourceRects,
-    HiddenRects,
     PlaneGroups,
     Glossy,
 }
@@ -39,7 +38,6 @@ impl UploadTarget {
             Self::Tests => &b.tests,
             Self::UniformTests => &b.uniform_tests,
             Self::SourceRects => &b.source_rects,
-            Self::HiddenRects => &b.hidden_rects,
             Self::PlaneGroups => &b.plane_groups,
             Self::Glossy => &b.glossy,
         }

@@ -158,16 +158,6 @@ pub struct PlanParams {
     /// first count where lists win, 0.43 against 0.47). Subgroup culling sorts at most 128
     /// candidates.
     pub subgroup_tile_culling_min_shapes: usize,
-    /// Before the projection, find the tests whose reflector no pixel shows (every pixel of
-    /// its screen rectangle sees a surface in front of its plane: a wall behind other walls)
-    /// and skip them ([`crate::passes::HiddenShapePass`]); the image is the same bit for
-    /// bit. Only with depth occlusion and source boxes, without the occluder lists or the
-    /// parallel rule (under which a hidden nearer plane still suppresses a farther one's
-    /// write). `Auto`: from [`Self::hidden_culling_min_shapes`] tested entries on.
-    pub hidden_culling: Choice,
-    /// With `Auto`, hidden-shape culling runs from this many tested entries on.
-    /// Provisional, not yet timed on a GPU.
-    pub hidden_culling_min_shapes: usize,
 }
 
 /// Default [`PlanParams::max_roughness`]: the extractor's own limit for metals (0.5), so
@@ -203,8 +193,6 @@ impl Default for PlanParams {
             subgroup_cull: Choice::Auto,
             subgroup_cull_min_shapes: 16,
             subgroup_tile_culling_min_shapes: 128,
-            hidden_culling: Choice::Auto,
-            hidden_culling_min_shapes: 32,
         }
     }
 }
@@ -257,12 +245,6 @@ pub struct FramePlan {
     /// With source boxes: the screen box of the pixels that may reflect into each entry of
     /// `tested`, then into each layer (`crate::source_box`). Empty without.
     pub source_rects: Vec<ScreenRect>,
-    /// Whether the hidden-shape pass runs ([`PlanParams::hidden_culling`]).
-    pub hidden_culling: bool,
-    /// With hidden-shape culling, per entry of `tested`, the screen rectangle its writes land
-    /// in (min x, min y, max x, max y, exclusive), or
-    /// [`crate::passes::hidden_shapes::KEEP_RECT`] for a parallel tree (never skipped).
-    pub hidden_rects: Vec<[u32; 4]>,
     /// Shapes disabled in the set.
     pub disabled: usize,
     /// Shapes whose reflecting side faces away from the camera (or the camera is on the plane).
@@ -331,8 +313,6 @@ impl FramePlan {
             grouped_shapes: 0,
             trees: Vec::new(),
             source_rects: Vec::new(),
-            hidden_culling: false,
-            hidden_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
             culled_frustum: 0,
@@ -437,29 +417,6 @@ impl FramePlan {
                     .expect("a tree has members"),
             });
             plan.source_rects = entries.chain(layers).collect();
-        }
-        plan.hidden_culling = params.hidden_culling.decide(tested >= params.hidden_culling_min_shapes)
-            && plan.depth_occlusion
-            && !plan.source_rects.is_empty()
-            && !plan.occluder_tests
-            && !plan.parallel_rule;
-        if plan.hidden_culling {
-            let rect = |s: &ShapeSource| {
-                let clip = s.corners().map(|c| clip_from_rel * (c - camera.position).as_vec3().extend(1.0));
-                let r = screen_rect(&clip, viewport);
-                [r.min[0], r.min[1], r.max[0], r.max[1]]
-            };
-            plan.hidden_rects = plan
-                .tested
-                .iter()
-                .map(|e| match *e {
-                    TestedEntry::Shape(i) => rect(&table.shapes[i as usize]),
-                    TestedEntry::PlaneGroup(g) => {
-                        rect(&table.plane_groups.groups[g as usize].bounding_shape())
-                    }
-                    TestedEntry::ParallelTree(_) => crate::passes::hidden_shapes::KEEP_RECT,
-                })
-                .collect();
         }
         plan
     }
@@ -621,9 +578,6 @@ impl FramePlan {
             (true, true) => "clear (tiles)",
             (true, false) => "clear",
         });
-        if self.hidden_culling {
-            passes.push("hidden shapes");
-        }
         passes.push(match (self.tile_culling, self.super_tiles, self.subgroup_cull) {
             (true, true, false) => "projection (super-tiles, tiled)",
             (true, false, false) => "projection (tiled)",

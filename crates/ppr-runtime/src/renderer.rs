@@ -15,7 +15,6 @@ use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
-use crate::passes::hidden_shapes::HiddenShapeBindings;
 use crate::passes::layer_reflection::LayerBindings;
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
@@ -23,7 +22,7 @@ use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::upsample::UpsampleBindings;
 use crate::passes::{
-    Ablation, BlockListPass, ClearPass, DownsamplePass, HiddenShapePass, LayerReflectionPass, ProjectionPass,
+    Ablation, BlockListPass, ClearPass, DownsamplePass, LayerReflectionPass, ProjectionPass,
     ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
 };
 use crate::plan::{Choice, FramePlan, PlanParams};
@@ -160,7 +159,6 @@ pub struct ReflectionRenderer {
     clear: ClearPass,
     super_tile_lists: SuperTileListPass,
     block_lists: BlockListPass,
-    hidden_shapes: HiddenShapePass,
     projection: ProjectionPass,
     reflection: ReflectionPass,
     layer_reflection: LayerReflectionPass,
@@ -192,7 +190,6 @@ impl ReflectionRenderer {
             clear: ClearPass::new(device),
             super_tile_lists: SuperTileListPass::new(device),
             block_lists: BlockListPass::new(device),
-            hidden_shapes: HiddenShapePass::new(device),
             projection: ProjectionPass::new(device),
             reflection: ReflectionPass::new(device),
             layer_reflection: LayerReflectionPass::new(device),
@@ -396,7 +393,6 @@ impl ReflectionRenderer {
                     if plan.uniform_tests { bytemuck::cast_slice(&tests.tests[..tests.looped]) } else { &[] },
                 ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
-                (UploadTarget::HiddenRects, bytemuck::cast_slice(&plan.hidden_rects)),
                 (UploadTarget::PlaneGroups, bytemuck::cast_slice(&tests.group_words)),
                 (
                     UploadTarget::Glossy,
@@ -531,9 +527,6 @@ impl ReflectionRenderer {
                 count(1);
             }
         }
-        if plan.hidden_culling {
-            encoder.clear_buffer(&b.seen, 0, None);
-        }
         {
             let bg = self.projection.bind_group(
                 device,
@@ -559,25 +552,6 @@ impl ReflectionRenderer {
                 timestamp_writes: timestamps(2),
             });
             let source_boxes = !plan.source_rects.is_empty();
-            if plan.hidden_culling {
-                // In the projection's compute pass too; `seen` was cleared above.
-                let hidden = self.hidden_shapes.bind_group(
-                    device,
-                    &HiddenShapeBindings {
-                        uniforms: &b.uniforms,
-                        depth,
-                        shapes: &b.shapes,
-                        tests: &b.tests,
-                        layers: &b.layers,
-                        hidden_rects: &b.hidden_rects,
-                        seen: &b.seen,
-                        source_boxes: &b.source_rects,
-                    },
-                );
-                let tests = plan.tested.len() as u32;
-                self.hidden_shapes.encode(&mut pass, &hidden, plan.viewport, tests, !plan.layers.is_empty());
-                count(2);
-            }
             if plan.super_tiles {
                 // In the projection's compute pass: its timestamps cover the lists too, and
                 // the next dispatches see this one's writes.
@@ -752,14 +726,6 @@ impl ReflectionRenderer {
     /// `None` before the first [`Self::prepare`].
     pub fn intermediate_buffer(&self) -> Option<&wgpu::Buffer> {
         self.buffers.as_ref().map(|b| &b.intermediate)
-    }
-
-    /// With [`FramePlan::hidden_culling`], one u32 per entry of the plan's `tested`: 1 where
-    /// the hidden-shape pass found that some pixel may show it, 0 where the projection
-    /// skipped it (for debug views, the bench and tests). `None` before the first
-    /// [`Self::prepare`]; meaningless for a frame without hidden-shape culling.
-    pub fn seen_tests_buffer(&self) -> Option<&wgpu::Buffer> {
-        self.buffers.as_ref().map(|b| &b.seen)
     }
 
     /// With [`DebugOptions::writes`], one u32 per pixel: bit `k % 32` set when the pixel was

@@ -70,7 +70,6 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
         ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
         ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
-        ("hidden shapes", source_with(&[VIEW, TILE_TEST], hidden_shapes::WGSL)),
         ("projection", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], projection::WGSL)),
         ("projection (subgroups)", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),

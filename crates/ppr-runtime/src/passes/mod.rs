@@ -3,7 +3,6 @@
 pub mod block_lists;
 pub mod clear;
 pub mod downsample;
-pub mod hidden_shapes;
 pub mod layer_reflection;
 pub mod projection;
 pub mod reflection;
@@ -14,7 +13,6 @@ pub mod upsample;
 pub use block_lists::BlockListPass;
 pub use clear::ClearPass;
 pub use downsample::DownsamplePass;
-pub use hidden_shapes::HiddenShapePass;
 pub use layer_reflection::LayerReflectionPass;
 pub use projection::{Ablation, ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
