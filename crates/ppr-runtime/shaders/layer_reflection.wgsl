@@ -35,6 +35,21 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         return;
     }
     let vpos = vec2<i32>(pixel);
+    // Pixels of the layers' common rectangle outside every layer's own leave before the
+    // two unprojections below (the rectangles of a pond and a far window span much more
+    // of the screen together than apart).
+    var in_some_rect = false;
+    for (var i = 0u; i < frame.layer_count; i++) {
+        let l = layers[i];
+        if (all(pixel >= l.rect_min) && all(pixel < l.rect_max)) {
+            in_some_rect = true;
+            break;
+        }
+    }
+    if (!in_some_rect) {
+        textureStore(output, vpos, vec4<f32>(0.0));
+        return;
+    }
     let ray = normalize(ppr_unproject(vec2<f32>(pixel) + 0.5, 0.5));
     var surface = 3.0e38;
     let d = textureLoad(depth_tex, vpos, 0).r;
