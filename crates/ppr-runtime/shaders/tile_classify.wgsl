@@ -1,11 +1,14 @@
 // Tile classification: finds the 16x16 tiles where some pixel lies on a visible reflector
 // (or on a layer reflector, through which one may be seen) and appends them to the active-tile list, so that the clear and the reflection passes
-// run (indirectly) only there. Per tile, the visible shapes whose screen rectangle touches
-// the tile are first gathered in workgroup memory (one thread per shape); each pixel then
-// tests whether it lies on one of them. A second entry point turns the count into
+// run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes whose
+// screen rectangle touches the block are first gathered in workgroup memory (one thread
+// per shape); each pixel then tests whether it lies on one of them, until its tile is
+// found active. A second entry point turns the count into
 // indirect dispatch arguments.
 
 const TILE_SIZE: u32 = 16u;
+// Edge of a workgroup's block: 2 x 2 tiles.
+const BLOCK_SIZE: u32 = 32u;
 const GROUP_THREADS: u32 = 256u;
 const LIST_CAPACITY: u32 = 256u;
 // Largest workgroup count per dispatch dimension.
@@ -40,7 +43,7 @@ struct ActiveTileCounter {
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
-var<workgroup> shows_reflector: atomic<u32>;
+var<workgroup> shows_reflector: array<atomic<u32>, 4>;
 
 fn lies_on(p: vec3<f32>, s: Shape) -> bool {
     let reach = length(p);
@@ -53,25 +56,51 @@ fn lies_on(p: vec3<f32>, s: Shape) -> bool {
     return abs(dot(l, s.axis_u)) <= s.half_u + margin && abs(dot(l, s.axis_v)) <= s.half_v + margin;
 }
 
+// Whether the pixel shows a visible reflector of the block's list (every visible shape
+// when it overflowed) or a layer reflector.
+fn shows_a_reflector(pixel: vec2<u32>, listed: u32) -> bool {
+    let depth = textureLoad(depth_tex, vec2<i32>(pixel), 0).r;
+    if (!ppr_is_valid_depth(depth)) {
+        return false;
+    }
+    let p = ppr_unproject(vec2<f32>(pixel) + 0.5, depth);
+    let overflow = listed > LIST_CAPACITY;
+    let n = select(listed, frame.visible_count, overflow);
+    for (var i = 0u; i < n; i++) {
+        if (lies_on(p, shapes[select(list[i], visible[i], overflow)])) {
+            return true;
+        }
+    }
+    for (var l = 0u; l < frame.layer_count; l++) {
+        if (lies_on(p, shapes[layers[l].shape])) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// One workgroup per 32 x 32-pixel block: its 2 x 2 tiles share one list of the shapes
+// whose rectangle touches the block, and each thread takes one pixel of each tile.
 @compute @workgroup_size(16, 16)
 fn classify(
-    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(local_invocation_id) local: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
-    @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     if (lid == 0u) {
         atomicStore(&list_len, 0u);
-        atomicStore(&shows_reflector, 0u);
+    }
+    if (lid < 4u) {
+        atomicStore(&shows_reflector[lid], 0u);
     }
     workgroupBarrier();
-    let tile_lo = wid.xy * TILE_SIZE;
-    let tile_hi = tile_lo + TILE_SIZE;
+    let block_lo = wid.xy * BLOCK_SIZE;
+    let block_hi = block_lo + BLOCK_SIZE;
     for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
         let k = base + lid;
         if (k < frame.visible_count) {
             let r = screen_rects[k];
-            if (r.x < tile_hi.x && r.z > tile_lo.x && r.y < tile_hi.y && r.w > tile_lo.y) {
+            if (r.x < block_hi.x && r.z > block_lo.x && r.y < block_hi.y && r.w > block_lo.y) {
                 let slot = atomicAdd(&list_len, 1u);
                 if (slot < LIST_CAPACITY) {
                     list[slot] = visible[k];
@@ -81,32 +110,28 @@ fn classify(
     }
     workgroupBarrier();
     let listed = atomicLoad(&list_len);
-    if (all(gid.xy < frame.size) && listed > 0u) {
-        let depth = textureLoad(depth_tex, vec2<i32>(gid.xy), 0).r;
-        if (ppr_is_valid_depth(depth)) {
-            let p = ppr_unproject(vec2<f32>(gid.xy) + 0.5, depth);
-            let overflow = listed > LIST_CAPACITY;
-            let n = select(listed, frame.visible_count, overflow);
-            var on_reflector = false;
-            for (var i = 0u; i < n && !on_reflector; i++) {
-                on_reflector = lies_on(p, shapes[select(list[i], visible[i], overflow)]);
-            }
-            for (var l = 0u; l < frame.layer_count && !on_reflector; l++) {
-                on_reflector = lies_on(p, shapes[layers[l].shape]);
-            }
-            if (on_reflector) {
-                atomicOr(&shows_reflector, 1u);
+    if (listed > 0u) {
+        for (var q = 0u; q < 4u; q++) {
+            let pixel = block_lo + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local.xy;
+            // A tile another thread found active needs no more tests.
+            if (all(pixel < frame.size) && atomicLoad(&shows_reflector[q]) == 0u
+                && shows_a_reflector(pixel, listed)) {
+                atomicOr(&shows_reflector[q], 1u);
             }
         }
     }
     workgroupBarrier();
-    if (lid == 0u) {
-        let tile = wid.x + wid.y * groups.x;
-        let is_active = atomicLoad(&shows_reflector) != 0u;
-        tile_flags[tile] = select(0u, 1u, is_active);
-        if (is_active) {
-            let slot = atomicAdd(&active_tiles.count, 1u);
-            active_tiles.tiles[slot] = tile;
+    if (lid < 4u) {
+        let t = wid.xy * 2u + vec2<u32>(lid & 1u, lid >> 1u);
+        let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;
+        if (all(t < tiles)) {
+            let tile = t.x + t.y * tiles.x;
+            let is_active = atomicLoad(&shows_reflector[lid]) != 0u;
+            tile_flags[tile] = select(0u, 1u, is_active);
+            if (is_active) {
+                let slot = atomicAdd(&active_tiles.count, 1u);
+                active_tiles.tiles[slot] = tile;
+            }
         }
     }
 }

@@ -1,7 +1,8 @@
 //! Tile classification: the list of tiles that show a visible reflector, and the indirect
 //! dispatch arguments of the clear and reflection passes over them.
 
-use super::{compute_pipeline, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+use super::projection::block_groups;
+use super::{compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
 
@@ -82,7 +83,8 @@ impl TileClassifyPass {
     /// The active-tile count must be zero beforehand: the renderer clears it in the encoder
     /// before every classification (not once per `prepare`: a second encode would append).
     pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
-        let (x, y) = tile_groups(viewport);
+        // One workgroup per 2 × 2 tiles.
+        let (x, y) = block_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);
         pass.set_pipeline(&self.classify);
         pass.dispatch_workgroups(x, y, 1);
