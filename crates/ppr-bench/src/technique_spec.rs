@@ -73,20 +73,18 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
 /// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
 /// at many plane offsets walked as a tree), `subgroups=on|off|auto` (the projection's
-/// subgroup culling), `upsample=quads|pixel` (the reduced tiers' upsample two by two
-/// output pixels per invocation, the default, or one), `fade=`, `replace-far=`,
+/// subgroup culling), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 12] = [
+const PPR_KEYS: [&str; 11] = [
     "culling",
     "indirect",
     "groups",
     "trees",
     "subgroups",
-    "upsample",
     "fade",
     "replace-far",
     "tier",
@@ -343,16 +341,6 @@ pub fn build_technique(
         let mut runner =
             PprRunner::new(ctx.device, ctx.queue, ctx.reflectors, spec.label(), settings, params)?;
         runner.set_bounces(ppr_bounces(spec)?);
-        runner.renderer().debug.upsample_pixel_per_thread = match spec.param("upsample") {
-            None | Some("quads") => false,
-            Some("pixel") => true,
-            Some(v) => {
-                return Err(BenchError::Spec(format!(
-                    "{}: upsample={v}: expected quads or pixel",
-                    spec.label()
-                )));
-            }
-        };
         runner.set_reference_bounces(reference_bounces(spec)?);
         return Ok(Box::new(runner));
     }

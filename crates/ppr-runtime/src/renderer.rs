@@ -20,7 +20,7 @@ use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
-use crate::passes::upsample::{UpsampleBindings, UpsampleLayout};
+use crate::passes::upsample::UpsampleBindings;
 use crate::passes::{
     Ablation, BlockListPass, ClearPass, DownsamplePass, LayerReflectionPass, ProjectionPass,
     ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
@@ -121,10 +121,6 @@ pub struct DebugOptions {
     /// two by two sharing their neighbourhood reads (the layout before the quads; bench
     /// only, the same image).
     pub reflection_pixel_per_thread: bool,
-    /// The reduced tiers' upsample takes one output pixel per invocation instead of two by
-    /// two sharing their reduced samples (the layout before; bench and tests only, the same
-    /// image).
-    pub upsample_pixel_per_thread: bool,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
@@ -676,12 +672,7 @@ impl ReflectionRenderer {
         };
         if !plan.visible.is_empty() {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.output.view, inputs.output));
-            let layout = if self.debug.upsample_pixel_per_thread {
-                UpsampleLayout::PixelPerThread
-            } else {
-                UpsampleLayout::Quads
-            };
-            self.upsample.encode(&mut pass, &bg, view.full_viewport, plan.indirect, layout);
+            self.upsample.encode(&mut pass, &bg, view.full_viewport, plan.indirect, false);
         }
         if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.layer_output.view, layer_output));
@@ -691,7 +682,7 @@ impl ReflectionRenderer {
                 let scale = f64::from(view.full_viewport[a]) / f64::from(plan.viewport[a]);
                 (f64::from(rect.max[a] - rect.min[a]) * scale).ceil() as u32 + 2
             });
-            self.upsample.encode(&mut pass, &bg, pixels, false, UpsampleLayout::Layers);
+            self.upsample.encode(&mut pass, &bg, pixels, false, true);
         }
     }
 

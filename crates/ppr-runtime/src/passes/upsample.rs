@@ -20,22 +20,10 @@ pub struct UpsampleBindings<'a> {
     pub tile_flags: &'a wgpu::Buffer,
 }
 
-/// Which output an upsample dispatch writes, and how.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum UpsampleLayout {
-    /// The main output, two by two output pixels per invocation (`main_quads`).
-    Quads,
-    /// The main output, one pixel per invocation (`main`: the layout before the quads).
-    PixelPerThread,
-    /// The layer output over the layer rectangle (`main` with `LAYERS`).
-    Layers,
-}
-
 /// The upsample pass.
 pub struct UpsamplePass {
-    /// Pipelines by (indirect, layers) of `main`, and by indirect of `main_quads`.
+    /// Pipelines by (indirect, layers).
     pipelines: [[wgpu::ComputePipeline; 2]; 2],
-    quads: [wgpu::ComputePipeline; 2],
     layout: wgpu::BindGroupLayout,
 }
 
@@ -53,15 +41,14 @@ impl UpsamplePass {
             ],
         });
         let module = crate::shader::module_with(device, "ppr upsample", &[crate::shader::VIEW], WGSL);
-        let pipeline = |entry: &str, indirect: bool, layers: bool| {
-            let label = format!("ppr upsample {entry} indirect={indirect} layers={layers}");
+        let pipeline = |indirect: bool, layers: bool| {
+            let label = format!("ppr upsample indirect={indirect} layers={layers}");
             let constants = [("INDIRECT", flag(indirect)), ("LAYERS", flag(layers))];
-            compute_pipeline(device, &label, &layout, &module, entry, &constants)
+            compute_pipeline(device, &label, &layout, &module, "main", &constants)
         };
         let pipelines =
-            [false, true].map(|indirect| [false, true].map(|layers| pipeline("main", indirect, layers)));
-        let quads = [false, true].map(|indirect| pipeline("main_quads", indirect, false));
-        Self { pipelines, quads, layout }
+            [[pipeline(false, false), pipeline(false, true)], [pipeline(true, false), pipeline(true, true)]];
+        Self { pipelines, layout }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &UpsampleBindings<'_>) -> wgpu::BindGroup {
@@ -81,23 +68,18 @@ impl UpsamplePass {
         })
     }
 
-    /// Records the pass over `pixels` output pixels (the whole output, or for the layer
-    /// output the layer rectangle's pixels at full resolution plus a margin).
+    /// Records the pass over `pixels` output pixels (the whole output, or with `layers`
+    /// the layer rectangle's pixels at full resolution plus a margin).
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         pixels: [u32; 2],
         indirect: bool,
-        layout: UpsampleLayout,
+        layers: bool,
     ) {
-        let (pipeline, per_group) = match layout {
-            UpsampleLayout::Quads => (&self.quads[usize::from(indirect)], 2 * TILE),
-            UpsampleLayout::PixelPerThread => (&self.pipelines[usize::from(indirect)][0], TILE),
-            UpsampleLayout::Layers => (&self.pipelines[usize::from(indirect)][1], TILE),
-        };
-        pass.set_pipeline(pipeline);
+        pass.set_pipeline(&self.pipelines[usize::from(indirect)][usize::from(layers)]);
         pass.set_bind_group(0, bind_group, &[]);
-        pass.dispatch_workgroups(pixels[0].div_ceil(per_group), pixels[1].div_ceil(per_group), 1);
+        pass.dispatch_workgroups(pixels[0].div_ceil(TILE), pixels[1].div_ceil(TILE), 1);
     }
 }
