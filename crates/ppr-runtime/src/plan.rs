@@ -80,10 +80,10 @@ pub struct PlanParams {
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
     /// at most this share of the screen. Measured on the H200 at 3840×2160
-    /// (docs/perf/scaling.md, 2026-12-03): since the full-screen reflection runs two by two
-    /// pixels per invocation, the classification and the per-tile clear and reflection are
-    /// faster up to 0.3 (0.190 against 0.207 ms) and slower from 0.4 (0.214 against 0.207);
-    /// 0.35 lies between.
+    /// (docs/perf/scaling.md, 2026-12-03, eighth session): with the classification taking
+    /// 2 × 2 tiles per workgroup, the classification and the per-tile clear and reflection
+    /// are faster up to 0.4 (0.201 against 0.205 ms; 0.177 against 0.206 at 0.3) and slower
+    /// from 0.5 (0.226 against 0.205).
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
@@ -177,7 +177,7 @@ impl Default for PlanParams {
             super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
-            indirect_max_coverage: 0.35,
+            indirect_max_coverage: 0.4,
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
