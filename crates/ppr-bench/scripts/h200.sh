@@ -3,7 +3,7 @@
 # shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
 # `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
 # `.gpu/scenes/`) carried; results go to $OUT/results.tar.gz (only 8 files come back from
-# the device, so everything travels as one archive). About 700 s of device time in all (2026-12-03, sixth session: profile 81 s, scaling 132, collision 80, compare 205, rooms 173, bounces 67; seventh session, one call: profile 94, compare 216, scaling 151, the rest not re-run); split it into calls of at most 600 s each (profile, scaling, collision; compare; rooms and bounces), and pack the archive after each step so that a call cut short still brings back what it measured.
+# the device, so everything travels as one archive). About 700 s of device time in all (2026-12-03, sixth session: profile 81 s, scaling 132, collision 80, compare 205, rooms 173, bounces 67; seventh session, one call: profile 94, compare 216, scaling 151, the rest not re-run; eighth session, two calls: profile 101, collision 96, scaling 193 with two more variants, then profile 95 and compare 271 with four more techniques); split it into calls of at most 600 s each (profile, scaling, collision; compare; rooms and bounces), and pack the archive after each step so that a call cut short still brings back what it measured.
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
