@@ -16,7 +16,7 @@ use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
-use crate::passes::projection::ProjectionBindings;
+use crate::passes::projection::{ProjectionBindings, WritePath};
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
@@ -114,6 +114,8 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
+    /// How the projection makes its writes (bench only, the same writes).
+    pub write_path: WritePath,
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
@@ -323,6 +325,7 @@ impl ReflectionRenderer {
             parallel_trees: !plan.trees.is_empty(),
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
+            write_path: self.debug.write_path,
             ablation: self.debug.projection_ablation,
         }
     }
