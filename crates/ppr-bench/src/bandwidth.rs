@@ -165,8 +165,9 @@ fn tile_pixels(f: &FrameFacts, tiles: u64) -> u64 {
 
 /// The bytes each pass must move at least, given the frame:
 /// - classify (indirect only): depth 4 B/px read over the viewport, one tile flag written
-///   per tile and one list entry per active tile (4 B each);
-/// - clear: 4 B/px written over the cleared pixels (active tiles, or the whole buffer);
+///   per tile and one list entry per active tile (4 B each), and the clear of the active
+///   tiles, 4 B/px;
+/// - clear (direct dispatch only): 4 B/px written over the whole buffer;
 /// - projection: depth 4 B/px read over the viewport, plus 4 B per written pixel (the
 ///   `atomicMin` result that must reach memory);
 /// - reflection: over the dispatched pixels, the intermediate value 4 B/px read (its
@@ -177,13 +178,19 @@ pub fn pass_bytes(f: &FrameFacts) -> Vec<PassBytes> {
     let active = if f.indirect { f.active_tiles } else { f.tiles };
     let dispatched = tile_pixels(f, active);
     if f.indirect {
+        // The classification clears the active tiles itself.
         out.push(PassBytes {
             pass: "classify",
-            bytes: 4 * f.pixels + 4 * f.tiles + 4 * f.active_tiles,
-            rule: "depth 4 B/px + 4 B/tile flag + 4 B/active tile",
+            bytes: 4 * f.pixels + 4 * f.tiles + 4 * f.active_tiles + 4 * dispatched,
+            rule: "depth 4 B/px + 4 B/tile flag + 4 B/active tile + 4 B/px cleared over active tiles",
+        });
+    } else {
+        out.push(PassBytes {
+            pass: "clear",
+            bytes: 4 * dispatched,
+            rule: "4 B/px written over cleared pixels",
         });
     }
-    out.push(PassBytes { pass: "clear", bytes: 4 * dispatched, rule: "4 B/px written over cleared pixels" });
     out.push(PassBytes {
         pass: "projection",
         bytes: 4 * f.pixels + 4 * f.written_pixels,
@@ -228,8 +235,8 @@ mod tests {
             FrameFacts { pixels: 64 * 32, tiles: 8, active_tiles: 2, indirect: true, written_pixels: 100 };
         let b = pass_bytes(&f);
         let get = |name: &str| b.iter().find(|p| p.pass == name).expect(name).bytes;
-        assert_eq!(get("classify"), 4 * 2048 + 4 * 8 + 4 * 2);
-        assert_eq!(get("clear"), 4 * 512);
+        assert_eq!(get("classify"), 4 * 2048 + 4 * 8 + 4 * 2 + 4 * 512);
+        assert!(b.iter().all(|p| p.pass != "clear"), "the classification clears the active tiles");
         assert_eq!(get("projection"), 4 * 2048 + 400);
         assert_eq!(get("reflection"), 12 * 512 + 800);
     }

@@ -3,8 +3,11 @@
 // run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes whose
 // screen rectangle touches the block are first gathered in workgroup memory (one thread
 // per shape); each pixel then tests whether it lies on one of them, until its tile is
-// found active. A second entry point turns the count into
-// indirect dispatch arguments.
+// found active. The pixels of the active tiles are then cleared for the projection (with
+// CLEAR_TILES; otherwise the clear pass does it over the active-tile list, one pass more).
+// A second entry point turns the count into indirect dispatch arguments.
+
+override CLEAR_TILES: bool = true;
 
 const TILE_SIZE: u32 = 16u;
 // Edge of a workgroup's block: 2 x 2 tiles.
@@ -40,6 +43,8 @@ struct ActiveTileCounter {
 // Layer reflectors (glass, water): a reflector seen through one has the layer's depth, so
 // a pixel on a layer also makes its tile active.
 @group(0) @binding(8) var<storage, read> layers: array<Layer>;
+// The intermediate buffer, cleared over the active tiles with CLEAR_TILES.
+@group(0) @binding(9) var<storage, read_write> intermediate: array<u32>;
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
@@ -121,6 +126,12 @@ fn classify(
         }
     }
     workgroupBarrier();
+    for (var q = 0u; CLEAR_TILES && q < 4u; q++) {
+        let pixel = block_lo + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local.xy;
+        if (all(pixel < frame.size) && atomicLoad(&shows_reflector[q]) != 0u) {
+            intermediate[pixel.x + pixel.y * frame.size.x] = PPR_CLEAR_VALUE;
+        }
+    }
     if (lid < 4u) {
         let t = wid.xy * 2u + vec2<u32>(lid & 1u, lid >> 1u);
         let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;

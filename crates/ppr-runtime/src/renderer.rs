@@ -116,6 +116,10 @@ pub struct DebugOptions {
     pub spread_quads: bool,
     /// How the projection makes its writes (bench only, the same writes).
     pub write_path: WritePath,
+    /// With indirect dispatch, the active tiles are cleared by the clear pass over the
+    /// active-tile list instead of by the classification (the layout of the eighth session;
+    /// bench only, the same image).
+    pub tile_clear_pass: bool,
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
@@ -486,16 +490,20 @@ impl ReflectionRenderer {
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
                     layers: &b.layers,
+                    intermediate: &b.intermediate,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr tile classify"),
                 timestamp_writes: timestamps(0),
             });
-            self.classify.encode(&mut pass, &bg, plan.viewport);
+            self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
             count(2);
         }
-        {
+        // The intermediate buffer needs a pass of its own to be cleared in direct dispatch
+        // (the classification clears the active tiles), the atlas whenever there are layers.
+        let clear_main = has_main && (!plan.indirect || self.debug.tile_clear_pass);
+        if clear_main || !plan.layers.is_empty() {
             let bg = self.clear.bind_group(
                 device,
                 &ClearBindings {
@@ -508,7 +516,7 @@ impl ReflectionRenderer {
                 label: Some("ppr clear"),
                 timestamp_writes: timestamps(1),
             });
-            if !has_main {
+            if !clear_main {
                 // Only the atlas is cleared below.
             } else if plan.indirect {
                 self.clear.encode_tiles(&mut pass, &bg, &b.dispatch_args);

@@ -137,8 +137,9 @@ pub fn write_runtime_report(
         "Times are medians (and 95th percentiles) of GPU timestamps over the timed frames, \
          after warm-up; before each frame a 256 MiB scratch write evicts the L2 cache. \
          Bytes per pass, given the frame's plan and a read-back of its buffers: classify \
-         (indirect frames only) reads depth 4 B/px and writes 4 B per tile flag and per active \
-         tile; clear writes 4 B/px over the cleared pixels (active tiles, or the whole buffer); \
+         (indirect frames only) reads depth 4 B/px, writes 4 B per tile flag and per active \
+         tile and clears the active tiles, 4 B/px; clear (direct frames) writes 4 B/px over the \
+         whole buffer; \
          projection reads depth 4 B/px and writes 4 B per written pixel; reflection reads the \
          intermediate 4 B/px (neighbours from cache) and writes the output 8 B/px over the \
          dispatched pixels, and reads colour 8 B per pixel with data. Floor = bytes / copy \

@@ -262,7 +262,8 @@ pub fn write_scaling_report(
         md,
         "One floor mirror seen from straight above, sized so that its screen rectangle covers the \
          given share of the screen; classify + clear + reflection (+ projection, the same in both) \
-         with indirect dispatch forced off and on.\n"
+         with indirect dispatch forced off and on (with it on, the classification clears the \
+         active tiles: no clear pass unless the frame has layers).\n"
     );
     let mut t = MarkdownTable::new(&[
         "#coverage",

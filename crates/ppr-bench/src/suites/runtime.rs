@@ -77,6 +77,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("write: full tolerance", Choice::Auto, Ablation::None),
         ("write: loads together", Choice::Auto, Ablation::None),
         ("write: no pre-load", Choice::Auto, Ablation::None),
+        ("tile clear pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -242,6 +243,7 @@ pub fn run_runtime(
                     projection_ablation: ablation,
                     spread_quads,
                     write_path,
+                    tile_clear_pass: name == "tile clear pass",
                     reflection_ablation,
                     reflection_pixel_per_thread,
                     ..tuning

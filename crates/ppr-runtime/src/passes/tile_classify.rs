@@ -1,5 +1,6 @@
-//! Tile classification: the list of tiles that show a visible reflector, and the indirect
-//! dispatch arguments of the clear and reflection passes over them.
+//! Tile classification: the list of tiles that show a visible reflector, the clear of their
+//! pixels in the intermediate buffer, and the indirect dispatch arguments of the reflection
+//! pass over them.
 
 use super::projection::block_groups;
 use super::{compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
@@ -21,11 +22,14 @@ pub struct ClassifyBindings<'a> {
     pub tile_flags: &'a wgpu::Buffer,
     /// Layer reflectors of the frame (glass, water): reflectors seen through them count.
     pub layers: &'a wgpu::Buffer,
+    /// Cleared over the active tiles (unless the clear pass does it, [`TileClassifyPass::encode`]).
+    pub intermediate: &'a wgpu::Buffer,
 }
 
 /// The tile classification pass (two dispatches: classify, then finalize the arguments).
 pub struct TileClassifyPass {
-    classify: wgpu::ComputePipeline,
+    /// Without and with the clear of the active tiles.
+    classify: [wgpu::ComputePipeline; 2],
     finalize: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
@@ -44,11 +48,15 @@ impl TileClassifyPass {
                 storage_entry(6, false),
                 storage_entry(7, false),
                 storage_entry(8, true),
+                storage_entry(9, false),
             ],
         });
         let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
         Self {
-            classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
+            classify: [false, true].map(|clear| {
+                let constants = [("CLEAR_TILES", super::flag(clear))];
+                compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &constants)
+            }),
             finalize: compute_pipeline(
                 device,
                 "ppr tile classify finalize",
@@ -75,18 +83,27 @@ impl TileClassifyPass {
                 wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
             ],
         })
     }
 
-    /// Records the classification of every tile and the argument fix-up (two dispatches).
-    /// The active-tile count must be zero beforehand: the renderer clears it in the encoder
-    /// before every classification (not once per `prepare`: a second encode would append).
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, viewport: [u32; 2]) {
+    /// Records the classification of every tile, with `clear_tiles` the clear of the active
+    /// tiles' pixels (else the clear pass must do it), and the argument fix-up (two
+    /// dispatches). The active-tile count must be zero beforehand: the renderer clears it in
+    /// the encoder before every classification (not once per `prepare`: a second encode
+    /// would append).
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        viewport: [u32; 2],
+        clear_tiles: bool,
+    ) {
         // One workgroup per 2 × 2 tiles.
         let (x, y) = block_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);
-        pass.set_pipeline(&self.classify);
+        pass.set_pipeline(&self.classify[usize::from(clear_tiles)]);
         pass.dispatch_workgroups(x, y, 1);
         pass.set_pipeline(&self.finalize);
         pass.dispatch_workgroups(1, 1, 1);
