@@ -12,7 +12,6 @@ mod reflection;
 mod reflection_quads;
 mod subgroup_cull;
 mod tiles;
-mod write_paths;
 
 /// This binary runs on the adapter `WGPU_BACKEND` names (llvmpipe through GL in CI).
 fn select_backends() {}

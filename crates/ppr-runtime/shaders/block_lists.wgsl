@@ -29,9 +29,9 @@ fn main(
     let hi = lo + vec2<u32>(BLOCK_SIZE);
     var own = TileBox(vec3<f32>(3.0e38), vec3<f32>(-3.0e38));
     for (var j = 0u; j < 4u; j++) {
-        let p = tile_pixel_point(quad_pixel(quad_base(lo, local.xy), j));
-        if (p.valid) {
-            own = TileBox(min(own.lo, p.position), max(own.hi, p.position));
+        let p = tile_pixel_position(quad_pixel(quad_base(lo, local.xy), j));
+        if (p.w > 0.0) {
+            own = TileBox(min(own.lo, p.xyz), max(own.hi, p.xyz));
         }
     }
     let box = workgroup_box(lid, own.lo, own.hi);

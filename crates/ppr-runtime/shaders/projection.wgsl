@@ -65,11 +65,6 @@ override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
 override SUBGROUP_CULL: bool = false;
 override ABLATION: u32 = 0u;
-// The write path (bench variants, the same writes; WritePath in passes/projection.rs): 0 the
-// default; 1 the occlusion test computes the target's tolerance before it knows whether it
-// needs it; 2 the depth at the target is read with the pre-load, before either is used;
-// 3 no pre-load.
-override WRITE_PATH: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;
 
@@ -290,28 +285,9 @@ fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
 // A glass panel with a layer this frame does not count: games may write glass to depth,
 // and what lies behind it is still seen (and reflected) through it.
 fn occluded_at(t: vec2<u32>, n: vec3<f32>, d: f32) -> bool {
-    var q: vec4<f32>;
-    if (WRITE_PATH == 1u) {
-        q = tile_pixel_position(t);
-        if (!(q.w > 0.0 && dot(q.xyz, n) - d > q.w)) {
-            return false;
-        }
-    } else {
-        // The same test, with the tolerance (a second unprojection) only where it decides:
-        // a surface behind the plane or on it is not in front by more than any tolerance
-        // (always > 0), which is where a target on the reflector itself lies half the time.
-        let p = tile_pixel_point(t);
-        if (!p.valid) {
-            return false;
-        }
-        let s = dot(p.position, n) - d;
-        if (!(s > 0.0)) {
-            return false;
-        }
-        q = vec4<f32>(p.position, ppr_on_plane_tolerance(vec2<f32>(t) + 0.5, p.depth, p.position));
-        if (!(s > q.w)) {
-            return false;
-        }
+    let q = tile_pixel_position(t);
+    if (!(q.w > 0.0 && dot(q.xyz, n) - d > q.w)) {
+        return false;
     }
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
         if (layers[l].kind == PPR_KIND_TRANSPARENT && on_shape(q, shapes[layers[l].shape])) {
@@ -351,17 +327,10 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32)
     // DEBUG_WRITES: what a pixel is recorded as having written must not depend on the
     // order of other writes (the buffer ends the same: an occluded write never lowers a
     // value).
-    let pre_load = mode == 0u && !DEBUG_WRITES && WRITE_PATH != 3u;
-    var current = PPR_CLEAR_VALUE;
-    if (pre_load) {
-        current = atomicLoad(&intermediate[index]);
-    }
-    // WRITE_PATH 2: the occlusion test's depth read goes out with the pre-load.
-    let occluded_early = DEPTH_OCCLUSION && WRITE_PATH == 2u && occluded_at(t, n, d);
-    if (pre_load && current <= value) {
+    if (mode == 0u && !DEBUG_WRITES && atomicLoad(&intermediate[index]) <= value) {
         return true;
     }
-    if (occluded_early || (DEPTH_OCCLUSION && WRITE_PATH != 2u && occluded_at(t, n, d))) {
+    if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
         return false;
     }
     if (mode == 0u) {

@@ -20,9 +20,3 @@ fn subgroup_lane() -> vec2<u32> {
 fn subgroup_ballot32(p: bool) -> u32 {
     return subgroupBallot(p).x;
 }
-
-// Whether this is the one invocation of its subgroup that speaks for it.
-fn subgroup_first() -> bool {
-    // (naga's WGSL has no subgroupElect: the lowest active invocation by its scan.)
-    return subgroupExclusiveAdd(1u) == 0u;
-}

@@ -15,7 +15,3 @@ fn subgroup_lane() -> vec2<u32> {
 fn subgroup_ballot32(p: bool) -> u32 {
     return select(0u, 1u, p);
 }
-
-fn subgroup_first() -> bool {
-    return true;
-}

@@ -26,10 +26,10 @@ fn main(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: v
     var hi = vec3<f32>(-3.0e38);
     for (var i = 0u; i < SUPER_TILE_SIZE * SUPER_TILE_SIZE / TILE_GROUP_THREADS; i++) {
         let pixel = origin + vec2<u32>(lid % SUPER_TILE_SIZE, lid / SUPER_TILE_SIZE + 4u * i);
-        let p = tile_pixel_point(pixel);
-        if (p.valid) {
-            lo = min(lo, p.position);
-            hi = max(hi, p.position);
+        let p = tile_pixel_position(pixel);
+        if (p.w > 0.0) {
+            lo = min(lo, p.xyz);
+            hi = max(hi, p.xyz);
         }
     }
     let box = workgroup_box(lid, lo, hi);

@@ -2,8 +2,7 @@
 // super-tile list pass (64x64 super-tiles): each visible shape's test as five planes (ShapeTest), the box of a
 // workgroup's pixel positions, the conservative test of a box against a shape, and the
 // ordered compaction that turns per-thread pass flags into a list. Needs `frame`,
-// `depth_tex`, the view module and subgroup_cull.wgsl (or its fallback); uses the
-// workgroup arrays below.
+// `depth_tex` and the view module; uses the workgroup arrays below.
 
 const TILE_GROUP_THREADS: u32 = 256u;
 // Edge of a block in pixels: a workgroup of the projection and of the block-list pass,
@@ -74,35 +73,19 @@ var<workgroup> pass_words: array<u32, 8>;
 // w = 0. The one rule both culling levels and the per-pixel projection use, so that a
 // block's box holds every position its pixels test.
 fn tile_pixel_position(pixel: vec2<u32>) -> vec4<f32> {
-    let p = tile_pixel_point(pixel);
-    if (!p.valid) {
-        return vec4<f32>(0.0);
-    }
-    return vec4<f32>(p.position, ppr_on_plane_tolerance(vec2<f32>(pixel) + 0.5, p.depth, p.position));
-}
-
-// A pixel's position without its tolerance (what the boxes need: one unprojection instead
-// of two), by the same rule as tile_pixel_position.
-struct TilePoint {
-    position: vec3<f32>,
-    depth: f32,
-    valid: bool,
-}
-
-fn tile_pixel_point(pixel: vec2<u32>) -> TilePoint {
-    var none = TilePoint(vec3<f32>(0.0), 0.0, false);
     if (!all(pixel < frame.size)) {
-        return none;
+        return vec4<f32>(0.0);
     }
     let depth = textureLoad(depth_tex, vec2<i32>(pixel), 0).r;
     if (!ppr_is_valid_depth(depth)) {
-        return none;
+        return vec4<f32>(0.0);
     }
-    let p = ppr_unproject(vec2<f32>(pixel) + 0.5, depth);
+    let centre = vec2<f32>(pixel) + 0.5;
+    let p = ppr_unproject(centre, depth);
     if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30)))) {
-        return none;
+        return vec4<f32>(0.0);
     }
-    return TilePoint(p, depth, true);
+    return vec4<f32>(p, ppr_on_plane_tolerance(centre, depth, p));
 }
 
 // Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).
@@ -117,7 +100,7 @@ fn from_ordered_bits(u: u32) -> f32 {
 
 // The box of the positions the workgroup's threads hold (`lo` > `hi` on an axis for a
 // thread without any). Every thread gets the box; `lo.x > hi.x` when it is empty. Call
-// from uniform control flow. Needs subgroup_cull.wgsl or its fallback.
+// from uniform control flow.
 struct TileBox {
     lo: vec3<f32>,
     hi: vec3<f32>,
@@ -138,15 +121,11 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
             atomicStore(&box_max[lid][c], 0u);
         }
     }
-    // Each subgroup's box first (subgroup_cull.wgsl; without subgroup operations a
-    // subgroup of one invocation), which one invocation of it takes to the slots.
-    let sub = subgroup_box(lo, hi);
-    let first = subgroup_first();
     workgroupBarrier();
     let slot = lid % BOX_SLOTS;
-    if (first && sub.lo.x <= sub.hi.x) {
-        let l = ordered3(sub.lo);
-        let h = ordered3(sub.hi);
+    if (lo.x <= hi.x) {
+        let l = ordered3(lo);
+        let h = ordered3(hi);
         atomicMin(&box_min[slot][0], l.x);
         atomicMin(&box_min[slot][1], l.y);
         atomicMin(&box_min[slot][2], l.z);

@@ -16,7 +16,7 @@ use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
-use crate::passes::projection::{ProjectionBindings, WritePath};
+use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
@@ -114,8 +114,6 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
-    /// How the projection makes its writes (bench only, the same writes).
-    pub write_path: WritePath,
     /// With indirect dispatch, the active tiles are cleared by the clear pass over the
     /// active-tile list instead of by the classification (the layout of the eighth session;
     /// bench only, the same image).
@@ -329,7 +327,6 @@ impl ReflectionRenderer {
             parallel_trees: !plan.trees.is_empty(),
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
-            write_path: self.debug.write_path,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -12,7 +12,7 @@ const SHARED: &str =
 pub const VIEW: &str = include_str!("../shaders/view.wgsl");
 
 /// Tile culling: the box test, the tile box, ordered compaction, the super-tile grid
-/// (needs `frame`, `depth_tex`, [`VIEW`] and [`SUBGROUP_CULL`] or its fallback).
+/// (needs `frame`, `depth_tex` and [`VIEW`]).
 pub const TILE_TEST: &str = include_str!("../shaders/tile_test.wgsl");
 
 /// Subgroup culling's subgroup box, lane and ballot, with subgroup operations (only on
@@ -21,12 +21,6 @@ pub const SUBGROUP_CULL: &str = include_str!("../shaders/subgroup_cull.wgsl");
 
 /// The same functions as [`SUBGROUP_CULL`] for a subgroup of one invocation (any device).
 pub const SUBGROUP_CULL_FALLBACK: &str = include_str!("../shaders/subgroup_cull_fallback.wgsl");
-
-/// [`SUBGROUP_CULL`] where `device` has subgroup operations, else its fallback: what the
-/// list passes' box reductions build on.
-pub fn subgroup_source(device: &wgpu::Device) -> &'static str {
-    if crate::passes::projection::has_subgroups(device) { SUBGROUP_CULL } else { SUBGROUP_CULL_FALLBACK }
-}
 
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
@@ -74,13 +68,8 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
     vec![
         ("clear", source(clear::WGSL)),
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
-        ("super-tile lists", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], super_tile_lists::WGSL)),
-        (
-            "super-tile lists (subgroups)",
-            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], super_tile_lists::WGSL),
-        ),
-        ("block lists", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], block_lists::WGSL)),
-        ("block lists (subgroups)", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], block_lists::WGSL)),
+        ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
+        ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
         ("projection", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], projection::WGSL)),
         ("projection (subgroups)", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], projection::WGSL)),
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),

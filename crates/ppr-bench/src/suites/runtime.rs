@@ -2,9 +2,7 @@
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
 use ppr_runtime::passes::Ablation;
-use ppr_runtime::{
-    CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionAblation, ReflectionSettings, WritePath,
-};
+use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionAblation, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
@@ -74,9 +72,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("no subgroup culling", Choice::Auto, Ablation::None),
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
-        ("write: full tolerance", Choice::Auto, Ablation::None),
-        ("write: loads together", Choice::Auto, Ablation::None),
-        ("write: no pre-load", Choice::Auto, Ablation::None),
         ("tile clear pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
@@ -233,16 +228,9 @@ pub fn run_runtime(
                 } else {
                     all
                 };
-                let write_path = match name {
-                    "write: full tolerance" => WritePath::FullTolerance,
-                    "write: loads together" => WritePath::LoadsTogether,
-                    "write: no pre-load" => WritePath::NoPreload,
-                    _ => WritePath::Default,
-                };
                 let debug = DebugOptions {
                     projection_ablation: ablation,
                     spread_quads,
-                    write_path,
                     tile_clear_pass: name == "tile clear pass",
                     reflection_ablation,
                     reflection_pixel_per_thread,

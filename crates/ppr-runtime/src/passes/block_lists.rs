@@ -54,7 +54,7 @@ impl BlockListPass {
         let module = crate::shader::module_with(
             device,
             "ppr block lists",
-            &[crate::shader::VIEW, crate::shader::TILE_TEST, crate::shader::subgroup_source(device)],
+            &[crate::shader::VIEW, crate::shader::TILE_TEST],
             WGSL,
         );
         let pipelines = [false, true].map(|boxes| {

@@ -56,8 +56,6 @@ pub struct ProjectionVariant {
     /// layout before the compact one, whose subgroups cover 32 × 4 pixels). Frames that
     /// walk parallel trees take it anyway ([`Self::spread_quads`]).
     pub spread_quads: bool,
-    /// How a write is made (bench only; the same writes).
-    pub write_path: WritePath,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -101,34 +99,6 @@ impl Ablation {
             Self::TestsOnly => 3.0,
             Self::NoEncode => 4.0,
             Self::NoWrite => 5.0,
-        }
-    }
-}
-
-/// How the projection makes a write, after its target and value (bench variants of
-/// `ppr-bench runtime --projection-profile`: the same writes, timed against each other).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum WritePath {
-    /// A plain load of the target first (most writes of a squeezed reflection lose), then
-    /// the depth-occlusion test, whose tolerance is computed only where the surface at the
-    /// target lies in front of the plane.
-    #[default]
-    Default,
-    /// The occlusion test computes the target's tolerance first (the seventh session's).
-    FullTolerance,
-    /// The occlusion test's depth read goes out with the plain load, before either is used.
-    LoadsTogether,
-    /// No plain load: every write that passes the occlusion test is an `atomicMin`.
-    NoPreload,
-}
-
-impl WritePath {
-    fn code(self) -> f64 {
-        match self {
-            Self::Default => 0.0,
-            Self::FullTolerance => 1.0,
-            Self::LoadsTogether => 2.0,
-            Self::NoPreload => 3.0,
         }
     }
 }
@@ -219,7 +189,6 @@ impl ProjectionPass {
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("ABLATION", v.ablation.code()),
-            ("WRITE_PATH", v.write_path.code()),
         ];
         let label = format!("ppr projection {v:?}");
         let module = match &self.subgroup_module {

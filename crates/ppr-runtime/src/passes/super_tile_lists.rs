@@ -57,7 +57,7 @@ impl SuperTileListPass {
         let module = crate::shader::module_with(
             device,
             "ppr super-tile lists",
-            &[crate::shader::VIEW, crate::shader::TILE_TEST, crate::shader::subgroup_source(device)],
+            &[crate::shader::VIEW, crate::shader::TILE_TEST],
             WGSL,
         );
         let pipelines = [false, true].map(|boxes| {
