@@ -11,6 +11,8 @@
 
 override SOURCE_BOXES: bool = false;
 override SUPER_TILES: bool = false;
+// Bench only (never a correct list): stop after the box of the block's positions.
+override BOX_ONLY: bool = false;
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
@@ -36,6 +38,12 @@ fn main(
     }
     let box = workgroup_box(lid, own.lo, own.hi);
     let empty = box.lo.x > box.hi.x;
+    if (BOX_ONLY) {
+        if (lid == 0u && box.lo.x == 1234.5) {
+            block_lists[0] = 0u;
+        }
+        return;
+    }
 
     // Candidates: the super-tile's list, or every visible shape.
     var count = frame.tested_count;

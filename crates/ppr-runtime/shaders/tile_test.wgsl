@@ -64,7 +64,8 @@ fn box_may_reflect(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
 const BOX_SLOTS: u32 = 8u;
 var<workgroup> box_min: array<array<atomic<u32>, 3>, BOX_SLOTS>;
 var<workgroup> box_max: array<array<atomic<u32>, 3>, BOX_SLOTS>;
-var<workgroup> box_result: TileBox;
+// The box's ordered bounds: min x, y, z, then max x, y, z.
+var<workgroup> box_words: array<u32, 6>;
 var<workgroup> pass_flags: array<u32, TILE_GROUP_THREADS>;
 var<workgroup> pass_words: array<u32, 8>;
 
@@ -134,26 +135,30 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
         atomicMax(&box_max[slot][2], h.z);
     }
     workgroupBarrier();
-    // One thread reads the slots (atomic loads of one address by a whole warp would be
-    // serialised) and publishes the box in plain workgroup memory.
-    if (lid == 0u) {
-        var mins = vec3<u32>(0xffffffffu);
-        var maxs = vec3<u32>(0u);
+    // Six threads read the slots, one bound each (atomic loads of one address by a whole
+    // warp would be serialised; one thread reading all 48 waits on each in turn), and
+    // publish the box in plain workgroup memory.
+    if (lid < 6u) {
+        let c = lid % 3u;
+        var bound = select(0xffffffffu, 0u, lid >= 3u);
         for (var i = 0u; i < BOX_SLOTS; i++) {
-            mins = min(mins, vec3<u32>(atomicLoad(&box_min[i][0]), atomicLoad(&box_min[i][1]), atomicLoad(&box_min[i][2])));
-            maxs = max(maxs, vec3<u32>(atomicLoad(&box_max[i][0]), atomicLoad(&box_max[i][1]), atomicLoad(&box_max[i][2])));
+            if (lid < 3u) {
+                bound = min(bound, atomicLoad(&box_min[i][c]));
+            } else {
+                bound = max(bound, atomicLoad(&box_max[i][c]));
+            }
         }
-        var b = TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
-        if (mins.x <= maxs.x) {
-            b = TileBox(from_ordered3(mins), from_ordered3(maxs));
-        }
-        box_result = b;
+        box_words[lid] = bound;
     }
     workgroupBarrier();
-    let b = box_result;
+    let mins = vec3<u32>(box_words[0], box_words[1], box_words[2]);
+    let maxs = vec3<u32>(box_words[3], box_words[4], box_words[5]);
     // Every thread has read the box before anyone writes the slots again.
     workgroupBarrier();
-    return b;
+    if (mins.x <= maxs.x) {
+        return TileBox(from_ordered3(mins), from_ordered3(maxs));
+    }
+    return TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
 }
 
 // Ordered compaction of one chunk of TILE_GROUP_THREADS candidates: (rank, total), where

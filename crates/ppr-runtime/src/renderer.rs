@@ -118,6 +118,9 @@ pub struct DebugOptions {
     /// active-tile list instead of by the classification (the layout of the eighth session;
     /// bench only, the same image).
     pub tile_clear_pass: bool,
+    /// The block-list pass stops after each block's box of positions (bench only, to time
+    /// the rest of it; the projection then reads no lists: never a correct image).
+    pub block_lists_box_only: bool,
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
@@ -497,10 +500,8 @@ impl ReflectionRenderer {
             self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
             count(2);
         }
-        // The intermediate buffer needs a pass of its own to be cleared in direct dispatch
-        // (the classification clears the active tiles), the atlas whenever there are layers.
-        let clear_main = has_main && (!plan.indirect || self.debug.tile_clear_pass);
-        if clear_main || !plan.layers.is_empty() {
+        let clear_main = self.clears_main_in_pass(plan);
+        if self.clears_in_pass(plan) {
             let bg = self.clear.bind_group(
                 device,
                 &ClearBindings {
@@ -588,7 +589,14 @@ impl ReflectionRenderer {
                         block_lists: &b.block_lists,
                     },
                 );
-                self.block_lists.encode(&mut pass, &lists, plan.viewport, source_boxes, plan.super_tiles);
+                let choices = (source_boxes, plan.super_tiles);
+                self.block_lists.encode(
+                    &mut pass,
+                    &lists,
+                    plan.viewport,
+                    choices,
+                    self.debug.block_lists_box_only,
+                );
                 count(1);
             }
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
@@ -715,6 +723,18 @@ impl ReflectionRenderer {
         self.timer.as_ref()?.read(&self.device, ran)
     }
 
+    /// Whether the clear pass clears the intermediate buffer: in direct dispatch (with
+    /// indirect dispatch the classification clears the active tiles).
+    fn clears_main_in_pass(&self, plan: &FramePlan) -> bool {
+        !plan.visible.is_empty() && (!plan.indirect || self.debug.tile_clear_pass)
+    }
+
+    /// Whether the frame has a clear pass: for the intermediate buffer, or for the atlas
+    /// whenever there are layers.
+    fn clears_in_pass(&self, plan: &FramePlan) -> bool {
+        self.clears_main_in_pass(plan) || !plan.layers.is_empty()
+    }
+
     /// Which timed passes (classify, clear, projection, reflection, layers, as in
     /// [`PassTimings::passes`]) the last [`Self::encode`] recorded. A pass recorded but
     /// without a time in [`Self::read_timings`] had timestamps the adapter got wrong.
@@ -726,7 +746,8 @@ impl ReflectionRenderer {
         let has_main = !plan.visible.is_empty();
         let layers = !plan.layers.is_empty() && self.layer_output_given.get() == Some(true);
         let reduced = view.reduced_active;
-        [plan.indirect && has_main, true, true, has_main, layers, reduced, reduced && (has_main || layers)]
+        let clear = self.clears_in_pass(plan);
+        [plan.indirect && has_main, clear, true, has_main, layers, reduced, reduced && (has_main || layers)]
     }
 
     /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for

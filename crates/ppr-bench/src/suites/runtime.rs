@@ -64,6 +64,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling on", Choice::Auto, Ablation::None),
         ("culling on, tests only", Choice::Auto, Ablation::TestsOnly),
         ("culling on, empty", Choice::Auto, Ablation::Empty),
+        ("culling on, empty, lists box only", Choice::Auto, Ablation::Empty),
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
@@ -232,6 +233,7 @@ pub fn run_runtime(
                     projection_ablation: ablation,
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
+                    block_lists_box_only: name.ends_with("lists box only"),
                     reflection_ablation,
                     reflection_pixel_per_thread,
                     ..tuning

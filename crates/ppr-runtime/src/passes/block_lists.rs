@@ -35,6 +35,9 @@ pub struct BlockListBindings<'a> {
 pub struct BlockListPass {
     /// By (source boxes, super-tiles).
     pipelines: [[wgpu::ComputePipeline; 2]; 2],
+    /// Bench only: the pass up to the box of each block's positions, without the lists
+    /// (by source boxes).
+    box_only: [wgpu::ComputePipeline; 2],
     layout: wgpu::BindGroupLayout,
 }
 
@@ -63,7 +66,11 @@ impl BlockListPass {
                 compute_pipeline(device, "ppr block lists", &layout, &module, "main", &constants)
             })
         });
-        Self { pipelines, layout }
+        let box_only = [false, true].map(|boxes| {
+            let constants = [("SOURCE_BOXES", flag(boxes)), ("BOX_ONLY", 1.0)];
+            compute_pipeline(device, "ppr block lists (box only)", &layout, &module, "main", &constants)
+        });
+        Self { pipelines, box_only, layout }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &BlockListBindings<'_>) -> wgpu::BindGroup {
@@ -82,17 +89,23 @@ impl BlockListPass {
         })
     }
 
-    /// Records the pass over the viewport's blocks.
+    /// Records the pass over the viewport's blocks (with `box_only`, bench only, the pass
+    /// up to each block's box: no lists, what the projection then reads is wrong).
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         viewport: [u32; 2],
-        source_boxes: bool,
-        super_tiles: bool,
+        (source_boxes, super_tiles): (bool, bool),
+        box_only: bool,
     ) {
         let (x, y) = block_groups(viewport);
-        pass.set_pipeline(&self.pipelines[usize::from(source_boxes)][usize::from(super_tiles)]);
+        let pipeline = if box_only {
+            &self.box_only[usize::from(source_boxes)]
+        } else {
+            &self.pipelines[usize::from(source_boxes)][usize::from(super_tiles)]
+        };
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, y, 1);
     }
