@@ -201,6 +201,30 @@ mod tests {
         assert_eq!(test_size, std::mem::size_of::<GpuShapeTest>());
     }
 
+    /// The classification's tile and block edges are the ones the Rust side dispatches and
+    /// reads by: its tiles are the reflection's and clear's 16 × 16 ([`crate::passes::TILE`]),
+    /// its workgroup one 32 × 32 block of 2 × 2 tiles ([`crate::passes::projection::BLOCK`],
+    /// the grid `TileClassifyPass::encode` dispatches), 16 × 16 threads.
+    #[test]
+    fn classification_constants_match_rust() {
+        use naga::Literal::U32;
+        let source = super::source_with(&[super::VIEW], crate::passes::tile_classify::WGSL);
+        let module =
+            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        let constant = |name: &str| {
+            let c = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name));
+            let c = c.unwrap_or_else(|| panic!("no constant {name}")).1;
+            module.global_expressions[c.init].clone()
+        };
+        let tile = crate::passes::TILE;
+        let block = crate::passes::projection::BLOCK;
+        assert!(matches!(constant("TILE_SIZE"), naga::Expression::Literal(U32(n)) if n == tile));
+        assert!(matches!(constant("BLOCK_SIZE"), naga::Expression::Literal(U32(n)) if n == block));
+        assert_eq!(block, 2 * tile, "a block is 2 x 2 tiles");
+        let entry = module.entry_points.iter().find(|e| e.name == "classify").expect("classify");
+        assert_eq!(entry.workgroup_size, [tile, tile, 1]);
+    }
+
     /// The glossy uniform of the reflection pass has its Rust size and capacity.
     #[test]
     fn glossy_uniform_matches_rust() {
