@@ -274,6 +274,12 @@ impl ReflectionRenderer {
             if !plan.is_empty() {
                 self.projection.prepare_variant(&self.device, self.variant(&plan));
                 self.reflection.prepare_variant(&self.device, self.reflection_variant(false, false));
+                if self.debug.tile_clear_pass {
+                    self.classify.prepare_separate_clear(&self.device);
+                }
+                if self.debug.block_lists_box_only {
+                    self.block_lists.prepare_box_only(&self.device);
+                }
             }
             Arc::new(plan)
         });

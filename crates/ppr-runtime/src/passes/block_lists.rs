@@ -35,9 +35,10 @@ pub struct BlockListBindings<'a> {
 pub struct BlockListPass {
     /// By (source boxes, super-tiles).
     pipelines: [[wgpu::ComputePipeline; 2]; 2],
-    /// Bench only: the pass up to the box of each block's positions, without the lists
-    /// (by source boxes).
-    box_only: [wgpu::ComputePipeline; 2],
+    /// Bench only, built on request ([`Self::prepare_box_only`]): the pass up to the box
+    /// of each block's positions, without the lists (by source boxes).
+    box_only: Option<[wgpu::ComputePipeline; 2]>,
+    module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -66,11 +67,19 @@ impl BlockListPass {
                 compute_pipeline(device, "ppr block lists", &layout, &module, "main", &constants)
             })
         });
-        let box_only = [false, true].map(|boxes| {
-            let constants = [("SOURCE_BOXES", flag(boxes)), ("BOX_ONLY", 1.0)];
-            compute_pipeline(device, "ppr block lists (box only)", &layout, &module, "main", &constants)
-        });
-        Self { pipelines, box_only, layout }
+        Self { pipelines, box_only: None, module, layout }
+    }
+
+    /// Builds the box-only pipelines (bench only; the renderer asks for them when
+    /// `DebugOptions::block_lists_box_only` is set).
+    pub fn prepare_box_only(&mut self, device: &wgpu::Device) {
+        if self.box_only.is_none() {
+            let (layout, module) = (&self.layout, &self.module);
+            self.box_only = Some([false, true].map(|boxes| {
+                let constants = [("SOURCE_BOXES", flag(boxes)), ("BOX_ONLY", 1.0)];
+                compute_pipeline(device, "ppr block lists (box only)", layout, module, "main", &constants)
+            }));
+        }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &BlockListBindings<'_>) -> wgpu::BindGroup {
@@ -101,7 +110,7 @@ impl BlockListPass {
     ) {
         let (x, y) = block_groups(viewport);
         let pipeline = if box_only {
-            &self.box_only[usize::from(source_boxes)]
+            &self.box_only.as_ref().expect("prepare_box_only() before encode()")[usize::from(source_boxes)]
         } else {
             &self.pipelines[usize::from(source_boxes)][usize::from(super_tiles)]
         };

@@ -3,7 +3,7 @@
 //! pass over them.
 
 use super::projection::block_groups;
-use super::{compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
 
@@ -28,8 +28,11 @@ pub struct ClassifyBindings<'a> {
 
 /// The tile classification pass (two dispatches: classify, then finalize the arguments).
 pub struct TileClassifyPass {
-    /// Without and with the clear of the active tiles.
-    classify: [wgpu::ComputePipeline; 2],
+    /// With the clear of the active tiles.
+    classify: wgpu::ComputePipeline,
+    /// Bench only, built on request ([`Self::prepare_separate_clear`]): without it.
+    separate_clear: Option<wgpu::ComputePipeline>,
+    module: wgpu::ShaderModule,
     finalize: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
@@ -53,10 +56,8 @@ impl TileClassifyPass {
         });
         let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
         Self {
-            classify: [false, true].map(|clear| {
-                let constants = [("CLEAR_TILES", super::flag(clear))];
-                compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &constants)
-            }),
+            classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
+            separate_clear: None,
             finalize: compute_pipeline(
                 device,
                 "ppr tile classify finalize",
@@ -65,7 +66,19 @@ impl TileClassifyPass {
                 "finalize",
                 &[],
             ),
+            module,
             layout,
+        }
+    }
+
+    /// Builds the classification that leaves the clear to the clear pass (bench only; the
+    /// renderer asks for it when `DebugOptions::tile_clear_pass` is set).
+    pub fn prepare_separate_clear(&mut self, device: &wgpu::Device) {
+        if self.separate_clear.is_none() {
+            let constants = [("CLEAR_TILES", flag(false))];
+            let label = "ppr tile classify (separate clear)";
+            self.separate_clear =
+                Some(compute_pipeline(device, label, &self.layout, &self.module, "classify", &constants));
         }
     }
 
@@ -89,7 +102,7 @@ impl TileClassifyPass {
     }
 
     /// Records the classification of every tile, with `clear_tiles` the clear of the active
-    /// tiles' pixels (else the clear pass must do it), and the argument fix-up (two
+    /// tiles' pixels (else the clear pass must do it, after [`Self::prepare_separate_clear`]), and the argument fix-up (two
     /// dispatches). The active-tile count must be zero beforehand: the renderer clears it in
     /// the encoder before every classification (not once per `prepare`: a second encode
     /// would append).
@@ -103,7 +116,12 @@ impl TileClassifyPass {
         // One workgroup per 2 × 2 tiles.
         let (x, y) = block_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);
-        pass.set_pipeline(&self.classify[usize::from(clear_tiles)]);
+        let classify = if clear_tiles {
+            &self.classify
+        } else {
+            self.separate_clear.as_ref().expect("prepare_separate_clear() before encode()")
+        };
+        pass.set_pipeline(classify);
         pass.dispatch_workgroups(x, y, 1);
         pass.set_pipeline(&self.finalize);
         pass.dispatch_workgroups(1, 1, 1);
