@@ -38,7 +38,9 @@ Examples:
 
 Scenes: demo (assets/demo_room.glb), kitchen, small, collision-world, pool, mine (from
 --scenes-dir), the generated closed mirror rooms mirror-room, mirror-room-<boxes> and
-mirror-corridor, or a path to a .glb/.gltf (append :all-planar for levels with one material).
+mirror-corridor, the scaling suite's generated levels <family>-<count> (stairway-10000,
+tiled-floor-1000, facade-100, rooms-1000: one camera), or a path to a .glb/.gltf (append
+:all-planar for levels with one material).
 Run on a GPU with WGPU_BACKEND=vulkan; without one, wgpu's GL backend on llvmpipe works
 (only --quick is practical there).";
 

@@ -69,7 +69,9 @@ impl SceneSpec {
     /// [`BenchError::Spec`] for an unknown name that is not a path either.
     pub fn parse(text: &str, repo_root: &Path, scenes_dir: &Path) -> Result<Self, BenchError> {
         // Generated scenes have no file: their path is their name (see `BenchScene::load`).
-        if crate::mirror_room::MirrorRoom::from_name(text).is_some() {
+        if crate::mirror_room::MirrorRoom::from_name(text).is_some()
+            || crate::scaling::level_family::LevelFamily::from_scene_name(text).is_some()
+        {
             return Ok(Self { name: text.into(), path: text.into(), preset: ExtractPreset::AllPlanar });
         }
         if let Some((name, rel, preset)) = KNOWN_SCENES.iter().find(|(n, _, _)| *n == text) {
@@ -140,6 +142,20 @@ impl BenchScene {
     pub fn load(spec: &SceneSpec, options: &SceneOptions) -> Result<Self, BenchError> {
         if let Some(room) = crate::mirror_room::MirrorRoom::from_name(&spec.name) {
             return Ok(crate::mirror_room::bench_scene(room, options));
+        }
+        if let Some((family, count)) = crate::scaling::level_family::LevelFamily::from_scene_name(&spec.name)
+        {
+            // A scaling family (scaling.md) with its one camera, to profile like a real level.
+            let g = crate::scaling::level_family::generate(family, count);
+            let mut notes = vec![format!(
+                "generated scaling level: {} reflectors from {} triangles",
+                g.reflectors.reflectors.len(),
+                g.level.triangle_count()
+            )];
+            let mut scene = Self::from_parts(&spec.name, g.level, g.reflectors, options, &mut notes);
+            scene.cameras = vec![NamedCamera { name: "scaling".into(), camera: g.camera }];
+            scene.cameras_derived = false;
+            return Ok(scene);
         }
         // One read of the file (ppr-level, as every tool): drawn by the testbed, flattened for the extractor.
         let level_error =

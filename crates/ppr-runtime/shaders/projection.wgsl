@@ -210,7 +210,12 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                 min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
                     p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
             );
-            if (dist > tol && inside >= 0.0) {
+            if (ABLATION == 3u) {
+                // Tests only: the walk and the members' tests, no write.
+                if (dist == 1234.5 && inside == 1234.5) {
+                    atomicStore(&intermediate[0], 0u);
+                }
+            } else if (dist > tol && inside >= 0.0) {
                 reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
         }

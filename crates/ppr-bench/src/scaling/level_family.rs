@@ -37,6 +37,14 @@ impl LevelFamily {
             Self::Rooms => "rooms",
         }
     }
+
+    /// A bench scene name `<family>-<count>` (`stairway-10000`): the family and its count.
+    pub fn from_scene_name(name: &str) -> Option<(Self, usize)> {
+        let (family, count) = name.rsplit_once('-')?;
+        let family = Self::ALL.into_iter().find(|f| f.as_str() == family)?;
+        let count: usize = count.parse().ok()?;
+        (1..=100_000).contains(&count).then_some((family, count))
+    }
 }
 
 /// A generated level, its reflector set and the camera that sees all of it.
@@ -183,6 +191,18 @@ mod tests {
         for n in [1, 2, 10, 99, 100, 1000, 10_000] {
             let (c, r) = grid(n, 1.25);
             assert!(c * r >= n && (c - 1) * r < n + r, "{n}: {c}x{r}");
+        }
+    }
+
+    #[test]
+    fn scene_names_name_a_family_and_a_count() {
+        for family in LevelFamily::ALL {
+            let name = format!("{}-{}", family.as_str(), 1000);
+            assert_eq!(LevelFamily::from_scene_name(&name), Some((family, 1000)), "{name}");
+        }
+        assert_eq!(LevelFamily::from_scene_name("tiled-floor-7"), Some((LevelFamily::TiledFloor, 7)));
+        for bad in ["stairway", "stairway-0", "stairway-x", "floor-10", "mirror-room-2", "stairway-1000000"] {
+            assert_eq!(LevelFamily::from_scene_name(bad), None, "{bad}");
         }
     }
 }
