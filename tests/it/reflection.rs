@@ -242,18 +242,14 @@ fn high_contrast_edges(f: &Frame) -> Vec<bool> {
     edges
 }
 
-#[test]
-fn projection_matches_the_cpu_reference() {
-    let case = room_case();
-    let out = render(&case, HOLES_ONLY, WriteMode::AtomicMin);
-    let cpu = ppr_tests::harness::cpu_projection(&case.frame, &case.camera, &case.set);
-    let written = cpu.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
-    let same = cpu.iter().zip(&out.intermediate).filter(|(a, b)| a == b).count();
+/// Values equal to the CPU reference's, and values whose decoded offsets differ by more
+/// than a pixel (f32 on the GPU, f64 on the CPU), over the whole buffer.
+fn agreement(cpu: &[u32], gpu: &[u32]) -> (usize, usize) {
+    let same = cpu.iter().zip(gpu).filter(|(a, b)| a == b).count();
     let layout = ppr_runtime::EncodingLayout::for_resolution(SIZE[0], SIZE[1]);
-    // Where they differ, the decoded offsets stay within a pixel (f32 on the GPU, f64 here).
     let far_apart = cpu
         .iter()
-        .zip(&out.intermediate)
+        .zip(gpu)
         .filter(|(a, b)| {
             let (a, b) =
                 (ppr_runtime::encoding::decode(**a, &layout), ppr_runtime::encoding::decode(**b, &layout));
@@ -264,12 +260,66 @@ fn projection_matches_the_cpu_reference() {
             }
         })
         .count();
+    (same, far_apart)
+}
+
+#[test]
+fn projection_matches_the_cpu_reference() {
+    let case = room_case();
+    let out = render(&case, HOLES_ONLY, WriteMode::AtomicMin);
+    let cpu = ppr_tests::harness::cpu_projection(&case.frame, &case.camera, &case.set);
+    let written = cpu.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+    let (same, far_apart) = agreement(&cpu, &out.intermediate);
     eprintln!(
         "projection: {written} pixels written by the CPU reference; {same} of {} values identical; {far_apart} differ by more than a pixel",
         cpu.len()
     );
     assert!(written > 4000, "{written}");
     assert!(same as f64 >= 0.97 * cpu.len() as f64, "{same} of {}", cpu.len());
+    assert!(far_apart as f64 <= 0.01 * written as f64, "{far_apart} of {written}");
+}
+
+#[test]
+fn projection_honours_occluder_lists() {
+    // A panel floating between the camera and part of the mirror floor, facing down (the
+    // camera sees its back: nothing reflects in it), listed as the floor's occluder: the
+    // floor's reflections seen through it are not written.
+    let mut case = room_case();
+    let id = case.set.next_id();
+    case.set.reflectors.push(ppr_format::Reflector::new(
+        id,
+        "occluder",
+        ppr_format::ReflectorKind::Opaque,
+        DVec3::new(0.3, 0.4, -2.5),
+        DVec3::NEG_Y,
+        DVec3::X,
+        glam::DVec2::new(1.2, 1.0),
+    ));
+    case.set.reflectors[0].occluders = vec![1];
+    case.set.assign_parallel_groups();
+    // Occluder lists are off by default (the depth test catches every occluder).
+    let mut r = renderer();
+    r.plan_params.indirect = ppr_runtime::Choice::Off;
+    r.plan_params.occluder_lists = ppr_runtime::Choice::On;
+    r.set_reflectors(&ppr_tests::harness::validated(&case.set));
+    r.settings = HOLES_ONLY;
+    let out = run(&mut r, &case.gpu, &case.camera);
+    assert!(out.plan.occluder_tests, "the plan runs the occluder tests: {}", out.plan);
+    let cpu = ppr_tests::harness::cpu_projection(&case.frame, &case.camera, &case.set);
+    let mut open = case.set.clone();
+    open.reflectors[0].occluders.clear();
+    let cpu_open = ppr_tests::harness::cpu_projection(&case.frame, &case.camera, &open);
+    let blocked = cpu.iter().zip(&cpu_open).filter(|(a, b)| a != b).count();
+    let written = cpu.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+    let (same, far_apart) = agreement(&cpu, &out.intermediate);
+    let (same_open, _) = agreement(&cpu_open, &out.intermediate);
+    eprintln!(
+        "occluded projection: {blocked} values blocked by the occluder, {written} written; {same} of {} identical to the reference ({same_open} to the one without occluders); {far_apart} differ by more than a pixel",
+        cpu.len()
+    );
+    assert!(blocked > 300, "the occluder blocks part of the floor's reflection: {blocked}");
+    assert!(same as f64 >= 0.97 * cpu.len() as f64, "{same} of {}", cpu.len());
+    assert!(same >= same_open + blocked / 2, "{same} against {same_open} without occluders");
     assert!(far_apart as f64 <= 0.01 * written as f64, "{far_apart} of {written}");
 }
 

@@ -379,7 +379,8 @@ pub fn save_png(path: &std::path::Path, size: [u32; 2], images: &[Vec<Vec3>]) {
     img.save(path).expect("write debug png");
 }
 
-/// CPU reference of the projection pass (no occluders): the intermediate buffer it writes.
+/// CPU reference of the projection pass (occluder lists and depth occlusion included): the
+/// intermediate buffer it writes.
 pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::ReflectorSet) -> Vec<u32> {
     let [w, h] = frame.size;
     let layout = ppr_runtime::EncodingLayout::for_resolution(w, h);
@@ -420,6 +421,10 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
             for r in &set.reflectors {
                 let c = r.center - camera.position;
                 let pd = c.dot(r.normal);
+                // The plan culls shapes whose reflecting side faces away from the camera.
+                if pd >= 0.0 {
+                    continue;
+                }
                 let dist = p.dot(r.normal) - pd;
                 if dist <= tolerance {
                     continue;
@@ -428,6 +433,24 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
                 let hit = m * (pd / m.dot(r.normal));
                 let l = hit - c;
                 if l.dot(r.axis_u).abs() > r.half_extents.x || l.dot(r.axis_v).abs() > r.half_extents.y {
+                    continue;
+                }
+                // Occluder lists: not where one of the shape's occluders (not glass) crosses
+                // the ray from the camera to the reflection point strictly before it.
+                let occluded = r.occluders.iter().any(|&o| {
+                    let o = &set.reflectors[o as usize];
+                    if !o.enabled || o.kind == ppr_format::ReflectorKind::Transparent {
+                        return false;
+                    }
+                    let (on, oc) = (o.normal, o.center - camera.position);
+                    let t = oc.dot(on) / hit.dot(on);
+                    let l = hit * t - oc;
+                    t > 0.0
+                        && t < 0.9999
+                        && l.dot(o.axis_u).abs() <= o.half_extents.x
+                        && l.dot(o.axis_v).abs() <= o.half_extents.y
+                });
+                if occluded {
                     continue;
                 }
                 let cl = clip_from_rel * m.extend(1.0);

@@ -91,16 +91,20 @@ const NO_SHAPE: u32 = 0xffffffffu;
 @group(0) @binding(12) var<uniform> uniform_tests: array<ShapeTest, 128>;
 // Merged plane groups (crates/ppr-runtime/src/plane_groups.rs): per group a header of 16
 // words (PlaneGroup), then the frame's parallel trees (parallel_trees.rs), then the grids'
-// static words.
-@group(0) @binding(13) var<storage, read> plane_groups: array<u32>;
+// static words. Read as vec4s, so that a tree node (8 words, 32-byte aligned) is two loads.
+@group(0) @binding(13) var<storage, read> plane_groups: array<vec4<u32>>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
 const GROUP_TEST_FLAG: u32 = 0x80000000u;
 // Words per member rectangle in the grids.
 const GROUP_RECT_WORDS: u32 = 8u;
 
+fn group_word(i: u32) -> u32 {
+    return plane_groups[i >> 2u][i & 3u];
+}
+
 fn group_f32(i: u32) -> f32 {
-    return bitcast<f32>(plane_groups[i]);
+    return bitcast<f32>(group_word(i));
 }
 
 fn group_vec3(i: u32) -> vec3<f32> {
@@ -113,19 +117,19 @@ fn group_vec3(i: u32) -> vec3<f32> {
 fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
     let h = slot * 16u;
     let l = hit - group_vec3(h);
-    let cells_start = plane_groups[h + 3u];
+    let cells_start = group_word(h + 3u);
     let u = dot(l, group_vec3(h + 4u));
     let v = dot(l, group_vec3(h + 8u));
-    let cells = vec2<u32>(plane_groups[h + 7u], plane_groups[h + 11u]);
+    let cells = vec2<u32>(group_word(h + 7u), group_word(h + 11u));
     let c = floor(vec2<f32>(u, v) * vec2<f32>(group_f32(h + 12u), group_f32(h + 13u)));
     if (!(all(c >= vec2<f32>(0.0)) && all(c < vec2<f32>(cells)))) {
         return false;
     }
     let cell = cells_start + u32(c.x) + u32(c.y) * cells.x;
-    let rects = plane_groups[h + 14u];
-    let end = cells_start + plane_groups[cell + 1u];
-    for (var i = cells_start + plane_groups[cell]; i < end; i++) {
-        let r = rects + GROUP_RECT_WORDS * plane_groups[i];
+    let rects = group_word(h + 14u);
+    let end = cells_start + group_word(cell + 1u);
+    for (var i = cells_start + group_word(cell); i < end; i++) {
+        let r = rects + GROUP_RECT_WORDS * group_word(i);
         let d = vec2<f32>(u - group_f32(r), v - group_f32(r + 1u));
         let axis = vec2<f32>(group_f32(r + 4u), group_f32(r + 5u));
         let lu = d.x * axis.x + d.y * axis.y;
@@ -148,29 +152,32 @@ const TREE_NODE_WORDS: u32 = 8u;
 // v - alpha * d (alpha: the node's slope of v against d) is a hyperbola plus a line in d,
 // whose range is its values at the ends and, where it turns inside, at its stationary
 // point; tested against the node's range of v - alpha * d. Boxes widened by `m`. The CPU
-// model is parallel_trees.rs's node_meets.
+// model is parallel_trees.rs's node_meets. The node's words are 32-byte aligned
+// (parallel_trees.rs): two vec4 loads.
 fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
-    let lo = group_f32(w);
+    let a = bitcast<vec4<f32>>(plane_groups[w >> 2u]);
+    let b = bitcast<vec4<f32>>(plane_groups[(w >> 2u) + 1u]);
+    let lo = a.x;
     if (!(lo < reach)) {
         return false;
     }
-    let hi = min(group_f32(w + 1u), reach);
+    let hi = min(a.y, reach);
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
     // u = t * uv.x is linear in t: its range is its values at the ends.
     let ua = ta * uv.x;
     let ub = tb * uv.x;
-    if (max(ua, ub) + m < group_f32(w + 2u) || min(ua, ub) - m > group_f32(w + 3u)) {
+    if (max(ua, ub) + m < a.z || min(ua, ub) - m > a.w) {
         return false;
     }
-    let alpha = group_f32(w + 6u);
+    let alpha = b.z;
     let wa = ta * uv.y - alpha * lo;
     let wb = tb * uv.y - alpha * hi;
     var w0 = min(wa, wb);
     var w1 = max(wa, wb);
     // The stationary point: (2d - zp)^2 = -uv.y * zp / alpha (word 7 holds 1 / alpha, 0
     // for alpha = 0).
-    let q = -uv.y * zp * group_f32(w + 7u);
+    let q = -uv.y * zp * b.w;
     if (q > 0.0) {
         let d = 0.5 * (zp - sqrt(q));
         if (lo < d && d < hi) {
@@ -180,7 +187,7 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
         }
     }
     let mw = m + 1e-5 * abs(alpha) * (abs(lo) + abs(zp));
-    return w1 + mw >= group_f32(w + 4u) && w0 - mw <= group_f32(w + 5u);
+    return w1 + mw >= b.x && w0 - mw <= b.y;
 }
 
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
@@ -188,9 +195,9 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
 // test, as the plain loop would.
 fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
-    let node_start = plane_groups[h + 3u];
-    let leaves = plane_groups[h + 7u];
-    let tests_start = plane_groups[h + 12u];
+    let node_start = group_word(h + 3u);
+    let leaves = group_word(h + 7u);
+    let tests_start = group_word(h + 12u);
     let zp = dot(p, n);
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
@@ -310,9 +317,10 @@ fn on_shape(q: vec4<f32>, s: Shape) -> bool {
         && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
 }
 
-// Writes the reflection of `pixel` into the main intermediate buffer (not where the plane
-// `n`, `d` is occluded at the target, with DEPTH_OCCLUSION).
-fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32) -> bool {
+// Writes the reflection of `pixel` in shape `shape` (plane `n`, `d`) into the main
+// intermediate buffer, where it reaches the shape (reaches_shape) and, with
+// DEPTH_OCCLUSION, the plane is not occluded at the target.
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32, shape: u32) -> bool {
     let tv = projection_target(pixel, mirrored);
     let value = tv.z;
     if (value == PPR_CLEAR_VALUE) {
@@ -321,19 +329,22 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32)
     let t = tv.xy;
     let index = t.x + t.y * frame.size.x;
     if (ABLATION == 5u) {
-        if (value == 0x12345u) {
+        if (reaches_shape(mirrored, n, d, shape) && value == 0x12345u) {
             atomicStore(&intermediate[index], value);
         }
         return true;
     }
     let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
     // A plain load first: where a squeezed reflection maps many pixels onto one, most
-    // writes lose, and a load is cheaper than the occlusion test and the atomic. Not with
-    // DEBUG_WRITES: what a pixel is recorded as having written must not depend on the
-    // order of other writes (the buffer ends the same: an occluded write never lowers a
-    // value).
+    // writes lose, and a load is cheaper than the occluder and occlusion tests and the
+    // atomic. Not with DEBUG_WRITES: what a pixel is recorded as having written must not
+    // depend on the order of other writes (the buffer ends the same: an occluded write
+    // never lowers a value).
     if (mode == 0u && !DEBUG_WRITES && atomicLoad(&intermediate[index]) <= value) {
         return true;
+    }
+    if (!reaches_shape(mirrored, n, d, shape)) {
+        return false;
     }
     if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
         return false;
@@ -374,27 +385,28 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
-// Occluder tests and the write, for a shape (index `shape`) that passed its test. `plane`
-// is its test's plane (`ShapeTest.plane`: the shape's normal and minus its plane distance,
-// bit for bit what `shapes` holds), so that the write needs no load of the shape.
+// The write, for a shape (index `shape`) that passed its test. `plane` is its test's plane
+// (`ShapeTest.plane`: the shape's normal and minus its plane distance, bit for bit what
+// `shapes` holds), so that the write needs no load of the shape.
 fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
     let n = plane.xyz;
-    let mirrored = p - 2.0 * dist * n;
+    return write_projection(pixel, p - 2.0 * dist * n, n, -plane.w, shape);
+}
+
+// Whether the reflection `mirrored` of a pixel in shape `shape` (plane `n`, `d`) reaches
+// it: for a merged plane group, whether its reflection point lies on a member, not just
+// in the group's bounding rectangle; with OCCLUDER_TESTS, whether none of the shape's
+// occluders stands between the camera and that point.
+fn reaches_shape(mirrored: vec3<f32>, n: vec3<f32>, d: f32, shape: u32) -> bool {
     if ((shape & GROUP_TEST_FLAG) != 0u) {
-        // A merged plane group (never with occluder lists): does the reflection point lie
-        // on a member, not just in the group's bounding rectangle?
-        let hit = mirrored * (-plane.w / dot(mirrored, n));
-        if (!group_covers(shape & ~GROUP_TEST_FLAG, hit)) {
-            return false;
-        }
-    } else if (OCCLUDER_TESTS) {
-        let s = shapes[shape];
-        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-        if (is_occluded(hit, s)) {
-            return false;
-        }
+        // Never with occluder lists.
+        return group_covers(shape & ~GROUP_TEST_FLAG, mirrored * (d / dot(mirrored, n)));
     }
-    return write_projection(pixel, mirrored, n, -plane.w);
+    if (OCCLUDER_TESTS) {
+        let s = shapes[shape];
+        return !is_occluded(mirrored * (s.plane_dist / dot(mirrored, s.normal)), s);
+    }
+    return true;
 }
 
 // The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
