@@ -190,9 +190,36 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     return w1 + mw >= b.x && w0 - mw <= b.y;
 }
 
+// Most leaves a pixel's tree walk gathers into one run for its member tests after the walk.
+const TREE_RUN_SPAN: u32 = 16u;
+
+// A member's own test (the plain loop's) and, where it passes, the write.
+fn tree_member(k: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
+    let t = tests[k];
+    let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+    let inside = min(
+        min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
+            p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
+        min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
+            p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
+    );
+    if (ABLATION == 3u) {
+        // Tests only: the walk and the members' tests, no write.
+        if (dist == 1234.5 && inside == 1234.5) {
+            atomicStore(&intermediate[0], 0u);
+        }
+    } else if (dist > tol && inside >= 0.0) {
+        reflect_pixel(pixel, p, dist, t.plane, t.shape);
+    }
+}
+
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
 // tolerance `tol`) and writes its reflection in every member that passes the member's own
-// test, as the plain loop would.
+// test, as the plain loop would. The leaves the walk reaches (in increasing order) gather
+// into two runs of at most TREE_RUN_SPAN each (a pixel's reflections lie in neighbouring
+// members, sometimes in two places of the family), tested and written after the walk, when
+// the warp's lanes are together again (in the walk, one lane's write would hold the
+// others); a leaf beyond both runs is tested at once.
 fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
     let node_start = group_word(h + 3u);
@@ -202,6 +229,10 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
+    var run_first = 0u;
+    var run_end = 0u;
+    var run2_first = 0u;
+    var run2_end = 0u;
     var node = 1u;
     loop {
         if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
@@ -209,21 +240,19 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                 node = node * 2u;
                 continue;
             }
-            let t = tests[tests_start + node - leaves];
-            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-            let inside = min(
-                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
-                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
-                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
-                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
-            );
-            if (ABLATION == 3u) {
-                // Tests only: the walk and the members' tests, no write.
-                if (dist == 1234.5 && inside == 1234.5) {
-                    atomicStore(&intermediate[0], 0u);
-                }
-            } else if (dist > tol && inside >= 0.0) {
-                reflect_pixel(pixel, p, dist, t.plane, t.shape);
+            let leaf = node - leaves;
+            if (run_end == run_first) {
+                run_first = leaf;
+                run_end = leaf + 1u;
+            } else if (leaf < run_first + TREE_RUN_SPAN) {
+                run_end = leaf + 1u;
+            } else if (run2_end == run2_first) {
+                run2_first = leaf;
+                run2_end = leaf + 1u;
+            } else if (leaf < run2_first + TREE_RUN_SPAN) {
+                run2_end = leaf + 1u;
+            } else {
+                tree_member(tests_start + leaf, pixel, p, tol);
             }
         }
         // The next node in walk order: up past right children, then the right sibling.
@@ -234,6 +263,12 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
             break;
         }
         node += 1u;
+    }
+    for (var leaf = run_first; leaf < run_end; leaf++) {
+        tree_member(tests_start + leaf, pixel, p, tol);
+    }
+    for (var leaf = run2_first; leaf < run2_end; leaf++) {
+        tree_member(tests_start + leaf, pixel, p, tol);
     }
 }
 
