@@ -70,6 +70,33 @@ fn written(out: &Output) -> usize {
 }
 
 #[test]
+fn the_write_shortcuts_leave_the_buffer_every_write_leaves() {
+    // The projection loads the stored value first and gives up where it wins already (its
+    // top field, the major whole part, alone may decide); with debug writes every write
+    // goes through the whole path. Squeezed reflections in many treads make most writes
+    // lose: the buffers must still be the same, bit for bit.
+    let scene = stairway(40);
+    let set = validated(&scene.reflector_set());
+    let mut decided = 0usize;
+    for camera in cameras() {
+        let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+        let mut short = configured(Choice::On, Choice::Off, Choice::Off);
+        short.set_reflectors(&set);
+        let a = run(&mut short, &gpu, &camera);
+        let mut full = configured(Choice::On, Choice::Off, Choice::Off);
+        full.debug.writes = true;
+        full.set_reflectors(&set);
+        let b = run(&mut full, &gpu, &camera);
+        let n = written(&a);
+        assert!(n > 800, "the treads must reflect something: {n}");
+        let differing = a.intermediate.iter().zip(&b.intermediate).filter(|(x, y)| x != y).count();
+        assert_eq!(differing, 0, "{differing} of {n} written pixels differ");
+        decided += n;
+    }
+    assert!(decided > 5000, "{decided} written pixels over the cameras");
+}
+
+#[test]
 fn a_walked_tree_writes_what_its_shapes_write() {
     let scene = stairway(40);
     let set = validated(&scene.reflector_set());

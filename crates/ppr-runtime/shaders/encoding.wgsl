@@ -135,6 +135,21 @@ fn ppr_encode_parts(whole_s: vec2<i32>, fract_in: vec2<f32>, enc: EncodingParams
     return (((major_field << minor_bits) | minor_field) << 2u) | basis;
 }
 
+// The major whole part, in its packing basis, of the value ppr_encode_parts makes of these
+// parts (where it makes one), without the encoding's divisions. It is the value's top
+// field: a value whose major whole part exceeds another's is larger, whatever the rest.
+fn ppr_parts_major_whole(whole_s: vec2<i32>, fract_in: vec2<f32>) -> i32 {
+    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
+    let half = one / 2;
+    let fract_s = clamp(vec2<i32>(round(fract_in * f32(one))), vec2<i32>(-half), vec2<i32>(half - 1));
+    return ppr_to_basis(whole_s, ppr_basis_index(whole_s * one + fract_s)).y;
+}
+
+// The major whole part of an encoded value (PPR_CLEAR_VALUE: larger than any value's).
+fn ppr_value_major_whole(value: u32, enc: EncodingParams) -> i32 {
+    return i32((value >> 2u) >> (enc.minor_int_bits + enc.minor_frac_bits + enc.major_frac_bits));
+}
+
 // Decodes a value that is not PPR_CLEAR_VALUE (check first).
 fn ppr_decode(value: u32, enc: EncodingParams) -> PprDecoded {
     let basis = value & 3u;

@@ -91,20 +91,16 @@ const NO_SHAPE: u32 = 0xffffffffu;
 @group(0) @binding(12) var<uniform> uniform_tests: array<ShapeTest, 128>;
 // Merged plane groups (crates/ppr-runtime/src/plane_groups.rs): per group a header of 16
 // words (PlaneGroup), then the frame's parallel trees (parallel_trees.rs), then the grids'
-// static words. Read as vec4s, so that a tree node (8 words, 32-byte aligned) is two loads.
-@group(0) @binding(13) var<storage, read> plane_groups: array<vec4<u32>>;
+// static words.
+@group(0) @binding(13) var<storage, read> plane_groups: array<u32>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
 const GROUP_TEST_FLAG: u32 = 0x80000000u;
 // Words per member rectangle in the grids.
 const GROUP_RECT_WORDS: u32 = 8u;
 
-fn group_word(i: u32) -> u32 {
-    return plane_groups[i >> 2u][i & 3u];
-}
-
 fn group_f32(i: u32) -> f32 {
-    return bitcast<f32>(group_word(i));
+    return bitcast<f32>(plane_groups[i]);
 }
 
 fn group_vec3(i: u32) -> vec3<f32> {
@@ -117,19 +113,19 @@ fn group_vec3(i: u32) -> vec3<f32> {
 fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
     let h = slot * 16u;
     let l = hit - group_vec3(h);
-    let cells_start = group_word(h + 3u);
+    let cells_start = plane_groups[h + 3u];
     let u = dot(l, group_vec3(h + 4u));
     let v = dot(l, group_vec3(h + 8u));
-    let cells = vec2<u32>(group_word(h + 7u), group_word(h + 11u));
+    let cells = vec2<u32>(plane_groups[h + 7u], plane_groups[h + 11u]);
     let c = floor(vec2<f32>(u, v) * vec2<f32>(group_f32(h + 12u), group_f32(h + 13u)));
     if (!(all(c >= vec2<f32>(0.0)) && all(c < vec2<f32>(cells)))) {
         return false;
     }
     let cell = cells_start + u32(c.x) + u32(c.y) * cells.x;
-    let rects = group_word(h + 14u);
-    let end = cells_start + group_word(cell + 1u);
-    for (var i = cells_start + group_word(cell); i < end; i++) {
-        let r = rects + GROUP_RECT_WORDS * group_word(i);
+    let rects = plane_groups[h + 14u];
+    let end = cells_start + plane_groups[cell + 1u];
+    for (var i = cells_start + plane_groups[cell]; i < end; i++) {
+        let r = rects + GROUP_RECT_WORDS * plane_groups[i];
         let d = vec2<f32>(u - group_f32(r), v - group_f32(r + 1u));
         let axis = vec2<f32>(group_f32(r + 4u), group_f32(r + 5u));
         let lu = d.x * axis.x + d.y * axis.y;
@@ -152,32 +148,29 @@ const TREE_NODE_WORDS: u32 = 8u;
 // v - alpha * d (alpha: the node's slope of v against d) is a hyperbola plus a line in d,
 // whose range is its values at the ends and, where it turns inside, at its stationary
 // point; tested against the node's range of v - alpha * d. Boxes widened by `m`. The CPU
-// model is parallel_trees.rs's node_meets. The node's words are 32-byte aligned
-// (parallel_trees.rs): two vec4 loads.
+// model is parallel_trees.rs's node_meets.
 fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
-    let a = bitcast<vec4<f32>>(plane_groups[w >> 2u]);
-    let b = bitcast<vec4<f32>>(plane_groups[(w >> 2u) + 1u]);
-    let lo = a.x;
+    let lo = group_f32(w);
     if (!(lo < reach)) {
         return false;
     }
-    let hi = min(a.y, reach);
+    let hi = min(group_f32(w + 1u), reach);
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
     // u = t * uv.x is linear in t: its range is its values at the ends.
     let ua = ta * uv.x;
     let ub = tb * uv.x;
-    if (max(ua, ub) + m < a.z || min(ua, ub) - m > a.w) {
+    if (max(ua, ub) + m < group_f32(w + 2u) || min(ua, ub) - m > group_f32(w + 3u)) {
         return false;
     }
-    let alpha = b.z;
+    let alpha = group_f32(w + 6u);
     let wa = ta * uv.y - alpha * lo;
     let wb = tb * uv.y - alpha * hi;
     var w0 = min(wa, wb);
     var w1 = max(wa, wb);
     // The stationary point: (2d - zp)^2 = -uv.y * zp / alpha (word 7 holds 1 / alpha, 0
     // for alpha = 0).
-    let q = -uv.y * zp * b.w;
+    let q = -uv.y * zp * group_f32(w + 7u);
     if (q > 0.0) {
         let d = 0.5 * (zp - sqrt(q));
         if (lo < d && d < hi) {
@@ -187,52 +180,21 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
         }
     }
     let mw = m + 1e-5 * abs(alpha) * (abs(lo) + abs(zp));
-    return w1 + mw >= b.x && w0 - mw <= b.y;
-}
-
-// Most leaves a pixel's tree walk gathers into one run for its member tests after the walk.
-const TREE_RUN_SPAN: u32 = 16u;
-
-// A member's own test (the plain loop's) and, where it passes, the write.
-fn tree_member(k: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
-    let t = tests[k];
-    let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-    let inside = min(
-        min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
-            p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
-        min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
-            p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
-    );
-    if (ABLATION == 3u) {
-        // Tests only: the walk and the members' tests, no write.
-        if (dist == 1234.5 && inside == 1234.5) {
-            atomicStore(&intermediate[0], 0u);
-        }
-    } else if (dist > tol && inside >= 0.0) {
-        reflect_pixel(pixel, p, dist, t.plane, t.shape);
-    }
+    return w1 + mw >= group_f32(w + 4u) && w0 - mw <= group_f32(w + 5u);
 }
 
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
 // tolerance `tol`) and writes its reflection in every member that passes the member's own
-// test, as the plain loop would. The leaves the walk reaches (in increasing order) gather
-// into two runs of at most TREE_RUN_SPAN each (a pixel's reflections lie in neighbouring
-// members, sometimes in two places of the family), tested and written after the walk, when
-// the warp's lanes are together again (in the walk, one lane's write would hold the
-// others); a leaf beyond both runs is tested at once.
+// test, as the plain loop would.
 fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
-    let node_start = group_word(h + 3u);
-    let leaves = group_word(h + 7u);
-    let tests_start = group_word(h + 12u);
+    let node_start = plane_groups[h + 3u];
+    let leaves = plane_groups[h + 7u];
+    let tests_start = plane_groups[h + 12u];
     let zp = dot(p, n);
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
-    var run_first = 0u;
-    var run_end = 0u;
-    var run2_first = 0u;
-    var run2_end = 0u;
     var node = 1u;
     loop {
         if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
@@ -240,19 +202,21 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                 node = node * 2u;
                 continue;
             }
-            let leaf = node - leaves;
-            if (run_end == run_first) {
-                run_first = leaf;
-                run_end = leaf + 1u;
-            } else if (leaf < run_first + TREE_RUN_SPAN) {
-                run_end = leaf + 1u;
-            } else if (run2_end == run2_first) {
-                run2_first = leaf;
-                run2_end = leaf + 1u;
-            } else if (leaf < run2_first + TREE_RUN_SPAN) {
-                run2_end = leaf + 1u;
-            } else {
-                tree_member(tests_start + leaf, pixel, p, tol);
+            let t = tests[tests_start + node - leaves];
+            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+            let inside = min(
+                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
+                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
+                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
+                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
+            );
+            if (ABLATION == 3u) {
+                // Tests only: the walk and the members' tests, no write.
+                if (dist == 1234.5 && inside == 1234.5) {
+                    atomicStore(&intermediate[0], 0u);
+                }
+            } else if (dist > tol && inside >= 0.0) {
+                reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
         }
         // The next node in walk order: up past right children, then the right sibling.
@@ -263,12 +227,6 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
             break;
         }
         node += 1u;
-    }
-    for (var leaf = run_first; leaf < run_end; leaf++) {
-        tree_member(tests_start + leaf, pixel, p, tol);
-    }
-    for (var leaf = run2_first; leaf < run2_end; leaf++) {
-        tree_member(tests_start + leaf, pixel, p, tol);
     }
 }
 
@@ -305,25 +263,51 @@ fn is_occluded(hit: vec3<f32>, s: Shape) -> bool {
 }
 
 // Where the reflection of `pixel` (camera-relative position `mirrored` once mirrored)
-// lands: (target x, target y, encoded value); the value is PPR_CLEAR_VALUE when it does
-// not land on screen or does not fit the encoding.
-fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
+// lands: its target pixel and the encoding's parts (target pixel - pixel, and the point in
+// the target pixel from its centre); `on_screen` false where it does not land on screen.
+struct ProjectedPoint {
+    t: vec2<u32>,
+    whole: vec2<i32>,
+    fract: vec2<f32>,
+    on_screen: bool,
+}
+
+fn projection_point(pixel: vec2<u32>, mirrored: vec3<f32>) -> ProjectedPoint {
+    var out = ProjectedPoint(vec2<u32>(0u), vec2<i32>(0), vec2<f32>(0.0), false);
     let clip = frame.clip_from_rel * vec4<f32>(mirrored, 1.0);
     if (!(clip.w > 0.0)) {
-        return vec3<u32>(0u, 0u, PPR_CLEAR_VALUE);
+        return out;
     }
     let ndc = clip.xy / clip.w;
     if (!all(abs(ndc) < vec2<f32>(1.0))) {
-        return vec3<u32>(0u, 0u, PPR_CLEAR_VALUE);
+        return out;
     }
     let target_crd = (ndc * vec2<f32>(0.5, -0.5) + 0.5) * frame.resolution.xy;
     // Whole part from integer pixels, so that it points exactly at the source pixel.
-    let t = min(vec2<u32>(target_crd), frame.size - 1u);
-    let whole = vec2<i32>(t) - vec2<i32>(pixel);
+    out.t = min(vec2<u32>(target_crd), frame.size - 1u);
+    out.whole = vec2<i32>(out.t) - vec2<i32>(pixel);
+    out.fract = target_crd - vec2<f32>(out.t) - 0.5;
+    out.on_screen = true;
+    return out;
+}
+
+// The encoded value of a projected point (PPR_CLEAR_VALUE where it does not fit the
+// encoding).
+fn projected_value(pt: ProjectedPoint) -> u32 {
     if (ABLATION == 4u) {
-        return vec3<u32>(t, (t.x ^ (t.y << 12u)) & 0x7fffffffu);
+        return (pt.t.x ^ (pt.t.y << 12u)) & 0x7fffffffu;
     }
-    return vec3<u32>(t, ppr_encode_parts(whole, target_crd - vec2<f32>(t) - 0.5, frame.encoding));
+    return ppr_encode_parts(pt.whole, pt.fract, frame.encoding);
+}
+
+// Where the reflection of `pixel` lands: (target x, target y, encoded value); the value is
+// PPR_CLEAR_VALUE when it does not land on screen or does not fit the encoding.
+fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
+    let pt = projection_point(pixel, mirrored);
+    if (!pt.on_screen) {
+        return vec3<u32>(0u, 0u, PPR_CLEAR_VALUE);
+    }
+    return vec3<u32>(pt.t, projected_value(pt));
 }
 
 // Whether the surface the depth buffer shows at pixel `t` lies in front of the plane
@@ -352,34 +336,43 @@ fn on_shape(q: vec4<f32>, s: Shape) -> bool {
         && abs(dot(l, s.axis_v)) <= s.half_v + q.w;
 }
 
-// Writes the reflection of `pixel` in shape `shape` (plane `n`, `d`) into the main
-// intermediate buffer, where it reaches the shape (reaches_shape) and, with
-// DEPTH_OCCLUSION, the plane is not occluded at the target.
-fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32, shape: u32) -> bool {
-    let tv = projection_target(pixel, mirrored);
-    let value = tv.z;
+// Writes the reflection of `pixel` into the main intermediate buffer (not where the plane
+// `n`, `d` is occluded at the target, with DEPTH_OCCLUSION).
+fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32) -> bool {
+    let pt = projection_point(pixel, mirrored);
+    if (!pt.on_screen) {
+        return false;
+    }
+    let t = pt.t;
+    let index = t.x + t.y * frame.size.x;
+    let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
+    // A plain load first: where a squeezed reflection maps many pixels onto one, most
+    // writes lose, and a load is cheaper than the encoding, the occlusion test and the
+    // atomic. Where the stored value's major whole part (its top field) is smaller than
+    // this one's, this write loses without its encoding's divisions. Not with DEBUG_WRITES:
+    // what a pixel is recorded as having written must not depend on the order of other
+    // writes (the buffer ends the same: an occluded write never lowers a value).
+    let pre_load = mode == 0u && !DEBUG_WRITES && ABLATION != 5u;
+    var stored = PPR_CLEAR_VALUE;
+    if (pre_load) {
+        stored = atomicLoad(&intermediate[index]);
+        if (ABLATION == 0u
+            && ppr_parts_major_whole(pt.whole, pt.fract) > ppr_value_major_whole(stored, frame.encoding)) {
+            return true;
+        }
+    }
+    let value = projected_value(pt);
     if (value == PPR_CLEAR_VALUE) {
         return false;
     }
-    let t = tv.xy;
-    let index = t.x + t.y * frame.size.x;
     if (ABLATION == 5u) {
-        if (reaches_shape(mirrored, n, d, shape) && value == 0x12345u) {
+        if (value == 0x12345u) {
             atomicStore(&intermediate[index], value);
         }
         return true;
     }
-    let mode = frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX);
-    // A plain load first: where a squeezed reflection maps many pixels onto one, most
-    // writes lose, and a load is cheaper than the occluder and occlusion tests and the
-    // atomic. Not with DEBUG_WRITES: what a pixel is recorded as having written must not
-    // depend on the order of other writes (the buffer ends the same: an occluded write
-    // never lowers a value).
-    if (mode == 0u && !DEBUG_WRITES && atomicLoad(&intermediate[index]) <= value) {
+    if (pre_load && stored <= value) {
         return true;
-    }
-    if (!reaches_shape(mirrored, n, d, shape)) {
-        return false;
     }
     if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
         return false;
@@ -420,28 +413,27 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
-// The write, for a shape (index `shape`) that passed its test. `plane` is its test's plane
-// (`ShapeTest.plane`: the shape's normal and minus its plane distance, bit for bit what
-// `shapes` holds), so that the write needs no load of the shape.
+// Occluder tests and the write, for a shape (index `shape`) that passed its test. `plane`
+// is its test's plane (`ShapeTest.plane`: the shape's normal and minus its plane distance,
+// bit for bit what `shapes` holds), so that the write needs no load of the shape.
 fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
     let n = plane.xyz;
-    return write_projection(pixel, p - 2.0 * dist * n, n, -plane.w, shape);
-}
-
-// Whether the reflection `mirrored` of a pixel in shape `shape` (plane `n`, `d`) reaches
-// it: for a merged plane group, whether its reflection point lies on a member, not just
-// in the group's bounding rectangle; with OCCLUDER_TESTS, whether none of the shape's
-// occluders stands between the camera and that point.
-fn reaches_shape(mirrored: vec3<f32>, n: vec3<f32>, d: f32, shape: u32) -> bool {
+    let mirrored = p - 2.0 * dist * n;
     if ((shape & GROUP_TEST_FLAG) != 0u) {
-        // Never with occluder lists.
-        return group_covers(shape & ~GROUP_TEST_FLAG, mirrored * (d / dot(mirrored, n)));
-    }
-    if (OCCLUDER_TESTS) {
+        // A merged plane group (never with occluder lists): does the reflection point lie
+        // on a member, not just in the group's bounding rectangle?
+        let hit = mirrored * (-plane.w / dot(mirrored, n));
+        if (!group_covers(shape & ~GROUP_TEST_FLAG, hit)) {
+            return false;
+        }
+    } else if (OCCLUDER_TESTS) {
         let s = shapes[shape];
-        return !is_occluded(mirrored * (s.plane_dist / dot(mirrored, s.normal)), s);
+        let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
+        if (is_occluded(hit, s)) {
+            return false;
+        }
     }
-    return true;
+    return write_projection(pixel, mirrored, n, -plane.w);
 }
 
 // The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
