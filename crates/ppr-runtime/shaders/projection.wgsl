@@ -93,6 +93,10 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // words (PlaneGroup), then the frame's parallel trees (parallel_trees.rs), then the grids'
 // static words.
 @group(0) @binding(13) var<storage, read> plane_groups: array<u32>;
+// The same words as vec4s, for the parallel trees' nodes (8 words each, 32-byte aligned,
+// parallel_trees.rs): two loads a node instead of eight. Only there: the plane groups'
+// lookups through vec4 words with a computed lane were slower (runtime.md).
+@group(0) @binding(14) var<storage, read> tree_nodes: array<vec4<u32>>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
 const GROUP_TEST_FLAG: u32 = 0x80000000u;
@@ -148,29 +152,31 @@ const TREE_NODE_WORDS: u32 = 8u;
 // v - alpha * d (alpha: the node's slope of v against d) is a hyperbola plus a line in d,
 // whose range is its values at the ends and, where it turns inside, at its stationary
 // point; tested against the node's range of v - alpha * d. Boxes widened by `m`. The CPU
-// model is parallel_trees.rs's node_meets.
+// model is parallel_trees.rs's node_meets. The node at word `w` is read from `tree_nodes`.
 fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
-    let lo = group_f32(w);
+    let a = bitcast<vec4<f32>>(tree_nodes[w >> 2u]);
+    let b = bitcast<vec4<f32>>(tree_nodes[(w >> 2u) + 1u]);
+    let lo = a.x;
     if (!(lo < reach)) {
         return false;
     }
-    let hi = min(group_f32(w + 1u), reach);
+    let hi = min(a.y, reach);
     let ta = lo / (2.0 * lo - zp);
     let tb = hi / (2.0 * hi - zp);
     // u = t * uv.x is linear in t: its range is its values at the ends.
     let ua = ta * uv.x;
     let ub = tb * uv.x;
-    if (max(ua, ub) + m < group_f32(w + 2u) || min(ua, ub) - m > group_f32(w + 3u)) {
+    if (max(ua, ub) + m < a.z || min(ua, ub) - m > a.w) {
         return false;
     }
-    let alpha = group_f32(w + 6u);
+    let alpha = b.z;
     let wa = ta * uv.y - alpha * lo;
     let wb = tb * uv.y - alpha * hi;
     var w0 = min(wa, wb);
     var w1 = max(wa, wb);
     // The stationary point: (2d - zp)^2 = -uv.y * zp / alpha (word 7 holds 1 / alpha, 0
     // for alpha = 0).
-    let q = -uv.y * zp * group_f32(w + 7u);
+    let q = -uv.y * zp * b.w;
     if (q > 0.0) {
         let d = 0.5 * (zp - sqrt(q));
         if (lo < d && d < hi) {
@@ -180,7 +186,7 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
         }
     }
     let mw = m + 1e-5 * abs(alpha) * (abs(lo) + abs(zp));
-    return w1 + mw >= group_f32(w + 4u) && w0 - mw <= group_f32(w + 5u);
+    return w1 + mw >= b.x && w0 - mw <= b.y;
 }
 
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane

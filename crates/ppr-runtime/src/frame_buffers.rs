@@ -146,7 +146,8 @@ impl FrameBuffers {
 fn plane_groups_buffer(device: &wgpu::Device, table: &ShapeTable) -> wgpu::Buffer {
     let mut words = vec![0u32; plane_group_words_offset(table) as usize];
     words.extend(&table.plane_groups.words);
-    words.resize(words.len().max(4), 0);
+    // Whole vec4s: the projection also reads the buffer as `array<vec4<u32>>`.
+    words.resize(words.len().max(4).next_multiple_of(4), 0);
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
         label: Some("ppr plane groups"),
         contents: bytemuck::cast_slice(&words),

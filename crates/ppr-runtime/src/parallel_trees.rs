@@ -180,6 +180,9 @@ impl FrameTree {
         let header = base + words.len() as u32;
         let leaves = self.members.len().next_power_of_two();
         let node_start = header + TREE_HEADER_WORDS as u32;
+        // The shader loads a node as two vec4s: every node 32-byte aligned (group headers
+        // and tree headers are 16 words, trees a multiple of 8).
+        debug_assert_eq!(node_start % TREE_NODE_WORDS as u32, 0, "tree nodes must be 32-byte aligned");
         let f = |v: f32| v.to_bits();
         let [nx, ny, nz] = family.normal.to_array();
         let [ux, uy, uz] = family.axis_u.to_array();

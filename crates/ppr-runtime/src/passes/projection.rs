@@ -157,6 +157,8 @@ impl ProjectionPass {
                 storage_entry(11, true),
                 uniform_entry(12),
                 storage_entry(13, true),
+                // The same buffer as 13, read as vec4s: a parallel tree's node is two loads.
+                storage_entry(14, true),
             ],
         });
         use crate::shader::{SUBGROUP_CULL, SUBGROUP_CULL_FALLBACK, TILE_TEST, VIEW, module_with};
@@ -219,6 +221,7 @@ impl ProjectionPass {
                 entry(11, b.block_lists),
                 entry(12, b.uniform_tests),
                 entry(13, b.plane_groups),
+                entry(14, b.plane_groups),
             ],
         })
     }
