@@ -1,5 +1,5 @@
 //! Runs a technique for many frames and collects its pass times: warm-up frames first (back
-//! to back, at least [`WARMUP_SECONDS`]), then timed frames, each after a write over a large
+//! to back, at least [`WARMUP_SECONDS`] and until their GPU time settles), then timed frames, each after a write over a large
 //! scratch buffer that evicts the GPU's caches (as the rest of a game frame would).
 
 use std::time::Instant;
@@ -14,7 +14,18 @@ use crate::timing::{PassTime, TimingSeries, TimingSource};
 pub const SLOW_FRAME_MS: f64 = 50.0;
 
 /// Most warm-up frames, whatever their time.
-const MAX_WARMUP_FRAMES: usize = 2000;
+const MAX_WARMUP_FRAMES: usize = 4000;
+
+/// Longest warm-up, seconds: past it a run is timed whether or not its frames have settled.
+const MAX_WARMUP_SECONDS: f64 = 2.0;
+
+/// Warm-up frames between two looks at the GPU time.
+const WARMUP_BATCH: usize = 16;
+
+/// A warm-up batch whose last frame is within this share of the fastest one before it has
+/// settled. On the H200 the first technique after a camera's reference and metrics still ran
+/// 1.4–3.6x slower after 0.2 s of warm-up (its clocks ramp up over longer than that).
+const SETTLED: f64 = 0.03;
 
 /// A scratch buffer written before every frame so that inputs do not sit in the L2 cache
 /// from the previous frame (the H100 has 50 MB of it: a 1080p frame's inputs would fit).
@@ -93,12 +104,19 @@ fn run_frames(
     let mut source = TimingSource::GpuTimestamps;
     let mut plan = String::new();
     // Warm-up: frames back to back, without waiting, for at least `warmup_seconds`, so that
-    // the GPU leaves whatever clock state the previous (CPU-bound) work left it in.
+    // the GPU leaves whatever clock state the previous (CPU-bound) work left it in; then on,
+    // batch by batch, until a batch's last frame is within `SETTLED` of the fastest before it
+    // (the clocks have stopped ramping up), for at most `MAX_WARMUP_SECONDS`.
     let start = Instant::now();
     let mut warm = 0;
-    while warm < counts.warmup.max(1)
-        || (start.elapsed().as_secs_f64() < counts.warmup_seconds && warm < MAX_WARMUP_FRAMES)
-    {
+    let mut fastest = f64::INFINITY;
+    let mut settled = false;
+    while warm < MAX_WARMUP_FRAMES {
+        let elapsed = start.elapsed().as_secs_f64();
+        let minimum_done = warm >= counts.warmup.max(1) && elapsed >= counts.warmup_seconds;
+        if minimum_done && (settled || counts.warmup_seconds == 0.0 || elapsed >= MAX_WARMUP_SECONDS) {
+            break;
+        }
         plan = technique.prepare(device, queue, camera, size);
         let mut encoder = device
             .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench warm-up frame") });
@@ -106,9 +124,20 @@ fn run_frames(
         technique.encode(&mut encoder, frame);
         queue.submit([encoder.finish()]);
         warm += 1;
-        if warm % 16 == 0 {
-            // Keep the queue short enough that the time above means GPU time.
-            let _ = device.poll(wgpu::PollType::wait_indefinitely());
+        if warm % WARMUP_BATCH == 0 {
+            // Keep the queue short enough that the time above means GPU time; the batch's
+            // last frame says whether the clocks still ramp.
+            match technique.read_timings(device) {
+                Some(passes) => {
+                    let ms: f64 = passes.iter().map(|p| p.ms).sum();
+                    settled = (ms - fastest).abs() <= SETTLED * fastest;
+                    fastest = fastest.min(ms);
+                }
+                None => {
+                    let _ = device.poll(wgpu::PollType::wait_indefinitely());
+                    settled = true;
+                }
+            }
         }
     }
     let _ = technique.read_timings(device);

@@ -92,16 +92,27 @@ fn ppr_encode(offset: vec2<f32>, enc: EncodingParams) -> u32 {
     return ppr_encode_parts(vec2<i32>(whole), offset - whole, enc);
 }
 
+// The sub-pixel fraction in 1/2^PPR_OFFSET_SUBPIXEL_BITS steps, rounded and kept inside
+// [-half, half) of a pixel.
+fn ppr_subpixel_fraction(fract_in: vec2<f32>) -> vec2<i32> {
+    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
+    let half = one / 2;
+    return clamp(vec2<i32>(round(fract_in * f32(one))), vec2<i32>(-half), vec2<i32>(half - 1));
+}
+
+// The whole offset and its sub-pixel fraction as one fixed-point offset (what picks the basis).
+fn ppr_subpixel_offset(whole_s: vec2<i32>, fract_s: vec2<i32>) -> vec2<i32> {
+    return whole_s * (1 << PPR_OFFSET_SUBPIXEL_BITS) + fract_s;
+}
+
 // Encodes an offset in parts: whole = target pixel - source pixel, fract = the target
 // point in its pixel relative to the pixel's centre, in [-0.5, 0.5).
 fn ppr_encode_parts(whole_s: vec2<i32>, fract_in: vec2<f32>, enc: EncodingParams) -> u32 {
-    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
-    let half = one / 2;
     if (!ppr_is_finite2(fract_in) || any(abs(fract_in) >= vec2<f32>(2.0)) || any(abs(whole_s) >= vec2<i32>(65536))) {
         return PPR_CLEAR_VALUE;
     }
-    let fract_s = clamp(vec2<i32>(round(fract_in * f32(one))), vec2<i32>(-half), vec2<i32>(half - 1));
-    let os = whole_s * one + fract_s;
+    let fract_s = ppr_subpixel_fraction(fract_in);
+    let os = ppr_subpixel_offset(whole_s, fract_s);
     let basis = ppr_basis_index(os);
     let o = ppr_to_basis(os, basis);
     let whole = ppr_to_basis(whole_s, basis);
@@ -139,10 +150,8 @@ fn ppr_encode_parts(whole_s: vec2<i32>, fract_in: vec2<f32>, enc: EncodingParams
 // parts (where it makes one), without the encoding's divisions. It is the value's top
 // field: a value whose major whole part exceeds another's is larger, whatever the rest.
 fn ppr_parts_major_whole(whole_s: vec2<i32>, fract_in: vec2<f32>) -> i32 {
-    let one = 1 << PPR_OFFSET_SUBPIXEL_BITS;
-    let half = one / 2;
-    let fract_s = clamp(vec2<i32>(round(fract_in * f32(one))), vec2<i32>(-half), vec2<i32>(half - 1));
-    return ppr_to_basis(whole_s, ppr_basis_index(whole_s * one + fract_s)).y;
+    let os = ppr_subpixel_offset(whole_s, ppr_subpixel_fraction(fract_in));
+    return ppr_to_basis(whole_s, ppr_basis_index(os)).y;
 }
 
 // The major whole part of an encoded value (PPR_CLEAR_VALUE: larger than any value's).
