@@ -17,7 +17,7 @@ pub const SLOW_FRAME_MS: f64 = 50.0;
 const MAX_WARMUP_FRAMES: usize = 4000;
 
 /// Longest warm-up, seconds: past it a run is timed whether or not its frames have settled.
-const MAX_WARMUP_SECONDS: f64 = 2.0;
+const MAX_WARMUP_SECONDS: f64 = 1.0;
 
 /// Warm-up frames between two looks at the GPU time.
 const WARMUP_BATCH: usize = 16;
@@ -25,7 +25,7 @@ const WARMUP_BATCH: usize = 16;
 /// A warm-up batch whose last frame is within this share of the fastest one before it has
 /// settled. On the H200 the first technique after a camera's reference and metrics still ran
 /// 1.4–3.6x slower after 0.2 s of warm-up (its clocks ramp up over longer than that).
-const SETTLED: f64 = 0.03;
+const SETTLED: f64 = 0.05;
 
 /// A scratch buffer written before every frame so that inputs do not sit in the L2 cache
 /// from the previous frame (the H100 has 50 MB of it: a 1080p frame's inputs would fit).

@@ -323,9 +323,9 @@ pub fn write_compare_report(
         md,
         "Every number is per technique and size, averaged over the scene's cameras (`comparison.csv` \
          has each camera). GPU times are medians (and 95th percentiles) of {frames} frames' GPU \
-         timestamps after warm-up (fewer, see the `frames` column of the CSV, for runs whose \
-         first timed frame took over 50 ms: brute-force SSR and the exact re-render at high \
-         resolutions); each frame first overwrites a scratch buffer so that no input sits in \
+         timestamps after warm-up, the faster of two runs (one run, with fewer frames, see the \
+         `frames` column of the CSV, for runs whose first timed frame took over 50 ms: \
+         brute-force SSR and the exact re-render at high resolutions); each frame first overwrites a scratch buffer so that no input sits in \
          the L2 cache. Quality is against the exact planar reflection (the scene \
          re-rendered from the mirrored camera; on reflectors with roughness > 0, unless \
          `--reference mirror`, the exact glossy reference: views from eye points around the \

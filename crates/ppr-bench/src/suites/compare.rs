@@ -167,6 +167,7 @@ pub fn run_compare(
             plan_params: PlanParams::default(),
         };
         let mut techniques = Vec::new();
+        let cc_len = cc.techniques.len();
         let mut cause_runners = Vec::new();
         for spec in &cc.techniques {
             techniques.push(build_technique(spec, &ctx)?);
@@ -296,6 +297,25 @@ pub fn run_compare(
                         plan: run.plan,
                     });
                     bar.inc(1);
+                }
+                // A second round of every fast technique, the faster of the two runs kept: on
+                // the H200 the first technique after a camera's reference, read-backs and
+                // metrics still ran up to 3x slower after its warm-up (every pass alike, in the
+                // 2026-12-03 runs), and the techniques after it did not.
+                for (offset, technique) in techniques.iter_mut().enumerate() {
+                    let id = results.len() - cc_len + offset;
+                    let first = results[id].timings.total().map_or(f64::INFINITY, |s| s.median);
+                    if first > crate::frame_loop::SLOW_FRAME_MS {
+                        continue;
+                    }
+                    let frame = BenchFrame {
+                        level: &level,
+                        reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+                    };
+                    let again = frames.run(device, queue, technique.as_mut(), &frame, &cam.camera, size);
+                    if again.timings.total().is_some_and(|s| s.median < first) {
+                        results[id].timings = again.timings;
+                    }
                 }
                 if let Some(s) = sheet {
                     sheets.push(s);
