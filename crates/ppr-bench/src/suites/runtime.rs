@@ -260,7 +260,7 @@ pub fn run_runtime(
                         reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
                     };
                     eprintln!("runtime: {} {} {res}", scene.name, cam.name);
-                    let run = frames.run(device, queue, &mut ppr, &frame, &cam.camera, size);
+                    let run = frames.run_best_of_two(device, queue, &mut ppr, &frame, &cam.camera, size);
                     let facts = frame_facts(device, queue, &mut ppr, size)?;
                     let renderer = ppr.renderer();
                     let visible = renderer.plan().map_or(0, |p| p.visible.len());

@@ -110,7 +110,7 @@ impl Measurer<'_> {
         for (variant, params) in variants {
             let mut ppr =
                 PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params)?;
-            let run = self.frames.run(device, queue, &mut ppr, &frame, &g.camera, self.size);
+            let run = self.frames.run_best_of_two(device, queue, &mut ppr, &frame, &g.camera, self.size);
             let plan = ppr.renderer().plan().cloned();
             eprintln!(
                 "scaling: {} {} shapes, {variant}: {:.3} ms",
