@@ -68,12 +68,22 @@ fn room_case_with(stripes: bool) -> Case {
 }
 
 fn render(case: &Case, settings: ReflectionSettings, mode: WriteMode) -> ppr_tests::harness::Output {
+    render_with(case, settings, |r| r.debug.write_mode = mode)
+}
+
+/// [`render`] with the renderer configured by `configure` (plan parameters, debug options)
+/// before its reflectors are set.
+fn render_with(
+    case: &Case,
+    settings: ReflectionSettings,
+    configure: impl FnOnce(&mut ppr_runtime::ReflectionRenderer),
+) -> ppr_tests::harness::Output {
     let mut r = renderer();
     // Full clears, so that the whole intermediate buffer can be compared.
     r.plan_params.indirect = ppr_runtime::Choice::Off;
+    configure(&mut r);
     r.set_reflectors(&ppr_tests::harness::validated(&case.set));
     r.settings = settings;
-    r.debug.write_mode = mode;
     run(&mut r, &case.gpu, &case.camera)
 }
 
@@ -298,12 +308,7 @@ fn projection_honours_occluder_lists() {
     case.set.reflectors[0].occluders = vec![1];
     case.set.assign_parallel_groups();
     // Occluder lists are off by default (the depth test catches every occluder).
-    let mut r = renderer();
-    r.plan_params.indirect = ppr_runtime::Choice::Off;
-    r.plan_params.occluder_lists = ppr_runtime::Choice::On;
-    r.set_reflectors(&ppr_tests::harness::validated(&case.set));
-    r.settings = HOLES_ONLY;
-    let out = run(&mut r, &case.gpu, &case.camera);
+    let out = render_with(&case, HOLES_ONLY, |r| r.plan_params.occluder_lists = ppr_runtime::Choice::On);
     assert!(out.plan.occluder_tests, "the plan runs the occluder tests: {}", out.plan);
     let cpu = ppr_tests::harness::cpu_projection(&case.frame, &case.camera, &case.set);
     let mut open = case.set.clone();
