@@ -3,7 +3,7 @@
 # shared/gpu/README.md). From the repository root on the device, with `.gl` (loader debs) and
 # `.gpu` (the stripped release binary `.gpu/ppr-bench` and the shared scenes under
 # `.gpu/scenes/`) carried; results go to $OUT/results.tar.gz (only 8 files come back from
-# the device, so everything travels as one archive). About 700 s of device time in all (2026-12-03, sixth session: profile 81 s, scaling 132, collision 80, compare 205, rooms 173, bounces 67; seventh session, one call: profile 94, compare 216, scaling 151, the rest not re-run; eighth session, two calls: profile 101, collision 96, scaling 193 with two more variants, then profile 95 and compare 271 with four more techniques; ninth session, two calls: profile 103, compare 197, collision 77; scaling 142, rooms 161, bounces 66; tenth session: profile 95, scaling 138, generated levels' profile 70, the rest not re-run); split it into calls of at most 600 s each (profile, scaling, collision; compare; rooms and bounces), and pack the archive after each step so that a call cut short still brings back what it measured.
+# the device, so everything travels as one archive). About 700 s of device time in all (2026-12-03, sixth session: profile 81 s, scaling 132, collision 80, compare 205, rooms 173, bounces 67; seventh session, one call: profile 94, compare 216, scaling 151, the rest not re-run; eighth session, two calls: profile 101, collision 96, scaling 193 with two more variants, then profile 95 and compare 271 with four more techniques; ninth session, two calls: profile 103, compare 197, collision 77; scaling 142, rooms 161, bounces 66; tenth session: profile 95, scaling 138, generated levels' profile 70, the rest not re-run; eleventh session, with the settling warm-up and the faster of two runs: compare 260, profile 107, generated levels' profile 87 for three scenes, scaling 160 (the last two before the faster-of-two rule; allow about twice that with it), the rest not re-run); split it into calls of at most 600 s each (profile, scaling, collision; compare; rooms and bounces), and pack the archive after each step so that a call cut short still brings back what it measured.
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -20,10 +20,10 @@ step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
   timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
   echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"
   tar czf "$OUT/results.tar.gz" -C /tmp results; }
-step profile 90 $B runtime $C --projection-profile --write-probe --frames 20 --out $R/profile
+step profile 150 $B runtime $C --projection-profile --write-probe --frames 20 --out $R/profile
 # The generated levels' profile (runtime.md, "Generated levels").
-step generated 120 $B runtime $C --projection-profile --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
-step scaling 250 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5,0.6
+step generated 200 $B runtime $C --projection-profile --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
+step scaling 330 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5,0.6
 T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
 step compare 480 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 # The device answers a command after at most 600 s: the rooms and the real level were a
