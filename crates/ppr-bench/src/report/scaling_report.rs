@@ -90,7 +90,7 @@ pub fn write_scaling_report(
          each turned its own way, every panel a mirror on both faces (`room_maze`); the \
          overall extent is fixed, so the \
          reflecting screen area stays about the same while the count grows. Times are \
-         medians of GPU timestamps, the faster of two runs back to back (PPR with every reflection step on); `overhead` is the \
+         medians of GPU timestamps, the faster of two rounds over the variants of a level, the second in reverse order (PPR with every reflection step on); `overhead` is the \
          frame's total minus the same family's total with one shape.\n"
     );
     let mut families: Vec<String> = Vec::new();
