@@ -130,6 +130,14 @@ fn a_walked_tree_writes_what_its_shapes_write() {
             assert!(c.plan.tile_culling, "{}", c.plan);
             assert_eq!(c.intermediate, b.intermediate, "culling {culling:?}, super-tiles {super_tiles:?}");
         }
+        // Reached leaves straight to their members' own tests, without the leaves' boxes
+        // (the bench's `tree leaves unboxed`; 40 treads leave 24 padding leaves): the same
+        // writes.
+        let mut unboxed = configured(Choice::On, Choice::Off, Choice::Off);
+        unboxed.debug.tree_leaves_unboxed = true;
+        unboxed.set_reflectors(&set);
+        let d = run(&mut unboxed, &gpu, &camera);
+        assert_eq!(d.intermediate, a.intermediate, "tree leaves without their boxes");
     }
     assert!(checked > 5000, "{checked} written pixels over the cameras");
 }

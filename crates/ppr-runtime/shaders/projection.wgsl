@@ -50,6 +50,9 @@
 //   shapes of a parallel family at many plane offsets (crates/ppr-runtime/src/
 //   parallel_trees.rs): its plane is the lowest member's, and a pixel in front of it walks
 //   the family's tree, testing the members it reaches with their own tests (tree_pixel).
+//   TREE_LEAF_BOXES (bench only until timed): the walk tests a leaf's node box before its
+//   member's own test; off, a reached leaf goes straight to the member's test (exact, so
+//   the same writes: the box only saves a member test where it rejects).
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
@@ -63,6 +66,7 @@ override DEBUG_TILE_LISTS: bool = false;
 override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
+override TREE_LEAF_BOXES: bool = true;
 override SUBGROUP_CULL: bool = false;
 override ABLATION: u32 = 0u;
 
@@ -196,6 +200,7 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
     let node_start = plane_groups[h + 3u];
     let leaves = plane_groups[h + 7u];
+    let members = plane_groups[h + 11u];
     let tests_start = plane_groups[h + 12u];
     let zp = dot(p, n);
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
@@ -203,7 +208,14 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
     var node = 1u;
     loop {
-        if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
+        var meets: bool;
+        if (!TREE_LEAF_BOXES && node >= leaves) {
+            // Padding leaves past the members hold no test.
+            meets = node - leaves < members;
+        } else {
+            meets = tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m);
+        }
+        if (meets) {
             if (node < leaves) {
                 node = node * 2u;
                 continue;

@@ -74,6 +74,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
         ("tile clear pass", Choice::Auto, Ablation::None),
+        ("tree leaves unboxed", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -234,6 +235,7 @@ pub fn run_runtime(
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
                     block_lists_box_only: name.ends_with("lists box only"),
+                    tree_leaves_unboxed: name == "tree leaves unboxed",
                     reflection_ablation,
                     reflection_pixel_per_thread,
                     ..tuning
