@@ -263,6 +263,19 @@ fn up(x: f64) -> f32 {
 /// how many nodes it tests. `header` is the tree's header position in `words` (counted
 /// from the buffer's start at `base`).
 pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol: f32) -> (Vec<u32>, usize) {
+    reached_leaves_from(words, base, header, p, tol, 1)
+}
+
+/// [`reached_leaves`] for a walk that starts at node `start` (1: the root) and ends when it
+/// leaves `start`'s subtree.
+pub fn reached_leaves_from(
+    words: &[u32],
+    base: u32,
+    header: u32,
+    p: glam::Vec3,
+    tol: f32,
+    start: u32,
+) -> (Vec<u32>, usize) {
     let w = |i: u32| words[(i - base) as usize];
     let f = |i: u32| f32::from_bits(w(i));
     let v3 = |i: u32| Vec3::new(f(i), f(i + 1), f(i + 2));
@@ -273,7 +286,7 @@ pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol:
     let reach = zp - 0.5 * tol;
     let margin = node_margin(uv, zp);
     let mut out = Vec::new();
-    let mut node = 1u32;
+    let mut node = start;
     let mut tested = 0;
     loop {
         tested += 1;
@@ -287,10 +300,10 @@ pub fn reached_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol:
                 continue;
             }
         }
-        while node & 1 == 1 {
+        while node != start && node & 1 == 1 {
             node >>= 1;
         }
-        if node == 0 {
+        if node == start {
             break;
         }
         node += 1;
@@ -386,12 +399,20 @@ mod tests {
         }
     }
 
-    /// On the scaling suite's stairways (1 000 and 10 000 treads, its camera), a pixel on
-    /// the treads tests a few dozen nodes and reaches few leaves beyond those that reflect
-    /// it: the slab per node follows the flight.
-    #[test]
-    fn a_pixel_on_a_long_flight_walks_a_few_paths() {
-        for (count, max_nodes) in [(1000u32, 45.0), (10_000, 70.0)] {
+    /// The scaling suite's stairway of `count` mirror treads (6 m rise over a 12 m run, 6 m
+    /// wide) seen from its camera, as one tree's words.
+    struct ScalingStairway {
+        table: ShapeTable,
+        eye: DVec3,
+        tree: FrameTree,
+        words: Vec<u32>,
+        header: u32,
+        /// Depth of a tread.
+        run: f64,
+    }
+
+    impl ScalingStairway {
+        fn new(count: u32) -> Self {
             let (rise, run) = (6.0 / f64::from(count), 12.0 / f64::from(count));
             let shapes: Vec<ShapeSource> = (0..count)
                 .map(|k| {
@@ -399,11 +420,22 @@ mod tests {
                     tread(k, c, [3.0, (run * 0.5) as f32])
                 })
                 .collect();
-            let t = table(shapes);
+            let table = table(shapes);
             let eye = DVec3::new(-7.0, 11.0, 8.0);
-            let tree = FrameTree { family: 0, members: t.parallel_families.families[0].members.clone() };
+            let tree = FrameTree { family: 0, members: table.parallel_families.families[0].members.clone() };
             let mut words = Vec::new();
-            let header = tree.append_words(&t, eye, 0, 0, &mut words);
+            let header = tree.append_words(&table, eye, 0, 0, &mut words);
+            Self { table, eye, tree, words, header, run }
+        }
+    }
+
+    /// On the scaling suite's stairways (1 000 and 10 000 treads, its camera), a pixel on
+    /// the treads tests a few dozen nodes and reaches few leaves beyond those that reflect
+    /// it: the slab per node follows the flight.
+    #[test]
+    fn a_pixel_on_a_long_flight_walks_a_few_paths() {
+        for (count, max_nodes) in [(1000u32, 45.0), (10_000, 70.0)] {
+            let ScalingStairway { table: t, eye, tree, words, header, run } = ScalingStairway::new(count);
             let mut next = rng(5);
             let (mut nodes, mut leaves, mut hits, n) = (0usize, 0usize, 0usize, 4000);
             for _ in 0..n {
@@ -515,40 +547,6 @@ mod tests {
         }
     }
 
-    /// [`reached_leaves`] for a walk that starts at node `start` instead of the root and
-    /// ends when it leaves `start`'s subtree.
-    fn walk_from(words: &[u32], header: u32, p: glam::Vec3, tol: f32, start: u32) -> (Vec<u32>, usize) {
-        let w = |i: u32| words[i as usize];
-        let f = |i: u32| f32::from_bits(w(i));
-        let v3 = |i: u32| Vec3::new(f(i), f(i + 1), f(i + 2));
-        let (n, au, av) = (v3(header), v3(header + 4), v3(header + 8));
-        let (node_start, leaves) = (w(header + 3), w(header + 7));
-        let zp = p.dot(n);
-        let uv = [p.dot(au), p.dot(av)];
-        let (reach, margin) = (zp - 0.5 * tol, node_margin(uv, zp));
-        let (mut out, mut node, mut tested) = (Vec::new(), start, 0);
-        'walk: loop {
-            tested += 1;
-            let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
-            let lim: [f32; 8] = std::array::from_fn(|i| f(at + i as u32));
-            if node_meets(lim, zp, uv, reach, margin) {
-                if node < leaves {
-                    node *= 2;
-                    continue;
-                }
-                out.push(node - leaves);
-            }
-            while node != start && node & 1 == 1 {
-                node >>= 1;
-            }
-            if node == start {
-                break 'walk;
-            }
-            node += 1;
-        }
-        (out, tested)
-    }
-
     /// What a walk shared by a block of pixels could save at most (an idea for the
     /// 10 000-tread stairway, not built): the pixels of a patch of the flight about a 4K
     /// block wide (0.2 m at the scaling suite's camera) start their walks at the lowest
@@ -559,18 +557,7 @@ mod tests {
     #[test]
     fn a_walk_from_a_patch_s_common_subtree_reaches_the_same_leaves() {
         for (count, patch) in [(1000u32, 0.2f64), (10_000, 0.2)] {
-            let (rise, run) = (6.0 / f64::from(count), 12.0 / f64::from(count));
-            let shapes: Vec<ShapeSource> = (0..count)
-                .map(|k| {
-                    let c = DVec3::new(0.0, f64::from(k + 1) * rise, -(f64::from(k) + 0.5) * run);
-                    tread(k, c, [3.0, (run * 0.5) as f32])
-                })
-                .collect();
-            let t = table(shapes);
-            let eye = DVec3::new(-7.0, 11.0, 8.0);
-            let tree = FrameTree { family: 0, members: t.parallel_families.families[0].members.clone() };
-            let mut words = Vec::new();
-            let header = tree.append_words(&t, eye, 0, 0, &mut words);
+            let ScalingStairway { table: t, eye, words, header, run, .. } = ScalingStairway::new(count);
             let leaves = words[(header + 7) as usize];
             let mut next = rng(7);
             let span = ((patch / 12.0) * f64::from(count)).max(1.0) as u32;
@@ -598,7 +585,7 @@ mod tests {
                 depth += 31 - a.leading_zeros();
                 patches += 1;
                 for (p, tol, reached, _) in walks {
-                    let (again, tested) = walk_from(&words, header, p, tol, a);
+                    let (again, tested) = reached_leaves_from(&words, 0, header, p, tol, a);
                     assert_eq!(again, reached, "{count} treads: a walk from node {a} reaches other leaves");
                     shared += tested;
                 }
