@@ -130,14 +130,17 @@ fn a_walked_tree_writes_what_its_shapes_write() {
             assert!(c.plan.tile_culling, "{}", c.plan);
             assert_eq!(c.intermediate, b.intermediate, "culling {culling:?}, super-tiles {super_tiles:?}");
         }
-        // Reached leaves straight to their members' own tests, without the leaves' boxes
-        // (the bench's `tree leaves unboxed`; 40 treads leave 24 padding leaves): the same
-        // writes.
-        let mut unboxed = configured(Choice::On, Choice::Off, Choice::Off);
-        unboxed.debug.tree_leaves_unboxed = true;
-        unboxed.set_reflectors(&set);
-        let d = run(&mut unboxed, &gpu, &camera);
-        assert_eq!(d.intermediate, a.intermediate, "tree leaves without their boxes");
+        // The depth occlusion tested before the encoding or after it (`Auto`: after with
+        // trees, before without): the same buffer, walked or not.
+        assert!(b.plan.depth_occlusion && !b.plan.occlusion_first && a.plan.occlusion_first, "{}", b.plan);
+        for (trees, order, reference) in [(Choice::On, Choice::On, &b), (Choice::Off, Choice::Off, &a)] {
+            let mut other = configured(trees, Choice::Off, Choice::Off);
+            other.plan_params.occlusion_first = order;
+            other.set_reflectors(&set);
+            let d = run(&mut other, &gpu, &camera);
+            assert_eq!(d.plan.occlusion_first, order == Choice::On, "{}", d.plan);
+            assert_eq!(d.intermediate, reference.intermediate, "occlusion first {order:?}, trees {trees:?}");
+        }
     }
     assert!(checked > 5000, "{checked} written pixels over the cameras");
 }

@@ -50,9 +50,10 @@
 //   shapes of a parallel family at many plane offsets (crates/ppr-runtime/src/
 //   parallel_trees.rs): its plane is the lowest member's, and a pixel in front of it walks
 //   the family's tree, testing the members it reaches with their own tests (tree_pixel).
-//   TREE_LEAF_BOXES (bench only until timed): the walk tests a leaf's node box before its
-//   member's own test; off, a reached leaf goes straight to the member's test (exact, so
-//   the same writes: the box only saves a member test where it rejects).
+// - OCCLUSION_FIRST (the plan's occlusion_first): a write tests the depth occlusion at its
+//   target before its encoding, not after (the same buffer: a write happens where it is
+//   not occluded and lowers the stored value, in either order). Occluded writes then skip
+//   the encoding; writes that lose to the stored value pay the test before they find out.
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
@@ -66,7 +67,7 @@ override DEBUG_TILE_LISTS: bool = false;
 override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
-override TREE_LEAF_BOXES: bool = true;
+override OCCLUSION_FIRST: bool = false;
 override SUBGROUP_CULL: bool = false;
 override ABLATION: u32 = 0u;
 
@@ -200,7 +201,6 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
     let node_start = plane_groups[h + 3u];
     let leaves = plane_groups[h + 7u];
-    let members = plane_groups[h + 11u];
     let tests_start = plane_groups[h + 12u];
     let zp = dot(p, n);
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
@@ -208,14 +208,7 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
     var node = 1u;
     loop {
-        var meets: bool;
-        if (!TREE_LEAF_BOXES && node >= leaves) {
-            // Padding leaves past the members hold no test.
-            meets = node - leaves < members;
-        } else {
-            meets = tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m);
-        }
-        if (meets) {
+        if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
             if (node < leaves) {
                 node = node * 2u;
                 continue;
@@ -379,6 +372,9 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32)
             return true;
         }
     }
+    if (OCCLUSION_FIRST && DEPTH_OCCLUSION && occluded_at(t, n, d)) {
+        return false;
+    }
     let value = projected_value(pt);
     if (value == PPR_CLEAR_VALUE) {
         return false;
@@ -392,7 +388,7 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32)
     if (pre_load && stored <= value) {
         return true;
     }
-    if (DEPTH_OCCLUSION && occluded_at(t, n, d)) {
+    if (!OCCLUSION_FIRST && DEPTH_OCCLUSION && occluded_at(t, n, d)) {
         return false;
     }
     if (mode == 0u) {

@@ -602,4 +602,126 @@ mod tests {
             assert!((0.05..0.4).contains(&saved), "{count} treads: {:.0} % fewer node tests", 100.0 * saved);
         }
     }
+
+    /// A walk shared by a subgroup (an idea the model rejects, not built: see the test below):
+    /// the pixels of one subgroup walk the tree together, descending into a node when any of them meets it,
+    /// and each reaches the leaves it meets itself, in walk order (the leaves
+    /// [`reached_leaves`] gives it alone). Also how many nodes the subgroup tests: what each of
+    /// its invocations pays.
+    fn reached_leaves_shared(
+        words: &[u32],
+        base: u32,
+        header: u32,
+        pixels: &[(glam::Vec3, f32)],
+    ) -> (Vec<Vec<u32>>, usize) {
+        let w = |i: u32| words[(i - base) as usize];
+        let f = |i: u32| f32::from_bits(w(i));
+        let v3 = |i: u32| Vec3::new(f(i), f(i + 1), f(i + 2));
+        let (n, au, av) = (v3(header), v3(header + 4), v3(header + 8));
+        let (node_start, leaves) = (w(header + 3), w(header + 7));
+        let lanes: Vec<(f32, [f32; 2], f32, f32)> = pixels
+            .iter()
+            .map(|&(p, tol)| {
+                let zp = p.dot(n);
+                let uv = [p.dot(au), p.dot(av)];
+                (zp, uv, zp - 0.5 * tol, node_margin(uv, zp))
+            })
+            .collect();
+        let mut out = vec![Vec::new(); pixels.len()];
+        let mut node = 1u32;
+        let mut tested = 0;
+        loop {
+            tested += 1;
+            let at = node_start + (node - 1) * TREE_NODE_WORDS as u32;
+            let lim: [f32; 8] = std::array::from_fn(|i| f(at + i as u32));
+            let meets: Vec<bool> =
+                lanes.iter().map(|&(zp, uv, reach, m)| node_meets(lim, zp, uv, reach, m)).collect();
+            if meets.iter().any(|&m| m) {
+                if node >= leaves {
+                    for (o, _) in out.iter_mut().zip(&meets).filter(|(_, m)| **m) {
+                        o.push(node - leaves);
+                    }
+                } else {
+                    node *= 2;
+                    continue;
+                }
+            }
+            while node & 1 == 1 {
+                node >>= 1;
+            }
+            if node == 0 {
+                break;
+            }
+            node += 1;
+        }
+        (out, tested)
+    }
+
+    /// What a walk shared by a subgroup costs against one walk per pixel, on the scaling
+    /// suite's stairway seen through its camera at 3840x2160: 16 x 2 neighbouring pixels (a
+    /// subgroup of 32 of the projection's thread layout) walk the union of their paths, each
+    /// reaching the same leaves as alone. One walk per pixel costs a subgroup its slowest
+    /// pixel's walk (the loop runs until every invocation is done); the shared walk the
+    /// union's length, with every node load the same for all. The union is longer than
+    /// the slowest walk: 41.7 node tests against 36.2 at 1 000 treads, 120 against 56 at
+    /// 10 000 (the paths of pixels 16 apart part high in the tree), so the shared walk is
+    /// not built.
+    #[test]
+    fn a_subgroup_s_shared_walk_reaches_each_pixel_s_leaves() {
+        let (eye, look) = (DVec3::new(-7.0, 11.0, 8.0), DVec3::new(0.5, 2.5, -6.0));
+        let fwd = (look - eye).normalize();
+        let right = fwd.cross(DVec3::Y).normalize();
+        let up = right.cross(fwd);
+        let (width, height) = (3840.0, 2160.0);
+        let th = (30f64).to_radians().tan();
+        for count in [1000u32, 10_000] {
+            let st = ScalingStairway::new(count);
+            let rise = 6.0 / f64::from(count);
+            // The pixel's point on the flight: the ray meets the slope y = -z / 2, lifted to
+            // the tread there.
+            let on_flight = |px: f64, py: f64| -> Option<glam::Vec3> {
+                let x = ((px + 0.5) / width * 2.0 - 1.0) * th * width / height;
+                let y = (1.0 - (py + 0.5) / height * 2.0) * th;
+                let d = fwd + right * x + up * y;
+                let s = -(eye.y + eye.z * 0.5) / (d.y + d.z * 0.5);
+                let q = eye + d * s;
+                if s <= 0.0 || q.x.abs() > 2.9 || !(-11.9..-0.1).contains(&q.z) {
+                    return None;
+                }
+                let k = (-q.z / st.run).floor();
+                Some((DVec3::new(q.x, (k + 1.0) * rise, q.z) - eye).as_vec3())
+            };
+            let mut next = rng(11);
+            let (mut alone_sum, mut alone_max, mut shared, mut groups) = (0usize, 0usize, 0usize, 0usize);
+            while groups < 400 {
+                let (px0, py0) = ((next() * 240.0).floor() * 16.0, (next() * 1080.0).floor() * 2.0);
+                let pixels: Option<Vec<(glam::Vec3, f32)>> = (0..32)
+                    .map(|i| on_flight(px0 + f64::from(i % 16), py0 + f64::from(i / 16)))
+                    .map(|p| p.map(|p| (p, 1e-4 * p.length())))
+                    .collect();
+                let Some(pixels) = pixels else { continue };
+                groups += 1;
+                let alone: Vec<(Vec<u32>, usize)> =
+                    pixels.iter().map(|&(p, tol)| reached_leaves(&st.words, 0, st.header, p, tol)).collect();
+                let (together, tested) = reached_leaves_shared(&st.words, 0, st.header, &pixels);
+                for (a, t) in alone.iter().zip(&together) {
+                    assert_eq!(&a.0, t, "{count} treads: the shared walk reaches other leaves");
+                }
+                alone_sum += alone.iter().map(|a| a.1).sum::<usize>();
+                alone_max += alone.iter().map(|a| a.1).max().unwrap_or(0);
+                shared += tested;
+            }
+            let g = groups as f64;
+            eprintln!(
+                "{count} treads: node tests a pixel alone {:.1} (the subgroup's slowest {:.1}), shared {:.1}",
+                alone_sum as f64 / (32.0 * g),
+                alone_max as f64 / g,
+                shared as f64 / g
+            );
+            assert!(
+                shared as f64 > 1.1 * alone_max as f64,
+                "{count} treads: the shared walk ({shared}) would pay against the slowest pixel's ({alone_max})"
+            );
+        }
+    }
 }

@@ -114,9 +114,6 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
-    /// A parallel tree's reached leaf goes straight to its member's own test, without the
-    /// leaf's node box (bench only until timed on a GPU; the same writes).
-    pub tree_leaves_unboxed: bool,
     /// With indirect dispatch, the active tiles are cleared by the clear pass over the
     /// active-tile list instead of by the classification (the layout of the eighth session;
     /// bench only, the same image).
@@ -339,7 +336,7 @@ impl ReflectionRenderer {
             parallel_trees: !plan.trees.is_empty(),
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
-            tree_leaves_unboxed: self.debug.tree_leaves_unboxed && !plan.trees.is_empty(),
+            occlusion_first: plan.occlusion_first,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -74,7 +74,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
         ("tile clear pass", Choice::Auto, Ablation::None),
-        ("tree leaves unboxed", Choice::Auto, Ablation::None),
+        ("occlusion first", Choice::Auto, Ablation::None),
+        ("occlusion last", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -202,6 +203,10 @@ pub fn run_runtime(
                     params.tile_culling = Choice::Off;
                 } else if name == "occlusion off" {
                     params.depth_occlusion = Choice::Off;
+                } else if name == "occlusion first" {
+                    params.occlusion_first = Choice::On;
+                } else if name == "occlusion last" {
+                    params.occlusion_first = Choice::Off;
                 } else if name == "storage tests" {
                     params.uniform_tests = Choice::Off;
                 }
@@ -235,7 +240,6 @@ pub fn run_runtime(
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
                     block_lists_box_only: name.ends_with("lists box only"),
-                    tree_leaves_unboxed: name == "tree leaves unboxed",
                     reflection_ablation,
                     reflection_pixel_per_thread,
                     ..tuning

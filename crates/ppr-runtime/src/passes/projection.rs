@@ -56,9 +56,9 @@ pub struct ProjectionVariant {
     /// layout before the compact one, whose subgroups cover 32 × 4 pixels). Frames that
     /// walk parallel trees take it anyway ([`Self::spread_quads`]).
     pub spread_quads: bool,
-    /// Bench only until timed: a parallel tree's reached leaf goes straight to its member's
-    /// own test, without its node box (the same writes).
-    pub tree_leaves_unboxed: bool,
+    /// A write tests the depth occlusion at its target before its encoding rather than
+    /// after (the same buffer; [`crate::PlanParams::occlusion_first`]).
+    pub occlusion_first: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -192,7 +192,7 @@ impl ProjectionPass {
             ("UNIFORM_TESTS", flag(v.uniform_tests)),
             ("PARALLEL_TREES", flag(v.parallel_trees)),
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
-            ("TREE_LEAF_BOXES", flag(!v.tree_leaves_unboxed)),
+            ("OCCLUSION_FIRST", flag(v.occlusion_first)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("ABLATION", v.ablation.code()),
         ];
