@@ -100,7 +100,7 @@ fn the_write_shortcuts_leave_the_buffer_every_write_leaves() {
 fn a_walked_tree_writes_what_its_shapes_write() {
     let scene = stairway(40);
     let set = validated(&scene.reflector_set());
-    let mut checked = 0usize;
+    let (mut checked, mut occlusion_decided) = (0usize, 0usize);
     for camera in cameras() {
         let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
         let mut plain = configured(Choice::Off, Choice::Off, Choice::Off);
@@ -141,8 +141,15 @@ fn a_walked_tree_writes_what_its_shapes_write() {
             assert_eq!(d.plan.occlusion_first, order == Choice::On, "{}", d.plan);
             assert_eq!(d.intermediate, reference.intermediate, "occlusion first {order:?}, trees {trees:?}");
         }
+        // ... where the test decides something: without it the buffer differs.
+        let mut unoccluded = configured(Choice::Off, Choice::Off, Choice::Off);
+        unoccluded.plan_params.depth_occlusion = Choice::Off;
+        unoccluded.set_reflectors(&set);
+        let e = run(&mut unoccluded, &gpu, &camera);
+        occlusion_decided += a.intermediate.iter().zip(&e.intermediate).filter(|(x, y)| x != y).count();
     }
     assert!(checked > 5000, "{checked} written pixels over the cameras");
+    assert!(occlusion_decided > 100, "the depth test decides {occlusion_decided} pixels over the cameras");
 }
 
 #[test]

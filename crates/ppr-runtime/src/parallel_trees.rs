@@ -603,11 +603,11 @@ mod tests {
         }
     }
 
-    /// A walk shared by a subgroup (an idea the model rejects, not built: see the test below):
-    /// the pixels of one subgroup walk the tree together, descending into a node when any of them meets it,
-    /// and each reaches the leaves it meets itself, in walk order (the leaves
-    /// [`reached_leaves`] gives it alone). Also how many nodes the subgroup tests: what each of
-    /// its invocations pays.
+    /// A walk shared by a subgroup (an idea the model rejects, not built: see the test
+    /// below): the pixels of one subgroup walk the tree together, descending into a node
+    /// when any of them meets it, and each reaches the leaves it meets itself, in walk
+    /// order (the leaves [`reached_leaves`] gives it alone). Also how many nodes the
+    /// subgroup tests: what each of its invocations pays.
     fn reached_leaves_shared(
         words: &[u32],
         base: u32,
