@@ -116,28 +116,6 @@ impl FrameLoop {
     ) -> FrameRun {
         run_frames(device, queue, technique, frame, camera, size, self.counts, &self.flush)
     }
-
-    /// [`Self::run`] twice, back to back, keeping the run with the lower median frame time
-    /// (one run where the first took over [`SLOW_FRAME_MS`]). Noise only slows a run down:
-    /// on the H200 a run right after a read-back or another scene's set-up now and then came
-    /// out up to 3x slower, every pass alike, past its warm-up.
-    pub fn run_best_of_two(
-        &self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
-        technique: &mut dyn BenchTechnique,
-        frame: &BenchFrame<'_>,
-        camera: &Camera,
-        size: [u32; 2],
-    ) -> FrameRun {
-        let first = self.run(device, queue, technique, frame, camera, size);
-        let median = first.median_ms();
-        if median > SLOW_FRAME_MS {
-            return first;
-        }
-        let second = self.run(device, queue, technique, frame, camera, size);
-        if second.median_ms() < median { second } else { first }
-    }
 }
 
 /// Runs `technique` on `frame` for `counts` frames.

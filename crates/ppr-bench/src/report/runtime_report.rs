@@ -135,7 +135,7 @@ pub fn write_runtime_report(
     let _ = writeln!(
         md,
         "Times are medians (and 95th percentiles) of GPU timestamps over the timed frames, \
-         after warm-up, the faster of two runs back to back; before each frame a 256 MiB scratch write evicts the L2 cache. \
+         after warm-up, the faster of two rounds over every variant, camera and size (the second in reverse order); before each frame a 256 MiB scratch write evicts the L2 cache. \
          Bytes per pass, given the frame's plan and a read-back of its buffers: classify \
          (indirect frames only) reads depth 4 B/px, writes 4 B per tile flag and per active \
          tile and clears the active tiles, 4 B/px; clear (direct frames) writes 4 B/px over the \

@@ -11,7 +11,7 @@ use crate::bandwidth::{CopyBandwidth, FrameFacts, PassBytes, measure_copy_bandwi
 use crate::buffer_readback::read_buffer_u32;
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
-use crate::frame_loop::FrameLoop;
+use crate::frame_loop::{FrameLoop, FrameRun, SLOW_FRAME_MS};
 use crate::ppr_runner::PprRunner;
 use crate::scene::{BenchScene, SceneOptions, SceneSpec};
 use crate::stereo_probe::{StereoRow, run_stereo_probe};
@@ -247,42 +247,76 @@ pub fn run_runtime(
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, settings));
             }
         }
-        for (suffix, params, reflectors, tuning, settings) in variants {
-            let mut ppr = PprRunner::new(device, queue, &reflectors, "ppr", settings, params)?;
-            ppr.renderer().debug = tuning;
-            for cam in &scene.cameras {
+        let mut runners = Vec::new();
+        for (suffix, params, reflectors, tuning, settings) in &variants {
+            let mut ppr = PprRunner::new(device, queue, reflectors, "ppr", *settings, *params)?;
+            ppr.renderer().debug = *tuning;
+            runners.push((suffix.clone(), ppr));
+        }
+        // Every (variant, camera, size) in two rounds, the second in reverse order, the
+        // faster run of each kept: the GPU sometimes sits in a slow state for seconds (the
+        // twelfth session's first profile ran three contiguous stairway rows at 0.96-1.00 ms
+        // against 0.73-0.75 for the same code, each the faster of two runs back to back); in
+        // the reverse round the rows meet that state at another time.
+        let mut jobs = Vec::new();
+        for v in 0..runners.len() {
+            for c in 0..scene.cameras.len() {
                 for &res in &rc.resolutions {
-                    let size = res.size();
-                    level.prepare(device, queue, &cam.camera, size);
-                    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor {
-                        label: Some("runtime gbuffer"),
-                    });
-                    level.encode_gbuffer(&mut encoder);
-                    queue.submit([encoder.finish()]);
-                    let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
-                    let output = Target::new(device, "runtime output", size, REFLECTION_FORMAT, usage);
-                    let frame = BenchFrame {
-                        level: &level,
-                        reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
-                    };
-                    eprintln!("runtime: {} {} {res}", scene.name, cam.name);
-                    let run = frames.run_best_of_two(device, queue, &mut ppr, &frame, &cam.camera, size);
-                    let facts = frame_facts(device, queue, &mut ppr, size)?;
-                    let renderer = ppr.renderer();
-                    let visible = renderer.plan().map_or(0, |p| p.visible.len());
-                    rows.push(RuntimeRow {
-                        scene: format!("{}{suffix}", scene.name),
-                        camera: cam.name.clone(),
-                        resolution: res,
-                        plan: run.plan,
-                        visible,
-                        facts,
-                        timings: run.timings,
-                        source: run.source,
-                        bytes: pass_bytes(&facts),
-                    });
+                    jobs.push((v, c, res));
                 }
             }
+        }
+        let mut runs: Vec<Option<(FrameRun, FrameFacts, usize)>> = jobs.iter().map(|_| None).collect();
+        let first_round = 0..jobs.len();
+        for j in first_round.clone().chain(first_round.rev()) {
+            let (v, c, res) = jobs[j];
+            // A heavy run (over `SLOW_FRAME_MS` a frame) is timed once.
+            if runs[j].as_ref().is_some_and(|(r, _, _)| r.median_ms() > SLOW_FRAME_MS) {
+                continue;
+            }
+            let cam = &scene.cameras[c];
+            let (suffix, ppr) = &mut runners[v];
+            let size = res.size();
+            level.prepare(device, queue, &cam.camera, size);
+            let mut encoder = device
+                .create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("runtime gbuffer") });
+            level.encode_gbuffer(&mut encoder);
+            queue.submit([encoder.finish()]);
+            let usage = wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING;
+            let output = Target::new(device, "runtime output", size, REFLECTION_FORMAT, usage);
+            let frame = BenchFrame {
+                level: &level,
+                reflection: ReflectionInputs::from_gbuffer(level.gbuffer(), &output.view),
+            };
+            eprintln!("runtime: {}{suffix} {} {res}", scene.name, cam.name);
+            let run = frames.run(device, queue, ppr, &frame, &cam.camera, size);
+            runs[j] = match runs[j].take() {
+                // The counts of what the passes touched do not depend on the timing: read
+                // once, after the first round's run.
+                None => {
+                    let facts = frame_facts(device, queue, ppr, size)?;
+                    let visible = ppr.renderer().plan().map_or(0, |p| p.visible.len());
+                    Some((run, facts, visible))
+                }
+                Some((earlier, facts, visible)) => {
+                    let faster = if run.median_ms() < earlier.median_ms() { run } else { earlier };
+                    Some((faster, facts, visible))
+                }
+            };
+        }
+        for (&(v, c, res), run) in jobs.iter().zip(runs) {
+            let Some((run, facts, visible)) = run else { continue };
+            rows.push(RuntimeRow {
+                scene: format!("{}{}", scene.name, runners[v].0),
+                camera: scene.cameras[c].name.clone(),
+                resolution: res,
+                plan: run.plan,
+                visible,
+                facts,
+                timings: run.timings,
+                source: run.source,
+                bytes: pass_bytes(&facts),
+            });
         }
     }
     Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe, stereo })
