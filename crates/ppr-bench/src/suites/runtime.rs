@@ -11,7 +11,7 @@ use crate::bandwidth::{CopyBandwidth, FrameFacts, PassBytes, measure_copy_bandwi
 use crate::buffer_readback::read_buffer_u32;
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
-use crate::frame_loop::{FrameLoop, FrameRun, SLOW_FRAME_MS};
+use crate::frame_loop::{FrameLoop, faster_of_two_rounds};
 use crate::ppr_runner::PprRunner;
 use crate::scene::{BenchScene, SceneOptions, SceneSpec};
 use crate::stereo_probe::{StereoRow, run_stereo_probe};
@@ -253,11 +253,7 @@ pub fn run_runtime(
             ppr.renderer().debug = *tuning;
             runners.push((suffix.clone(), ppr));
         }
-        // Every (variant, camera, size) in two rounds, the second in reverse order, the
-        // faster run of each kept: the GPU sometimes sits in a slow state for seconds (the
-        // twelfth session's first profile ran three contiguous stairway rows at 0.96-1.00 ms
-        // against 0.73-0.75 for the same code, each the faster of two runs back to back); in
-        // the reverse round the rows meet that state at another time.
+        // Every (variant, camera, size) in two rounds (`faster_of_two_rounds`).
         let mut jobs = Vec::new();
         for v in 0..runners.len() {
             for c in 0..scene.cameras.len() {
@@ -266,14 +262,11 @@ pub fn run_runtime(
                 }
             }
         }
-        let mut runs: Vec<Option<(FrameRun, FrameFacts, usize)>> = jobs.iter().map(|_| None).collect();
-        let first_round = 0..jobs.len();
-        for j in first_round.clone().chain(first_round.rev()) {
+        // What the passes touched (and the visible count), read after each job's first run:
+        // it does not depend on the timing.
+        let mut facts: Vec<Option<(FrameFacts, usize)>> = jobs.iter().map(|_| None).collect();
+        let runs = faster_of_two_rounds(jobs.len(), |j| {
             let (v, c, res) = jobs[j];
-            // A heavy run (over `SLOW_FRAME_MS` a frame) is timed once.
-            if runs[j].as_ref().is_some_and(|(r, _, _)| r.median_ms() > SLOW_FRAME_MS) {
-                continue;
-            }
             let cam = &scene.cameras[c];
             let (suffix, ppr) = &mut runners[v];
             let size = res.size();
@@ -290,22 +283,14 @@ pub fn run_runtime(
             };
             eprintln!("runtime: {}{suffix} {} {res}", scene.name, cam.name);
             let run = frames.run(device, queue, ppr, &frame, &cam.camera, size);
-            runs[j] = match runs[j].take() {
-                // The counts of what the passes touched do not depend on the timing: read
-                // once, after the first round's run.
-                None => {
-                    let facts = frame_facts(device, queue, ppr, size)?;
-                    let visible = ppr.renderer().plan().map_or(0, |p| p.visible.len());
-                    Some((run, facts, visible))
-                }
-                Some((earlier, facts, visible)) => {
-                    let faster = if run.median_ms() < earlier.median_ms() { run } else { earlier };
-                    Some((faster, facts, visible))
-                }
-            };
-        }
-        for (&(v, c, res), run) in jobs.iter().zip(runs) {
-            let Some((run, facts, visible)) = run else { continue };
+            if facts[j].is_none() {
+                let visible = ppr.renderer().plan().map_or(0, |p| p.visible.len());
+                facts[j] = Some((frame_facts(device, queue, ppr, size)?, visible));
+            }
+            Ok::<_, BenchError>(run)
+        })?;
+        for ((&(v, c, res), run), job_facts) in jobs.iter().zip(runs).zip(facts) {
+            let (facts, visible) = job_facts.expect("read after the first round's run");
             rows.push(RuntimeRow {
                 scene: format!("{}{}", scene.name, runners[v].0),
                 camera: scene.cameras[c].name.clone(),

@@ -11,7 +11,7 @@ use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
-use crate::frame_loop::{FrameLoop, FrameRun, SLOW_FRAME_MS};
+use crate::frame_loop::{FrameLoop, faster_of_two_rounds};
 use crate::ppr_runner::PprRunner;
 use crate::scaling::coverage_level::coverage_level;
 use crate::scaling::level_family::{GeneratedLevel, LevelFamily, generate};
@@ -106,11 +106,6 @@ impl Measurer<'_> {
                 &output.view,
             ),
         };
-        // Two rounds, the second in reverse order, the faster run of each variant kept: the
-        // GPU sometimes sits in a slow state for seconds after heavy frames (the H200 ran a
-        // 10 000-shape level's light variants 2.7x slower, every pass alike, right after its
-        // 50-60 ms `culling off` frames); in the reverse round the light variants run before
-        // the heavy ones.
         let mut runners = Vec::new();
         for (_, params) in variants {
             runners.push(PprRunner::new(
@@ -122,21 +117,12 @@ impl Measurer<'_> {
                 *params,
             )?);
         }
-        let mut runs: Vec<Option<FrameRun>> = variants.iter().map(|_| None).collect();
-        let first_round = 0..variants.len();
-        for i in first_round.clone().chain(first_round.rev()) {
-            // A heavy variant (over `SLOW_FRAME_MS` a frame) is timed once.
-            if runs[i].as_ref().is_some_and(|r| r.median_ms() > SLOW_FRAME_MS) {
-                continue;
-            }
-            let run = self.frames.run(device, queue, &mut runners[i], &frame, &g.camera, self.size);
-            if runs[i].as_ref().is_none_or(|earlier| run.median_ms() < earlier.median_ms()) {
-                runs[i] = Some(run);
-            }
-        }
+        // Light variants run before heavy ones in the reverse round.
+        let runs = faster_of_two_rounds(variants.len(), |i| {
+            Ok::<_, BenchError>(self.frames.run(device, queue, &mut runners[i], &frame, &g.camera, self.size))
+        })?;
         let mut rows = Vec::new();
         for (((variant, _), ppr), run) in variants.iter().zip(&mut runners).zip(runs) {
-            let Some(run) = run else { continue };
             let plan = ppr.renderer().plan().cloned();
             eprintln!(
                 "scaling: {} {} shapes, {variant}: {:.3} ms",
