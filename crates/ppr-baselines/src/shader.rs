@@ -46,11 +46,10 @@ pub fn with_hiz_layout(pass: &str) -> String {
 }
 
 /// Creates the shader module of a pass from its complete `source`.
+/// With the runtime's checks ([`ppr_runtime::shader::runtime_checks`]), so that PPR and
+/// the baselines are timed alike.
 pub fn module(device: &wgpu::Device, label: &str, source: String) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source.into()),
-    })
+    ppr_runtime::shader::create_module(device, label, source)
 }
 
 /// Every pass's complete source with its name (for validation tests and tools).

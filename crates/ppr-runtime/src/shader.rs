@@ -51,10 +51,46 @@ pub fn source(pass: &str) -> String {
 
 /// Creates the shader module of a pass with extra shared modules.
 pub fn module_with(device: &wgpu::Device, label: &str, modules: &[&str], pass: &str) -> wgpu::ShaderModule {
-    device.create_shader_module(wgpu::ShaderModuleDescriptor {
-        label: Some(label),
-        source: wgpu::ShaderSource::Wgsl(source_with(modules, pass).into()),
-    })
+    create_module(device, label, source_with(modules, pass))
+}
+
+/// The environment variable that gives every module wgpu's full runtime checks again
+/// (`PPR_SHADER_CHECKS=checked`): to compare their cost, or to rule them out.
+pub const CHECKS_ENV: &str = "PPR_SHADER_CHECKS";
+
+/// The runtime checks wgpu adds to our shaders. Bounds checks stay (the data comes from
+/// reflector files and the frame); two checks that guard against code we do not write are
+/// left out, because they cost instructions in the hottest loops (the parallel trees'
+/// walk runs 50 iterations a pixel):
+/// - loop bounding (a counter in every loop): every loop of these shaders ends by
+///   construction (counted loops, and walks of a complete binary tree in heap order,
+///   whose node index only moves forward);
+/// - integer-division guards: every divisor is a positive constant, a tile count of a
+///   non-empty viewport, or, in the encoding, positive by its own test (`o.y > 0`,
+///   `den >= 65536`), and no signed division divides by -1.
+///
+/// With [`CHECKS_ENV`] set to `checked`, every check.
+pub fn runtime_checks() -> wgpu::ShaderRuntimeChecks {
+    runtime_checks_for(std::env::var(CHECKS_ENV).ok().as_deref())
+}
+
+fn runtime_checks_for(env: Option<&str>) -> wgpu::ShaderRuntimeChecks {
+    let mut checks = wgpu::ShaderRuntimeChecks::checked();
+    if env != Some("checked") {
+        checks.force_loop_bounding = false;
+        checks.int_div_checks = false;
+    }
+    checks
+}
+
+/// Creates a module of our own WGSL `source` with [`runtime_checks`] (what every pass of
+/// this crate and the baselines use).
+pub fn create_module(device: &wgpu::Device, label: &str, source: String) -> wgpu::ShaderModule {
+    let desc = wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(source.into()) };
+    // SAFETY: the checks left out are the two `runtime_checks` names; the shaders are this
+    // crate's and the baselines', whose loops all end and whose integer divisors are all
+    // positive (see `runtime_checks`).
+    unsafe { device.create_shader_module_trusted(desc, runtime_checks()) }
 }
 
 /// Creates the shader module of a pass (or a test kernel) with only the shared modules.
@@ -81,6 +117,18 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
 
 #[cfg(test)]
 mod tests {
+    /// Loop bounding and integer-division guards are left out unless the environment asks
+    /// for every check; bounds checks always stay.
+    #[test]
+    fn runtime_checks_leave_out_two_checks_unless_asked() {
+        for env in [None, Some(""), Some("trusted")] {
+            let c = super::runtime_checks_for(env);
+            assert!(c.bounds_checks && !c.force_loop_bounding && !c.int_div_checks, "{env:?}");
+        }
+        let c = super::runtime_checks_for(Some("checked"));
+        assert!(c.bounds_checks && c.force_loop_bounding && c.int_div_checks);
+    }
+
     /// Every pass parses and validates (clear messages without a GPU).
     #[test]
     fn every_pass_validates() {
