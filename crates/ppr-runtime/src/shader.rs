@@ -86,7 +86,8 @@ fn runtime_checks_for(env: Option<&str>) -> wgpu::ShaderRuntimeChecks {
 /// Creates a module of our own WGSL `source` with [`runtime_checks`] (what every pass of
 /// this crate and the baselines use).
 pub fn create_module(device: &wgpu::Device, label: &str, source: String) -> wgpu::ShaderModule {
-    let desc = wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(source.into()) };
+    let desc =
+        wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(source.into()) };
     // SAFETY: the checks left out are the two `runtime_checks` names; the shaders are this
     // crate's and the baselines', whose loops all end and whose integer divisors are all
     // positive (see `runtime_checks`).
