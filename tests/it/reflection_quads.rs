@@ -19,7 +19,7 @@ fn quads_store_the_same_image_as_one_pixel_per_invocation() {
         let gpu = GpuFrame::upload(&frame);
         for indirect in [Choice::Off, Choice::On] {
             for (glossy, replace_far) in [(false, false), (false, true), (true, false)] {
-                let render = |pixel_per_thread: bool| {
+                let render = |quads: bool| {
                     let mut r = renderer();
                     r.plan_params.indirect = indirect;
                     r.settings = ReflectionSettings {
@@ -27,11 +27,11 @@ fn quads_store_the_same_image_as_one_pixel_per_invocation() {
                         replace_far_reflections: replace_far,
                         ..ReflectionSettings::ALL
                     };
-                    r.debug.reflection_pixel_per_thread = pixel_per_thread;
+                    r.debug.reflection_quads = quads;
                     r.set_reflectors(&validated(&scene.reflector_set()));
                     run(&mut r, &gpu, &camera)
                 };
-                let (pixels, quads) = (render(true), render(false));
+                let (pixels, quads) = (render(false), render(true));
                 let case =
                     format!("{size:?} indirect={indirect:?} glossy={glossy} replace_far={replace_far}");
                 assert_eq!(quads.plan.indirect, indirect == Choice::On, "{case}");

@@ -124,10 +124,10 @@ pub struct DebugOptions {
     /// Leave parts of the reflection pass out, to time the rest (bench only; the image is
     /// wrong with anything but [`ReflectionAblation::None`]).
     pub reflection_ablation: ReflectionAblation,
-    /// The reflection pass takes one pixel per invocation in direct dispatch too, instead of
-    /// two by two sharing their neighbourhood reads (the layout before the quads; bench
-    /// only, the same image).
-    pub reflection_pixel_per_thread: bool,
+    /// The reflection pass takes mirrors two by two pixels per invocation in direct
+    /// dispatch, sharing their neighbourhood reads, instead of one pixel each (the default
+    /// of the seventh to thirteenth sessions; bench only, the same image).
+    pub reflection_quads: bool,
     /// The most taps per pixel of the glossy blur instead of the default (12): what the
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
@@ -317,7 +317,7 @@ impl ReflectionRenderer {
             glossy,
             holes: self.settings.holes,
             ablation: self.debug.reflection_ablation,
-            pixel_per_thread: self.debug.reflection_pixel_per_thread,
+            quads: self.debug.reflection_quads,
         }
     }
 

@@ -75,11 +75,16 @@ pub fn runtime_checks() -> wgpu::ShaderRuntimeChecks {
 }
 
 fn runtime_checks_for(env: Option<&str>) -> wgpu::ShaderRuntimeChecks {
-    let mut checks = wgpu::ShaderRuntimeChecks::checked();
-    if env != Some("checked") {
-        checks.force_loop_bounding = false;
-        checks.int_div_checks = false;
+    if env == Some("checked") {
+        return wgpu::ShaderRuntimeChecks::checked();
     }
+    // Every check off (wgpu 30's integer-division guards among them; wgpu 29 has none),
+    // then those that stay back on (the fields both versions have).
+    let mut checks = wgpu::ShaderRuntimeChecks::unchecked();
+    checks.bounds_checks = true;
+    checks.ray_query_initialization_tracking = true;
+    checks.task_shader_dispatch_tracking = true;
+    checks.mesh_shader_primitive_indices_clamp = true;
     checks
 }
 
@@ -122,12 +127,18 @@ mod tests {
     /// for every check; bounds checks always stay.
     #[test]
     fn runtime_checks_leave_out_two_checks_unless_asked() {
+        let all = format!("{:?}", wgpu::ShaderRuntimeChecks::checked());
         for env in [None, Some(""), Some("trusted")] {
             let c = super::runtime_checks_for(env);
-            assert!(c.bounds_checks && !c.force_loop_bounding && !c.int_div_checks, "{env:?}");
+            assert!(
+                c.bounds_checks && c.ray_query_initialization_tracking && !c.force_loop_bounding,
+                "{env:?}"
+            );
+            // wgpu 30's integer-division guards are off too (wgpu 29 has none).
+            assert!(!format!("{c:?}").contains("int_div_checks: true"), "{env:?}: {c:?}");
+            assert_ne!(format!("{c:?}"), all);
         }
-        let c = super::runtime_checks_for(Some("checked"));
-        assert!(c.bounds_checks && c.force_loop_bounding && c.int_div_checks);
+        assert_eq!(format!("{:?}", super::runtime_checks_for(Some("checked"))), all);
     }
 
     /// Every pass parses and validates (clear messages without a GPU).

@@ -50,8 +50,7 @@ pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation); the
 /// `reflection: …` rows ablate the reflection pass instead, the `reflection: mirrors …`
-/// rows without the glossy blur (two by two pixels per invocation in direct dispatch, or
-/// one pixel with `one pixel per thread`).
+/// rows without the glossy blur (one pixel per invocation, or two by two with `quads`).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -81,8 +80,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: no glossy", Choice::Auto, Ablation::None),
         ("reflection: mirrors", Choice::Auto, Ablation::None),
         ("reflection: mirrors, empty", Choice::Auto, Ablation::None),
-        ("reflection: mirrors, one pixel per thread", Choice::Auto, Ablation::None),
-        ("reflection: mirrors, one pixel per thread, empty", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, quads", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, quads, empty", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -227,9 +226,9 @@ pub fn run_runtime(
                     Some(r) if r.ends_with("no glossy") => ReflectionAblation::NoGlossy,
                     _ => ReflectionAblation::None,
                 };
-                let reflection_pixel_per_thread = name.contains("one pixel per thread");
+                let reflection_quads = name.starts_with("reflection: mirrors, quads");
                 // The `mirrors` rows leave the glossy blur off, as a set without roughness:
-                // the frames whose reflection pass runs two by two pixels per invocation.
+                // the frames whose reflection pass may run two by two pixels per invocation.
                 let settings = if name.starts_with("reflection: mirrors") {
                     ReflectionSettings { glossy: false, ..all }
                 } else {
@@ -241,7 +240,7 @@ pub fn run_runtime(
                     tile_clear_pass: name == "tile clear pass",
                     block_lists_box_only: name.ends_with("lists box only"),
                     reflection_ablation,
-                    reflection_pixel_per_thread,
+                    reflection_quads,
                     ..tuning
                 };
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, settings));

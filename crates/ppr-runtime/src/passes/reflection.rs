@@ -36,11 +36,12 @@ pub struct ReflectionVariant {
     pub holes: bool,
     /// Leave parts out to time the rest (bench only).
     pub ablation: ReflectionAblation,
-    /// One pixel per invocation (`main`) for mirrors in direct dispatch too, instead of two
-    /// by two sharing their neighbourhood reads (`main_quads`); the same image (bench
-    /// only). Indirect dispatch, glossy, normal maps and frames without hole filling always
-    /// take one pixel per invocation ([`Self::quads`]).
-    pub pixel_per_thread: bool,
+    /// Two by two pixels per invocation sharing their neighbourhood reads (`main_quads`)
+    /// for mirrors with hole filling in direct dispatch, instead of one pixel per
+    /// invocation (`main`); the same image (bench only, [`Self::quads`] says why). Indirect
+    /// dispatch, glossy, normal maps and frames without hole filling always take one pixel
+    /// per invocation.
+    pub quads: bool,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -81,14 +82,14 @@ impl ReflectionVariant {
         (indirect, self.index(), (!self.quads(indirect), self.ablation))
     }
 
-    /// Whether the pass runs `main_quads`: mirrors with hole filling in direct dispatch. On
-    /// the H200 quads took that pass from 0.147-0.159 to 0.121-0.134 ms on full-screen 4K
-    /// cameras (1080p: 0.000-0.002 ms slower); without hole filling they were slower
-    /// (0.069 -> 0.082 ms), with the glossy blur slower at 1080p (0.063 -> 0.075 ms on the
-    /// demo's `cam_steps`) and mixed at 4K, and over active tiles 8 x 8 invocations a tile
-    /// were slower than one pixel each (docs/perf/runtime.md, comparison.md).
+    /// Whether the pass runs `main_quads` ([`Self::quads`] asked for, mirrors with hole
+    /// filling in direct dispatch). Not by default since the fourteenth session: with
+    /// wgpu's loop bounding the quads took the H200's full-screen 4K mirror pass from
+    /// 0.147-0.159 to 0.121-0.134 ms; without it (`shader::runtime_checks`) one pixel per
+    /// invocation takes 0.059-0.068 ms against the quads' 0.078-0.084, and 0.020-0.021
+    /// against 0.031-0.033 at 1080p (docs/perf/runtime.md).
     fn quads(self, indirect: bool) -> bool {
-        self.holes && !(self.pixel_per_thread || indirect || self.glossy || self.normal_maps)
+        self.quads && self.holes && !(indirect || self.glossy || self.normal_maps)
     }
 }
 
