@@ -45,9 +45,9 @@ pub fn with_hiz_layout(pass: &str) -> String {
     assemble(&[COMMON, HIZ_LAYOUT], pass)
 }
 
-/// Creates the shader module of a pass from its complete `source`.
-/// With the runtime's checks ([`ppr_runtime::shader::runtime_checks`]), so that PPR and
-/// the baselines are timed alike.
+/// Creates the shader module of a pass from its complete `source`, with the runtime's
+/// checks ([`ppr_runtime::shader::runtime_checks`]), so that PPR and the baselines are
+/// timed alike.
 pub fn module(device: &wgpu::Device, label: &str, source: String) -> wgpu::ShaderModule {
     ppr_runtime::shader::create_module(device, label, source)
 }

@@ -179,7 +179,7 @@ fn main(
 // rings (PPR_HOLE_OFFSETS: right, below, below right, left) lie in a 4 x 3 block of which
 // 11 values are used, read once instead of 20 times; and a quarter of the invocations to
 // launch. Mirrors in direct dispatch, 32 x 32 pixels per workgroup, when the bench asks
-// (ReflectionVariant::quads says why not by default); the same image as `main`, bit for bit.
+// (ReflectionVariant::runs_quads says why not by default); the same image as `main`, bit for bit.
 @compute @workgroup_size(16, 16)
 fn main_quads(@builtin(global_invocation_id) global_id: vec3<u32>) {
     if (ABLATION == 1u) {

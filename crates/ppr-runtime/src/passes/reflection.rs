@@ -38,7 +38,7 @@ pub struct ReflectionVariant {
     pub ablation: ReflectionAblation,
     /// Two by two pixels per invocation sharing their neighbourhood reads (`main_quads`)
     /// for mirrors with hole filling in direct dispatch, instead of one pixel per
-    /// invocation (`main`); the same image (bench only, [`Self::quads`] says why). Indirect
+    /// invocation (`main`); the same image (bench only; `runs_quads` says why). Indirect
     /// dispatch, glossy, normal maps and frames without hole filling always take one pixel
     /// per invocation.
     pub quads: bool,
@@ -79,16 +79,16 @@ impl ReflectionVariant {
 
     /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
-        (indirect, self.index(), (!self.quads(indirect), self.ablation))
+        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation))
     }
 
-    /// Whether the pass runs `main_quads` ([`Self::quads`] asked for, mirrors with hole
+    /// Whether the pass runs `main_quads` (the `quads` field asked for, mirrors with hole
     /// filling in direct dispatch). Not by default since the fourteenth session: with
     /// wgpu's loop bounding the quads took the H200's full-screen 4K mirror pass from
     /// 0.147-0.159 to 0.121-0.134 ms; without it (`shader::runtime_checks`) one pixel per
     /// invocation takes 0.059-0.068 ms against the quads' 0.078-0.084, and 0.020-0.021
     /// against 0.031-0.033 at 1080p (docs/perf/runtime.md).
-    fn quads(self, indirect: bool) -> bool {
+    fn runs_quads(self, indirect: bool) -> bool {
         self.quads && self.holes && !(indirect || self.glossy || self.normal_maps)
     }
 }
@@ -239,7 +239,7 @@ impl ReflectionPass {
         viewport: [u32; 2],
         variant: ReflectionVariant,
     ) {
-        let (x, y) = if variant.quads(false) {
+        let (x, y) = if variant.runs_quads(false) {
             let [w, h] = viewport;
             (w.div_ceil(QUAD_BLOCK), h.div_ceil(QUAD_BLOCK))
         } else {
