@@ -99,6 +99,11 @@ pub struct RuntimeArgs {
     /// rows `[reflection: …]`, the reflection pass's).
     #[arg(long)]
     pub projection_profile: bool,
+    /// With `--projection-profile`: run only the profile rows of this name (repeat; e.g.
+    /// `--profile-row "compact writes" --profile-row "reflection: mirrors"`); an unknown
+    /// name is an error that lists them. Default: every row.
+    #[arg(long = "profile-row", value_name = "NAME")]
+    pub profile_rows: Vec<String>,
     /// Also time full-screen `Rgba16Float` writes (compute storage texture in several
     /// layouts, storage buffer, fragment pass) at each resolution: the floor of the
     /// reflection and upsample passes' output write.
@@ -349,6 +354,7 @@ where
                 copy_bytes: if cfg.quick { 1 << 20 } else { a.copy_mib << 20 },
                 features_off: a.features_off,
                 projection_profile: a.projection_profile,
+                profile_rows: a.profile_rows.clone(),
                 write_probe: a.write_probe,
                 glossy: a.glossy,
                 stereo_sizes: a.stereo.clone(),

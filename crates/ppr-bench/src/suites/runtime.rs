@@ -31,6 +31,8 @@ pub struct RuntimeConfig {
     pub features_off: bool,
     /// Also run every scene with each projection tuning and ablation.
     pub projection_profile: bool,
+    /// With `projection_profile`: only these rows (every row when empty).
+    pub profile_rows: Vec<String>,
     /// Also time full-screen image writes (`write_probe.rs`) at each resolution.
     pub write_probe: bool,
     /// Also run every scene with every reflector at roughness [`GLOSSY_PROBE_ROUGHNESS`],
@@ -85,6 +87,22 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     ]
 }
 
+/// The rows of [`projection_profile`] that `wanted` names (all when it is empty).
+///
+/// # Errors
+/// A name that is no row's, with the list of rows.
+fn profile_rows(wanted: &[String]) -> Result<Vec<(&'static str, Choice, Ablation)>, BenchError> {
+    let all = projection_profile();
+    if let Some(unknown) = wanted.iter().find(|w| !all.iter().any(|(n, ..)| n == w)) {
+        let names: Vec<_> = all.iter().map(|(n, ..)| format!("\"{n}\"")).collect();
+        return Err(BenchError::Spec(format!(
+            "--profile-row \"{unknown}\" is no row of the projection profile; the rows: {}",
+            names.join(", ")
+        )));
+    }
+    Ok(all.into_iter().filter(|(n, ..)| wanted.is_empty() || wanted.iter().any(|w| w == n)).collect())
+}
+
 /// One scene, camera and size.
 #[derive(Clone, Debug)]
 pub struct RuntimeRow {
@@ -122,6 +140,8 @@ pub fn run_runtime(
     rc: &RuntimeConfig,
 ) -> Result<RuntimeOutcome, BenchError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
+    // An unknown `--profile-row` fails before any GPU work.
+    profile_rows(&rc.profile_rows)?;
     let reps = cfg.frames.timed.max(3);
     let bandwidth = measure_copy_bandwidth(device, queue, rc.copy_bytes, reps);
     if let Some(b) = bandwidth {
@@ -194,7 +214,7 @@ pub fn run_runtime(
             variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped, tuning, all));
         }
         if rc.projection_profile {
-            for (name, source_boxes, ablation) in projection_profile() {
+            for (name, source_boxes, ablation) in profile_rows(&rc.profile_rows)? {
                 let mut params = PlanParams { source_boxes, ..PlanParams::default() };
                 if name.starts_with("culling on") {
                     params.tile_culling = Choice::On;
@@ -358,4 +378,24 @@ fn frame_facts(
     }
     facts.written_pixels = written;
     Ok(facts)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn profile_rows_keep_the_named_rows_in_profile_order() {
+        let all = profile_rows(&[]).expect("no filter");
+        assert_eq!(all.len(), projection_profile().len());
+        let wanted = ["reflection: mirrors".to_owned(), "empty".to_owned()];
+        let names: Vec<_> = profile_rows(&wanted).expect("known rows").iter().map(|(n, ..)| *n).collect();
+        assert_eq!(names, ["empty", "reflection: mirrors"]);
+    }
+
+    #[test]
+    fn an_unknown_profile_row_is_an_error_that_lists_the_rows() {
+        let err = profile_rows(&["tests onyl".to_owned()]).expect_err("no such row").to_string();
+        assert!(err.contains("\"tests onyl\"") && err.contains("\"tests only\""), "{err}");
+    }
 }
