@@ -74,7 +74,7 @@ fn main(
             let meets = !SOURCE_BOXES || (all(sb.xy < hi) && all(lo < sb.zw));
             passes = meets && box_may_reflect(tests[k], box.lo, box.hi);
         }
-        let r = chunk_rank(lid, passes);
+        let r = chunk_rank(lid, base / TILE_GROUP_THREADS, passes);
         if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
             block_lists[list_start + written + r.x] = k;
         }

@@ -47,7 +47,7 @@ fn main(@builtin(local_invocation_index) lid: u32, @builtin(workgroup_id) wid: v
             let meets = !SOURCE_BOXES || (all(b.xy < origin + SUPER_TILE_SIZE) && all(origin < b.zw));
             passes = meets && box_may_reflect(tests[k], box.lo, box.hi);
         }
-        let r = chunk_rank(lid, passes);
+        let r = chunk_rank(lid, base / TILE_GROUP_THREADS, passes);
         if (passes && count + r.x < SUPER_LIST_CAPACITY) {
             super_lists[list_start + count + r.x] = k;
         }

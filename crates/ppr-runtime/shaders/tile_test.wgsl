@@ -66,8 +66,12 @@ var<workgroup> box_min: array<array<atomic<u32>, 3>, BOX_SLOTS>;
 var<workgroup> box_max: array<array<atomic<u32>, 3>, BOX_SLOTS>;
 // The box's ordered bounds: min x, y, z, then max x, y, z.
 var<workgroup> box_words: array<u32, 6>;
-var<workgroup> pass_flags: array<u32, TILE_GROUP_THREADS>;
-var<workgroup> pass_words: array<u32, 8>;
+// The chunk ranks' pass bits, a word per 32 threads: two sets, used by alternate chunks (one
+// is zeroed while the other is read), and a plain copy of the current set for every thread
+// to read.
+const PASS_WORDS: u32 = TILE_GROUP_THREADS / 32u;
+var<workgroup> pass_bits: array<array<atomic<u32>, PASS_WORDS>, 2>;
+var<workgroup> pass_words: array<u32, PASS_WORDS>;
 
 // The camera-relative position of a pixel, when its depth is a rendered surface and the
 // position is finite, with its on-plane tolerance as w (> 0; ppr_on_plane_tolerance), else
@@ -122,6 +126,10 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
             atomicStore(&box_max[lid][c], 0u);
         }
     }
+    // The first chunk's pass bits (chunk_rank zeroes the other set itself).
+    if (lid < PASS_WORDS) {
+        atomicStore(&pass_bits[0][lid], 0u);
+    }
     workgroupBarrier();
     let slot = lid % BOX_SLOTS;
     if (lo.x <= hi.x) {
@@ -161,32 +169,37 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
     return TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
 }
 
-// Ordered compaction of one chunk of TILE_GROUP_THREADS candidates: (rank, total), where
-// rank is the number of passing threads before this one and total the chunk's passing
-// count. Eight threads pack the flags into words; the ranks are popcounts. Call from
-// uniform control flow (it has barriers).
-fn chunk_rank(lid: u32, passes: bool) -> vec2<u32> {
-    pass_flags[lid] = select(0u, 1u, passes);
+// Ordered compaction of chunk `chunk` (0, 1, ...) of TILE_GROUP_THREADS candidates:
+// (rank, total), where rank is the number of passing threads before this one and total the
+// chunk's passing count. The passing threads set their bits in their words (a shared
+// atomic OR, no thread waits on another's flag); PASS_WORDS threads copy the words out and zero
+// the next chunk's set; the ranks are popcounts. Two barriers a chunk. Call from uniform
+// control flow, after workgroup_box (which zeroes the first chunk's set), chunks in order.
+fn chunk_rank(lid: u32, chunk: u32, passes: bool) -> vec2<u32> {
+    let half = chunk & 1u;
+    if (passes) {
+        atomicOr(&pass_bits[half][lid / 32u], 1u << (lid % 32u));
+    }
     workgroupBarrier();
-    if (lid < 8u) {
-        var bits = 0u;
-        for (var t = 0u; t < 32u; t++) {
-            bits |= pass_flags[lid * 32u + t] << t;
-        }
-        pass_words[lid] = bits;
+    // The other set was last read before the previous chunk's second barrier, and is next
+    // written after this chunk's.
+    if (lid < PASS_WORDS) {
+        pass_words[lid] = atomicLoad(&pass_bits[half][lid]);
+        atomicStore(&pass_bits[half ^ 1u][lid], 0u);
     }
     workgroupBarrier();
     let word = lid / 32u;
     var rank = countOneBits(pass_words[word] & ((1u << (lid % 32u)) - 1u));
     var total = 0u;
-    for (var w = 0u; w < 8u; w++) {
+    for (var w = 0u; w < PASS_WORDS; w++) {
         let n = countOneBits(pass_words[w]);
         total += n;
         if (w < word) {
             rank += n;
         }
     }
-    workgroupBarrier();
+    // No third barrier: the next chunk's copy into `pass_words` comes after its first
+    // barrier, which every thread reaches only once it has read these.
     return vec2<u32>(rank, total);
 }
 
