@@ -230,10 +230,10 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                 reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
         }
-        // The next node in walk order: up past right children, then the right sibling.
-        while ((node & 1u) == 1u) {
-            node = node >> 1u;
-        }
+        // The next node in walk order: up past right children (the trailing ones of the
+        // node's number, one shift for all: no loop whose count differs between the lanes),
+        // then the right sibling.
+        node = node >> countTrailingZeros(~node);
         if (node == 0u) {
             break;
         }
