@@ -80,10 +80,11 @@ pub struct PlanParams {
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
     /// at most this share of the screen. Measured on the H200 at 3840×2160
-    /// (docs/perf/scaling.md, 2026-12-03, eighth session): with the classification taking
-    /// 2 × 2 tiles per workgroup, the classification and the per-tile clear and reflection
-    /// are faster up to 0.4 (0.201 against 0.205 ms; 0.177 against 0.206 at 0.3) and slower
-    /// from 0.5 (0.226 against 0.205).
+    /// (docs/perf/scaling.md, fifteenth session, two runs): since the direct reflection pass
+    /// takes one pixel per invocation without wgpu's loop counter (0.057 ms full-screen),
+    /// the classification and the per-tile reflection are faster up to 0.2 (0.117 against
+    /// 0.128 ms), even at 0.3 (0.128 against 0.128) and slower from 0.4 (0.140–0.142
+    /// against 0.128); the eighth session's 0.4 was read against a direct pass of 0.13 ms.
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
@@ -185,7 +186,7 @@ impl Default for PlanParams {
             super_tiles_min_shapes: 512,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
-            indirect_max_coverage: 0.4,
+            indirect_max_coverage: 0.3,
             layers: Choice::Auto,
             max_water_layers: 4,
             normal_maps: Choice::Auto,
