@@ -14,6 +14,10 @@ B=.gpu/ppr-bench
 C="--scenes-dir .gpu/scenes"
 R=/tmp/results
 mkdir -p "$R"
+# The GPU's clocks, power and temperature every half second, beside the results: the
+# scaling suite's 10 000-shape rows have met a slow state (every pass 1.5-2x slower) after
+# its heavy rows; this log says whether the clocks fell with it.
+nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,temperature.gpu,clocks_throttle_reasons.active --format=csv -lms 500 > "$R/clocks.csv" 2>&1 &
 nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
 # Each step packs the archive again, so that a call cut short brings back what it measured.
 step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
