@@ -11,7 +11,7 @@ use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
-use crate::frame_loop::{FrameLoop, faster_of_two_rounds};
+use crate::frame_loop::{FrameLoop, faster_of_two_rounds_in, lightest_first};
 use crate::ppr_runner::PprRunner;
 use crate::scaling::coverage_level::coverage_level;
 use crate::scaling::level_family::{GeneratedLevel, LevelFamily, generate};
@@ -83,10 +83,13 @@ struct Measurer<'a> {
 }
 
 impl Measurer<'_> {
+    /// Times `variants` on `g`, the first round lightest first by `earlier`, the same
+    /// family's rows at the previous count (the variants without one last, in order).
     fn run(
         &self,
         g: &GeneratedLevel,
         variants: &[(&str, PlanParams)],
+        earlier: &[ScalingRow],
     ) -> Result<Vec<ScalingRow>, BenchError> {
         let (device, queue) = (&self.gpu.device, &self.gpu.queue);
         // The G-buffer needs no reflector mask: PPR reads colour and depth only.
@@ -117,8 +120,16 @@ impl Measurer<'_> {
                 *params,
             )?);
         }
-        // Light variants run before heavy ones in the reverse round.
-        let runs = faster_of_two_rounds(variants.len(), |i| {
+        // The first round lightest first, so that the heavy variants' frames (up to 50 ms at
+        // 10 000 shapes without culling) cannot leave the GPU slow for the light ones; the
+        // reverse round skips the heaviest and meets the rest at other times.
+        let expected: Vec<f64> = variants
+            .iter()
+            .map(|(name, _)| {
+                earlier.iter().find(|r| r.variant == *name).map_or(f64::NAN, ScalingRow::total_ms)
+            })
+            .collect();
+        let runs = faster_of_two_rounds_in(&lightest_first(&expected), |i| {
             Ok::<_, BenchError>(self.frames.run(device, queue, &mut runners[i], &frame, &g.camera, self.size))
         })?;
         let mut rows = Vec::new();
@@ -199,21 +210,25 @@ pub fn run_scaling(
     ];
     let mut rows = Vec::new();
     for &family in &sc.families {
+        let mut earlier = Vec::new();
         for &n in &sc.counts {
-            rows.extend(m.run(&generate(family, n), &on_off)?);
+            let level = m.run(&generate(family, n), &on_off, &earlier)?;
+            earlier.clone_from(&level);
+            rows.extend(level);
         }
     }
     let mut threshold_rows = Vec::new();
     for &family in &sc.families {
+        let mut earlier = Vec::new();
         for &n in &sc.threshold_counts {
             // Counts already measured in the main sweep are reused.
-            let done: Vec<ScalingRow> =
+            let mut level: Vec<ScalingRow> =
                 rows.iter().filter(|r| r.family == family.as_str() && r.shapes == n).cloned().collect();
-            if done.is_empty() {
-                threshold_rows.extend(m.run(&generate(family, n), &on_off)?);
-            } else {
-                threshold_rows.extend(done);
+            if level.is_empty() {
+                level = m.run(&generate(family, n), &on_off, &earlier)?;
             }
+            earlier.clone_from(&level);
+            threshold_rows.extend(level);
         }
     }
     let mut coverage_rows = Vec::new();
@@ -222,6 +237,7 @@ pub fn run_scaling(
         let mut r = m.run(
             &coverage_level(c),
             &[("indirect off", indirect(Choice::Off)), ("indirect on", indirect(Choice::On))],
+            &[],
         )?;
         for row in &mut r {
             row.family = "coverage".into();
