@@ -100,7 +100,7 @@ pub struct RuntimeArgs {
     #[arg(long)]
     pub projection_profile: bool,
     /// With `--projection-profile`: run only the profile rows of this name (repeat; e.g.
-    /// `--profile-row "compact writes" --profile-row "reflection: mirrors"`); an unknown
+    /// `--profile-row "tests only" --profile-row "reflection: mirrors"`); an unknown
     /// name is an error that lists them. Default: every row.
     #[arg(long = "profile-row", value_name = "NAME")]
     pub profile_rows: Vec<String>,

@@ -256,11 +256,11 @@ fn run_frames(
 #[cfg(test)]
 mod tests {
     use super::{FrameRun, Settling, faster_of_two_rounds_in, lightest_first};
-    use crate::timing::{TimingSeries, TimingSource};
+    use crate::timing::{PassTime, TimingSeries, TimingSource};
 
     fn run_of(ms: f64) -> FrameRun {
         let mut timings = TimingSeries::default();
-        timings.push_frame(&[crate::timing::PassTime::new("projection", ms)]);
+        timings.push_frame(&[PassTime::new("projection", ms)]);
         FrameRun { timings, source: TimingSource::GpuTimestamps, plan: String::new() }
     }
 

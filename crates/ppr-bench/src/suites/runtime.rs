@@ -140,8 +140,8 @@ pub fn run_runtime(
     rc: &RuntimeConfig,
 ) -> Result<RuntimeOutcome, BenchError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
-    // An unknown `--profile-row` fails before any GPU work.
-    profile_rows(&rc.profile_rows)?;
+    // The profile's rows, once; an unknown `--profile-row` fails before any GPU work.
+    let profile = profile_rows(&rc.profile_rows)?;
     let reps = cfg.frames.timed.max(3);
     let bandwidth = measure_copy_bandwidth(device, queue, rc.copy_bytes, reps);
     if let Some(b) = bandwidth {
@@ -214,7 +214,7 @@ pub fn run_runtime(
             variants.push((" (normal maps)".to_owned(), PlanParams::default(), normal_mapped, tuning, all));
         }
         if rc.projection_profile {
-            for (name, source_boxes, ablation) in profile_rows(&rc.profile_rows)? {
+            for &(name, source_boxes, ablation) in &profile {
                 let mut params = PlanParams { source_boxes, ..PlanParams::default() };
                 if name.starts_with("culling on") {
                     params.tile_culling = Choice::On;
