@@ -19,6 +19,8 @@
 
 // Longest edge stretch, pixels.
 const STRETCH_MAX: i32 = 48;
+// Steps of the edge stretch loaded together (divides STRETCH_MAX).
+const STRETCH_BATCH: i32 = 8;
 
 fn read_layer(l: Layer, p: vec2<i32>) -> u32 {
     if (any(p < vec2<i32>(l.rect_min)) || any(p >= vec2<i32>(l.rect_max))) {
@@ -101,12 +103,31 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
         let b = ppr_project(hit + s.normal * (best_t * 0.01));
         let dir = normalize(b.xy - a.xy);
         if (a.z > 0.0 && b.z > 0.0 && ppr_is_finite2(dir)) {
-            for (var k = 1; k <= STRETCH_MAX; k++) {
-                let q = vpos + vec2<i32>(round(dir * f32(k)));
-                let value = read_layer(l, q);
-                if (value != PPR_CLEAR_VALUE) {
+            // STRETCH_BATCH steps a trip, their loads issued together: a pixel that finds
+            // nothing (a reflection of the sky) waits on 48 / STRETCH_BATCH round trips to
+            // memory instead of 48. The first valid step wins, as one step a trip would.
+            for (var k0 = 1; k0 <= STRETCH_MAX; k0 += STRETCH_BATCH) {
+                var q: array<vec2<i32>, STRETCH_BATCH>;
+                var v: array<u32, STRETCH_BATCH>;
+                for (var j = 0; j < STRETCH_BATCH; j++) {
+                    q[j] = vpos + vec2<i32>(round(dir * f32(k0 + j)));
+                    v[j] = read_layer(l, q[j]);
+                }
+                // Backwards, so the first valid step is kept (constant indices once
+                // unrolled: no array in local memory).
+                var hit = false;
+                var value = 0u;
+                var at = vpos;
+                for (var j = STRETCH_BATCH - 1; j >= 0; j--) {
+                    if (v[j] != PPR_CLEAR_VALUE) {
+                        hit = true;
+                        value = v[j];
+                        at = q[j];
+                    }
+                }
+                if (hit) {
                     chosen.value = value;
-                    chosen.holes_offset = q - vpos;
+                    chosen.holes_offset = at - vpos;
                     colour = ppr_reflected_colour(vpos, chosen);
                     break;
                 }
