@@ -25,6 +25,20 @@ enum Culling {
     Tiles,
     /// Per-tile lists built from their super-tile's list.
     SuperTiles,
+    /// Per-tile lists built by the projection itself (`PlanParams::fused_lists`).
+    FusedTiles,
+    /// The same from their super-tile's list.
+    FusedSuperTiles,
+}
+
+impl Culling {
+    fn super_tiles(self) -> bool {
+        matches!(self, Self::SuperTiles | Self::FusedSuperTiles)
+    }
+
+    fn fused(self) -> bool {
+        matches!(self, Self::FusedTiles | Self::FusedSuperTiles)
+    }
 }
 
 const CULLED: [Culling; 2] = [Culling::Tiles, Culling::SuperTiles];
@@ -32,7 +46,9 @@ const CULLED: [Culling; 2] = [Culling::Tiles, Culling::SuperTiles];
 fn configured(culling: Culling, parallel_rule: Choice) -> ReflectionRenderer {
     let mut r = renderer();
     r.plan_params.tile_culling = if culling == Culling::Plain { Choice::Off } else { Choice::On };
-    r.plan_params.super_tiles = if culling == Culling::SuperTiles { Choice::On } else { Choice::Off };
+    r.plan_params.super_tiles = if culling.super_tiles() { Choice::On } else { Choice::Off };
+    // Forced both ways: `Auto` leaves it off on the software adapter.
+    r.plan_params.fused_lists = if culling.fused() { Choice::On } else { Choice::Off };
     r.plan_params.parallel_rule = parallel_rule;
     r.plan_params.indirect = Choice::Off;
     r.debug.writes = true;
@@ -65,7 +81,7 @@ fn tile_culling_keeps_every_write_of_the_plain_loop_under_the_parallel_rule() {
             tiled.set_reflectors(&ppr_tests::harness::validated(&set));
             let out = run(&mut tiled, &gpu, &camera);
             assert!(out.plan.tile_culling && out.plan.parallel_rule, "{}", out.plan);
-            assert_eq!(out.plan.super_tiles, culling == Culling::SuperTiles, "{}", out.plan);
+            assert_eq!(out.plan.super_tiles, culling.super_tiles(), "{}", out.plan);
 
             let b = debug_masks(&tiled);
             let missing = a.iter().zip(&b).filter(|(p, t)| *p & !*t != 0).count();
@@ -359,7 +375,7 @@ fn overflowing_tile_and_super_tile_lists_lose_no_write() {
             counts.len()
         );
         assert!(overflowed > 0, "some tile list must overflow ({culling:?})");
-        if culling == Culling::SuperTiles {
+        if culling.super_tiles() {
             assert!(super_overflowed > 0, "some super-tile list must overflow: {counts:?}");
             assert!(super_overflowed < counts.len(), "and some must not: {counts:?}");
         }
@@ -429,4 +445,45 @@ fn the_default_plan_never_drops_a_reflection_the_plain_loop_shows() {
     assert!(out.plan.tile_culling, "enough shapes for block lists: {}", out.plan);
     assert!(writes > 500, "{writes}");
     assert_eq!(missing, 0, "the default plan dropped reflections");
+}
+
+#[test]
+fn lists_built_in_the_projection_are_the_block_list_pass_lists() {
+    // The projection's own lists (workgroup memory) must be the block-list pass's, entry
+    // for entry: the same length per block (overflow included: 1 200 puddles overflow
+    // tiles and super-tiles), the same writes, the same intermediate buffer.
+    let mut rng = Rng(0x5eed_0011);
+    let mut frames = vec![dense_puddles_frame(1200)];
+    for parallel in [true, false] {
+        let scene = random_scene(&mut rng, parallel);
+        let camera = random_camera(&mut rng);
+        let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+        frames.push((camera, gpu, grouped_set(&scene)));
+    }
+    let mut overflowed = 0usize;
+    for (case, (camera, gpu, set)) in frames.iter().enumerate() {
+        for (separate, fused) in
+            [(Culling::Tiles, Culling::FusedTiles), (Culling::SuperTiles, Culling::FusedSuperTiles)]
+        {
+            let lists = |culling: Culling| {
+                let mut r = configured(culling, Choice::On);
+                r.debug.tile_lists = true;
+                r.set_reflectors(&ppr_tests::harness::validated(set));
+                let out = run(&mut r, gpu, camera);
+                assert_eq!(out.plan.fused_lists, culling.fused(), "{}", out.plan);
+                let mut w = configured(culling, Choice::On);
+                w.set_reflectors(&ppr_tests::harness::validated(set));
+                let written = run(&mut w, gpu, camera);
+                (debug_masks(&r), debug_masks(&w), written.intermediate)
+            };
+            let (a, b) = (lists(separate), lists(fused));
+            let listed = a.0.iter().filter(|&&n| n != u32::MAX).count();
+            overflowed += a.0.len() - listed;
+            eprintln!("case {case}, {fused:?}: {listed} pixels with a list, {} without", a.0.len() - listed);
+            assert_eq!(a.0, b.0, "list lengths differ in case {case}, {fused:?}");
+            assert_eq!(a.1, b.1, "writes differ in case {case}, {fused:?}");
+            assert_eq!(a.2, b.2, "intermediate buffers differ in case {case}, {fused:?}");
+        }
+    }
+    assert!(overflowed > 0, "some list must overflow");
 }

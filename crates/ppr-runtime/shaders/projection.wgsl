@@ -14,6 +14,13 @@
 //   that may reflect some pixel of it (block_lists.wgsl, dispatched just before: the box
 //   of the block's pixel positions against each shape's five planes). Otherwise every
 //   pixel loops over all visible shapes.
+// - FUSED_LISTS (with TILE_CULLING): the projection builds its block's list itself, into
+//   workgroup memory, from the positions it has loaded anyway (block_list_in_workgroup:
+//   the same box, test and order as block_lists.wgsl, whose pass then does not run). Saves
+//   that pass's launch, depth reads and unprojections and the list's trip through memory;
+//   costs the projection barriers. The renderer keeps it off on CPU adapters by default
+//   (Mesa's llvmpipe turns barriers into coroutines; an earlier projection with its list
+//   in workgroup memory took 27 s to compile there, docs/perf/runtime.md).
 // - SUPER_TILES (with TILE_CULLING): the block lists were built from 64x64 super-tiles'
 //   lists (super_tile_lists.wgsl); a block whose own list overflowed takes its
 //   super-tile's list instead of every visible shape.
@@ -57,6 +64,7 @@
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
+override FUSED_LISTS: bool = false;
 override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
 override DEPTH_OCCLUSION: bool = false;
@@ -102,6 +110,9 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // parallel_trees.rs): two loads a node instead of eight. Only there: the plane groups'
 // lookups through vec4 words with a computed lane were slower (runtime.md).
 @group(0) @binding(14) var<storage, read> tree_nodes: array<vec4<u32>>;
+
+// The block's list with FUSED_LISTS (positions in `visible`, as block_lists.wgsl's).
+var<workgroup> fused_list: array<u32, BLOCK_LIST_CAPACITY>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
 const GROUP_TEST_FLAG: u32 = 0x80000000u;
@@ -580,6 +591,9 @@ struct LoopCandidates {
 // misses its source box.
 fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
     if (c.use_list) {
+        if (FUSED_LISTS) {
+            return fused_list[i];
+        }
         return block_lists[c.list_start + i];
     }
     let k = candidate(c.cand, i);
@@ -651,19 +665,59 @@ fn next_culled(masks: vec4<u32>, i: u32, count: u32) -> u32 {
     return count;
 }
 
+// FUSED_LISTS: the block's list of candidates, built into `fused_list` from the box of the
+// block's positions (`q`, every thread's), exactly as block_lists.wgsl builds it: the
+// candidates are the super-tile's list (SUPER_TILES, when it did not overflow) or every
+// visible shape, in that order, each kept when the block meets its source box and the box
+// test passes. Returns the list's length (over BLOCK_LIST_CAPACITY when it overflowed:
+// the entries past it are not kept). Call from uniform control flow.
+fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
+    var own = TileBox(vec3<f32>(3.0e38), vec3<f32>(-3.0e38));
+    for (var j = 0u; j < 4u; j++) {
+        if (lane_f32(q.tolerance, j) > 0.0) {
+            let p = quad_position(q, j);
+            own = TileBox(min(own.lo, p), max(own.hi, p));
+        }
+    }
+    let box = workgroup_box(lid, own.lo, own.hi);
+    let empty = box.lo.x > box.hi.x;
+    let c = block_candidates(wid);
+    var written = 0u;
+    for (var first = 0u; first < c.count; first += TILE_GROUP_THREADS) {
+        let i = first + lid;
+        var k = 0u;
+        var passes = false;
+        if (!empty && i < c.count) {
+            k = candidate(c, i);
+            passes = block_meets_source_box(k, lo, hi) && box_may_reflect(shape_test(k), box.lo, box.hi);
+        }
+        let r = chunk_rank(lid, first / TILE_GROUP_THREADS, passes);
+        if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
+            fused_list[written + r.x] = k;
+        }
+        written += r.y;
+    }
+    // The list is complete before any thread reads it.
+    workgroupBarrier();
+    return written;
+}
+
 @compute @workgroup_size(16, 16)
 fn main(
     @builtin(local_invocation_id) local: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
-    if (ABLATION == 1u) {
+    let fused = TILE_CULLING && FUSED_LISTS;
+    // The ablations stop after the lists where the projection builds them.
+    if (ABLATION == 1u && !fused) {
         return;
     }
     let lo = wid.xy * BLOCK_SIZE;
     let hi = lo + vec2<u32>(BLOCK_SIZE);
     let base = quad_base(lo, local.xy);
     let q = load_quad(base);
-    if (ABLATION == 2u) {
+    if (ABLATION == 2u && !fused) {
         if (any(q.x == vec4<f32>(1234.5))) {
             atomicStore(&intermediate[0], 0u);
         }
@@ -677,7 +731,25 @@ fn main(
     var count = frame.tested_count;
     var use_list = false;
     var list_start = 0u;
-    if (TILE_CULLING) {
+    if (fused) {
+        let listed = block_list_in_workgroup(lid, q, wid, lo, hi);
+        if (listed <= BLOCK_LIST_CAPACITY) {
+            count = listed;
+            use_list = true;
+        } else {
+            cand = block_candidates(wid);
+            count = cand.count;
+        }
+        if (ABLATION == 1u) {
+            return;
+        }
+        if (ABLATION == 2u) {
+            if (any(q.x == vec4<f32>(1234.5))) {
+                atomicStore(&intermediate[0], 0u);
+            }
+            return;
+        }
+    } else if (TILE_CULLING) {
         let blocks = block_grid();
         let b = wid.x + wid.y * blocks.x;
         let listed = block_lists[b];

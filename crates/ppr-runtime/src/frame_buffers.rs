@@ -55,7 +55,8 @@ impl FrameBuffers {
         debug_assert!(plans.iter().all(|p| p.viewport == plan.viewport), "one viewport per frame");
         let layer_pixels = plans.iter().map(|p| p.layer_pixels).max().unwrap_or(0);
         let super_tiles = plans.iter().any(|p| p.super_tiles);
-        let tile_culling = plans.iter().any(|p| p.tile_culling);
+        // The block lists live in memory only when their own pass builds them.
+        let tile_culling = plans.iter().any(|p| p.tile_culling && !p.fused_lists);
         let [w, h] = plan.viewport;
         let storage = wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST;
         let readable = storage | wgpu::BufferUsages::COPY_SRC;
@@ -138,7 +139,9 @@ impl FrameBuffers {
             && self.debug == debug
             && self.atlas.size() >= 4 * u64::from(plan.layer_pixels)
             && (!plan.super_tiles || self.super_lists.size() >= super_lists_size(plan.viewport))
-            && (!plan.tile_culling || self.block_lists.size() >= block_lists_size(plan.viewport))
+            && (!plan.tile_culling
+                || plan.fused_lists
+                || self.block_lists.size() >= block_lists_size(plan.viewport))
     }
 }
 

@@ -68,6 +68,12 @@ pub struct PlanParams {
     /// lists"), where they are never slower than flat tile lists from 512 shapes on in all
     /// three generated families; not yet timed on a GPU.
     pub super_tiles_min_shapes: usize,
+    /// With tile culling, the projection builds each block's list itself, in workgroup
+    /// memory from the positions it loads anyway, instead of a block-list pass before it
+    /// (the same lists; saves that pass's launch, depth reads and unprojections, costs the
+    /// projection barriers). `Auto`: on, but the renderer turns it off on CPU adapters
+    /// (Mesa's llvmpipe turns barriers into coroutines, and compiles such shaders slowly).
+    pub fused_lists: Choice,
     /// Among parallel shapes, only the nearest plane reflects a pixel (the seed's bonus
     /// slides). An approximation, never chosen by `Auto` (off): shapes of one plane never
     /// both reflect a pixel, so among them the rule changes nothing, and among parallel
@@ -184,6 +190,7 @@ impl Default for PlanParams {
             tile_culling_min_shapes: 16,
             super_tiles: Choice::Auto,
             super_tiles_min_shapes: 512,
+            fused_lists: Choice::Auto,
             parallel_rule: Choice::Auto,
             indirect: Choice::Auto,
             indirect_max_coverage: 0.3,
@@ -277,6 +284,9 @@ pub struct FramePlan {
     /// Whether the tile lists are built from per-super-tile lists (a pass before the
     /// projection, timed with it).
     pub super_tiles: bool,
+    /// With `tile_culling`: whether the projection builds its blocks' lists itself
+    /// ([`PlanParams::fused_lists`]) rather than the block-list pass.
+    pub fused_lists: bool,
     /// Whether only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
     /// Whether the projection reads the shape tests from the uniform copy
@@ -335,6 +345,7 @@ impl FramePlan {
             occlusion_first: false,
             tile_culling: false,
             super_tiles: false,
+            fused_lists: false,
             parallel_rule: false,
             uniform_tests: false,
             subgroup_cull: false,
@@ -415,6 +426,7 @@ impl FramePlan {
             params.subgroup_cull.decide(!plan.tile_culling && tested >= params.subgroup_cull_min_shapes);
         plan.super_tiles =
             plan.tile_culling && params.super_tiles.decide(tested >= params.super_tiles_min_shapes);
+        plan.fused_lists = plan.tile_culling && params.fused_lists.decide(true);
         plan.uniform_tests =
             params.uniform_tests.decide(true) && tested + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);

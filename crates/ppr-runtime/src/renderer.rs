@@ -261,6 +261,11 @@ impl ReflectionRenderer {
         if params.subgroup_cull == Choice::Auto && !crate::passes::projection::has_subgroups(&self.device) {
             params.subgroup_cull = Choice::Off;
         }
+        if params.fused_lists == Choice::Auto
+            && self.device.adapter_info().device_type == wgpu::DeviceType::Cpu
+        {
+            params.fused_lists = Choice::Off;
+        }
         if self.debug.writes {
             // Debug write masks record each visible shape; a merged group writes as one.
             params.plane_groups = Choice::Off;
@@ -325,6 +330,7 @@ impl ReflectionRenderer {
         ProjectionVariant {
             tile_culling: plan.tile_culling,
             super_tiles: plan.super_tiles,
+            fused_lists: plan.fused_lists,
             parallel_rule: plan.parallel_rule,
             occluder_tests: plan.occluder_tests,
             depth_occlusion: plan.depth_occlusion,
@@ -584,7 +590,7 @@ impl ReflectionRenderer {
                 self.super_tile_lists.encode(&mut pass, &lists, plan.viewport, source_boxes);
                 count(1);
             }
-            if plan.tile_culling {
+            if plan.tile_culling && !plan.fused_lists {
                 let lists = self.block_lists.bind_group(
                     device,
                     &BlockListBindings {

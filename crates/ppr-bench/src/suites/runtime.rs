@@ -66,6 +66,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling on, tests only", Choice::Auto, Ablation::TestsOnly),
         ("culling on, empty", Choice::Auto, Ablation::Empty),
         ("culling on, empty, lists box only", Choice::Auto, Ablation::Empty),
+        ("culling on, separate lists", Choice::Auto, Ablation::None),
+        ("culling on, empty, separate lists", Choice::Auto, Ablation::Empty),
+        ("separate lists", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
@@ -228,6 +231,10 @@ pub fn run_runtime(
                     params.occlusion_first = Choice::Off;
                 } else if name == "storage tests" {
                     params.uniform_tests = Choice::Off;
+                }
+                // The box-only list pass is the separate pass's.
+                if name.contains("separate lists") || name.ends_with("lists box only") {
+                    params.fused_lists = Choice::Off;
                 }
                 if name.contains("no subgroup culling") {
                     params.subgroup_cull = Choice::Off;

@@ -30,6 +30,9 @@ pub struct ProjectionVariant {
     /// With `tile_culling`: a block whose list overflowed takes its super-tile's list
     /// ([`super::SuperTileListPass`]) instead of every visible shape.
     pub super_tiles: bool,
+    /// With `tile_culling`: the projection builds its block's list itself (in workgroup
+    /// memory; [`crate::PlanParams::fused_lists`]) and no block-list pass runs before it.
+    pub fused_lists: bool,
     /// Only the nearest of parallel shapes reflects a pixel.
     pub parallel_rule: bool,
     /// The seed's occluder tests (lists of occluding reflectors).
@@ -182,6 +185,7 @@ impl ProjectionPass {
         let constants = [
             ("TILE_CULLING", flag(v.tile_culling)),
             ("SUPER_TILES", flag(v.tile_culling && v.super_tiles)),
+            ("FUSED_LISTS", flag(v.tile_culling && v.fused_lists)),
             ("PARALLEL_RULE", flag(v.parallel_rule)),
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
             ("DEPTH_OCCLUSION", flag(v.depth_occlusion)),
