@@ -18,7 +18,10 @@
 //   workgroup memory, from the positions it has loaded anyway (block_list_in_workgroup:
 //   the same box, test and order as block_lists.wgsl, whose pass then does not run). Saves
 //   that pass's launch, depth reads and unprojections and the list's trip through memory;
-//   costs the projection barriers. The renderer keeps it off on CPU adapters by default
+//   costs the projection barriers. Its code and workgroup memory are in fused_lists.wgsl,
+//   only in the module of the fused variants (fused_lists_stub.wgsl in the others: a
+//   kernel with workgroup memory, even unused, ran 0.004 ms slower on the H200). The
+//   renderer keeps it off on CPU adapters by default
 //   (Mesa's llvmpipe turns barriers into coroutines; an earlier projection with its list
 //   in workgroup memory took 27 s to compile there, docs/perf/runtime.md).
 // - SUPER_TILES (with TILE_CULLING): the block lists were built from 64x64 super-tiles'
@@ -110,9 +113,6 @@ const NO_SHAPE: u32 = 0xffffffffu;
 // parallel_trees.rs): two loads a node instead of eight. Only there: the plane groups'
 // lookups through vec4 words with a computed lane were slower (runtime.md).
 @group(0) @binding(14) var<storage, read> tree_nodes: array<vec4<u32>>;
-
-// The block's list with FUSED_LISTS (positions in `visible`, as block_lists.wgsl's).
-var<workgroup> fused_list: array<u32, BLOCK_LIST_CAPACITY>;
 
 // Bit of ShapeTest.shape: the test is a merged plane group's, the rest its header slot.
 const GROUP_TEST_FLAG: u32 = 0x80000000u;
@@ -592,7 +592,7 @@ struct LoopCandidates {
 fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
     if (c.use_list) {
         if (FUSED_LISTS) {
-            return fused_list[i];
+            return fused_list_entry(i);
         }
         return block_lists[c.list_start + i];
     }
@@ -663,43 +663,6 @@ fn next_culled(masks: vec4<u32>, i: u32, count: u32) -> u32 {
         }
     }
     return count;
-}
-
-// FUSED_LISTS: the block's list of candidates, built into `fused_list` from the box of the
-// block's positions (`q`, every thread's), exactly as block_lists.wgsl builds it: the
-// candidates are the super-tile's list (SUPER_TILES, when it did not overflow) or every
-// visible shape, in that order, each kept when the block meets its source box and the box
-// test passes. Returns the list's length (over BLOCK_LIST_CAPACITY when it overflowed:
-// the entries past it are not kept). Call from uniform control flow.
-fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
-    var own = TileBox(vec3<f32>(3.0e38), vec3<f32>(-3.0e38));
-    for (var j = 0u; j < 4u; j++) {
-        if (lane_f32(q.tolerance, j) > 0.0) {
-            let p = quad_position(q, j);
-            own = TileBox(min(own.lo, p), max(own.hi, p));
-        }
-    }
-    let box = workgroup_box(lid, own.lo, own.hi);
-    let empty = box.lo.x > box.hi.x;
-    let c = block_candidates(wid);
-    var written = 0u;
-    for (var first = 0u; first < c.count; first += TILE_GROUP_THREADS) {
-        let i = first + lid;
-        var k = 0u;
-        var passes = false;
-        if (!empty && i < c.count) {
-            k = candidate(c, i);
-            passes = block_meets_source_box(k, lo, hi) && box_may_reflect(shape_test(k), box.lo, box.hi);
-        }
-        let r = chunk_rank(lid, first / TILE_GROUP_THREADS, passes);
-        if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
-            fused_list[written + r.x] = k;
-        }
-        written += r.y;
-    }
-    // The list is complete before any thread reads it.
-    workgroupBarrier();
-    return written;
 }
 
 @compute @workgroup_size(16, 16)

@@ -22,6 +22,14 @@ pub const SUBGROUP_CULL: &str = include_str!("../shaders/subgroup_cull.wgsl");
 /// The same functions as [`SUBGROUP_CULL`] for a subgroup of one invocation (any device).
 pub const SUBGROUP_CULL_FALLBACK: &str = include_str!("../shaders/subgroup_cull_fallback.wgsl");
 
+/// The projection's own block lists (its fused variants: workgroup memory; needs
+/// [`TILE_TEST`]).
+pub const FUSED_LISTS: &str = include_str!("../shaders/fused_lists.wgsl");
+
+/// The same functions as [`FUSED_LISTS`] for the projection's other variants, which never
+/// call them: no workgroup memory.
+pub const FUSED_LISTS_STUB: &str = include_str!("../shaders/fused_lists_stub.wgsl");
+
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
@@ -112,8 +120,22 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
         ("super-tile lists", source_with(&[VIEW, TILE_TEST], super_tile_lists::WGSL)),
         ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
-        ("projection", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], projection::WGSL)),
-        ("projection (subgroups)", source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL], projection::WGSL)),
+        (
+            "projection",
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS_STUB], projection::WGSL),
+        ),
+        (
+            "projection (subgroups)",
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS_STUB], projection::WGSL),
+        ),
+        (
+            "projection (fused lists)",
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS], projection::WGSL),
+        ),
+        (
+            "projection (subgroups, fused lists)",
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS], projection::WGSL),
+        ),
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
@@ -199,7 +221,7 @@ mod tests {
         use ppr_format::ReflectorKind;
 
         let source = super::source_with(
-            &[super::VIEW, super::TILE_TEST, super::SUBGROUP_CULL_FALLBACK],
+            &[super::VIEW, super::TILE_TEST, super::SUBGROUP_CULL_FALLBACK, super::FUSED_LISTS_STUB],
             crate::passes::projection::WGSL,
         );
         let module =

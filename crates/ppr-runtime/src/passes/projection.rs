@@ -137,9 +137,11 @@ pub struct ProjectionBindings<'a> {
 
 /// The projection pass.
 pub struct ProjectionPass {
-    module: wgpu::ShaderModule,
-    /// The module with subgroup operations, on devices with [`wgpu::Features::SUBGROUP`].
-    subgroup_module: Option<wgpu::ShaderModule>,
+    /// The shader modules by (subgroup operations, fused lists), built on first use: the
+    /// subgroup ones only on devices with [`wgpu::Features::SUBGROUP`], and the fused
+    /// lists' workgroup memory only in the variants that use it.
+    modules: HashMap<(bool, bool), wgpu::ShaderModule>,
+    subgroups: bool,
     layout: wgpu::BindGroupLayout,
     pipelines: HashMap<ProjectionVariant, wgpu::ComputePipeline>,
 }
@@ -167,12 +169,8 @@ impl ProjectionPass {
                 storage_entry(14, true),
             ],
         });
-        use crate::shader::{SUBGROUP_CULL, SUBGROUP_CULL_FALLBACK, TILE_TEST, VIEW, module_with};
-        let module = module_with(device, "ppr projection", &[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK], WGSL);
-        let subgroup_module = has_subgroups(device).then(|| {
-            module_with(device, "ppr projection (subgroups)", &[VIEW, TILE_TEST, SUBGROUP_CULL], WGSL)
-        });
-        let mut pass = Self { module, subgroup_module, layout, pipelines: HashMap::new() };
+        let subgroups = has_subgroups(device);
+        let mut pass = Self { modules: HashMap::new(), subgroups, layout, pipelines: HashMap::new() };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
     }
@@ -201,12 +199,24 @@ impl ProjectionPass {
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
-        let module = match &self.subgroup_module {
-            Some(m) if v.subgroup_cull => m,
-            _ => &self.module,
-        };
-        let pipeline = compute_pipeline(device, &label, &self.layout, module, "main", &constants);
+        let module = self.module(device, v.subgroup_cull && self.subgroups, v.tile_culling && v.fused_lists);
+        let pipeline = compute_pipeline(device, &label, &self.layout, &module, "main", &constants);
         self.pipelines.insert(v, pipeline);
+    }
+
+    /// The module with (or without) subgroup operations and the fused lists' code.
+    fn module(&mut self, device: &wgpu::Device, subgroups: bool, fused: bool) -> wgpu::ShaderModule {
+        use crate::shader::{
+            FUSED_LISTS, FUSED_LISTS_STUB, SUBGROUP_CULL, SUBGROUP_CULL_FALLBACK, TILE_TEST, VIEW,
+            module_with,
+        };
+        let module = self.modules.entry((subgroups, fused)).or_insert_with(|| {
+            let cull = if subgroups { SUBGROUP_CULL } else { SUBGROUP_CULL_FALLBACK };
+            let lists = if fused { FUSED_LISTS } else { FUSED_LISTS_STUB };
+            let label = format!("ppr projection (subgroups {subgroups}, fused lists {fused})");
+            module_with(device, &label, &[VIEW, TILE_TEST, cull, lists], WGSL)
+        });
+        module.clone()
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ProjectionBindings<'_>) -> wgpu::BindGroup {

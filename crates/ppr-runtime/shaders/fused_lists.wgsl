@@ -1,0 +1,48 @@
+// The projection's own block lists (FUSED_LISTS in projection.wgsl): the list in workgroup
+// memory and the function that builds it. Only in the projection's fused module (the other
+// module takes fused_lists_stub.wgsl: no workgroup memory). Needs tile_test.wgsl and the
+// projection's Quad, candidates and shape tests.
+
+// The block's list (positions in `visible`, as block_lists.wgsl's).
+var<workgroup> fused_list: array<u32, BLOCK_LIST_CAPACITY>;
+
+fn fused_list_entry(i: u32) -> u32 {
+    return fused_list[i];
+}
+
+// FUSED_LISTS: the block's list of candidates, built into `fused_list` from the box of the
+// block's positions (`q`, every thread's), exactly as block_lists.wgsl builds it: the
+// candidates are the super-tile's list (SUPER_TILES, when it did not overflow) or every
+// visible shape, in that order, each kept when the block meets its source box and the box
+// test passes. Returns the list's length (over BLOCK_LIST_CAPACITY when it overflowed:
+// the entries past it are not kept). Call from uniform control flow.
+fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
+    var own = TileBox(vec3<f32>(3.0e38), vec3<f32>(-3.0e38));
+    for (var j = 0u; j < 4u; j++) {
+        if (lane_f32(q.tolerance, j) > 0.0) {
+            let p = quad_position(q, j);
+            own = TileBox(min(own.lo, p), max(own.hi, p));
+        }
+    }
+    let box = workgroup_box(lid, own.lo, own.hi);
+    let empty = box.lo.x > box.hi.x;
+    let c = block_candidates(wid);
+    var written = 0u;
+    for (var first = 0u; first < c.count; first += TILE_GROUP_THREADS) {
+        let i = first + lid;
+        var k = 0u;
+        var passes = false;
+        if (!empty && i < c.count) {
+            k = candidate(c, i);
+            passes = block_meets_source_box(k, lo, hi) && box_may_reflect(shape_test(k), box.lo, box.hi);
+        }
+        let r = chunk_rank(lid, first / TILE_GROUP_THREADS, passes);
+        if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
+            fused_list[written + r.x] = k;
+        }
+        written += r.y;
+    }
+    // The list is complete before any thread reads it.
+    workgroupBarrier();
+    return written;
+}
