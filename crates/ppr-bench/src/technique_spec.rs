@@ -73,18 +73,20 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
 /// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
 /// at many plane offsets walked as a tree), `subgroups=on|off|auto` (the projection's
-/// subgroup culling), `fade=`, `replace-far=`,
+/// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
+/// their own pass), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 11] = [
+const PPR_KEYS: [&str; 12] = [
     "culling",
     "indirect",
     "groups",
     "trees",
     "subgroups",
+    "fused-lists",
     "fade",
     "replace-far",
     "tier",
@@ -187,7 +189,8 @@ impl TechniqueSpec {
             }
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
-                "culling" | "indirect" | "groups" | "replace-far" | "glossy" => {
+                "culling" | "indirect" | "groups" | "trees" | "subgroups" | "fused-lists" | "replace-far"
+                | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -326,6 +329,9 @@ pub fn ppr_settings(
     if let Some(v) = spec.param("subgroups") {
         params.subgroup_cull = parse_choice(v).map_err(BenchError::Spec)?;
     }
+    if let Some(v) = spec.param("fused-lists") {
+        params.fused_lists = parse_choice(v).map_err(BenchError::Spec)?;
+    }
     Ok(Some((settings, params)))
 }
 
@@ -423,6 +429,10 @@ mod tests {
         let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
         let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
         assert!(!settings.glossy);
+        let separate: TechniqueSpec = "ppr:fused-lists=off".parse().expect("fused lists");
+        let (_, params) = ppr_settings(&separate, PlanParams::default()).expect("valid").expect("ppr");
+        assert_eq!(params.fused_lists, Choice::Off);
+        assert!("ppr:fused-lists=sometimes".parse::<TechniqueSpec>().is_err());
         assert!("ppr:glossy=blurry".parse::<TechniqueSpec>().is_err());
         assert!("nope".parse::<TechniqueSpec>().is_err());
         assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
