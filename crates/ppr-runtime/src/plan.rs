@@ -621,6 +621,10 @@ impl FramePlan {
             (true, true) => "clear (tiles)",
             (true, false) => "clear",
         });
+        if self.tile_culling && !self.fused_lists {
+            // The block lists' own pass (with fused lists the projection builds them).
+            passes.push("block lists");
+        }
         passes.push(match (self.tile_culling, self.super_tiles, self.subgroup_cull) {
             (true, true, false) => "projection (super-tiles, tiled)",
             (true, false, false) => "projection (tiled)",
@@ -864,9 +868,11 @@ mod tests {
             assert_eq!((p.tile_culling, p.fused_lists), (tiles, tiles), "{n} shapes: {p}");
             assert!(!p.subgroup_cull, "{n} shapes: {p}");
         }
+        assert!(!plan(d.fused_tile_culling_min_shapes, &d).to_string().contains("block lists"));
         let separate = PlanParams { fused_lists: Choice::Off, ..d };
         let p = plan(d.tile_culling_min_shapes, &PlanParams { subgroup_cull: Choice::Off, ..separate });
         assert!(p.tile_culling && !p.fused_lists, "{p}");
+        assert!(p.to_string().contains("block lists -> projection (tiled)"), "{p}");
     }
 
     #[test]
