@@ -665,6 +665,18 @@ fn next_culled(masks: vec4<u32>, i: u32, count: u32) -> u32 {
     return count;
 }
 
+// ABLATION 2 (bench only): whether the pass stops once it has the positions (kept alive
+// by a store no real frame makes).
+fn stops_after_positions(q: Quad) -> bool {
+    if (ABLATION != 2u) {
+        return false;
+    }
+    if (any(q.x == vec4<f32>(1234.5))) {
+        atomicStore(&intermediate[0], 0u);
+    }
+    return true;
+}
+
 @compute @workgroup_size(16, 16)
 fn main(
     @builtin(local_invocation_id) local: vec3<u32>,
@@ -680,10 +692,7 @@ fn main(
     let hi = lo + vec2<u32>(BLOCK_SIZE);
     let base = quad_base(lo, local.xy);
     let q = load_quad(base);
-    if (ABLATION == 2u && !fused) {
-        if (any(q.x == vec4<f32>(1234.5))) {
-            atomicStore(&intermediate[0], 0u);
-        }
+    if (!fused && stops_after_positions(q)) {
         return;
     }
 
@@ -703,13 +712,7 @@ fn main(
             cand = block_candidates(wid);
             count = cand.count;
         }
-        if (ABLATION == 1u) {
-            return;
-        }
-        if (ABLATION == 2u) {
-            if (any(q.x == vec4<f32>(1234.5))) {
-                atomicStore(&intermediate[0], 0u);
-            }
+        if (ABLATION == 1u || stops_after_positions(q)) {
             return;
         }
     } else if (TILE_CULLING) {

@@ -155,6 +155,8 @@ pub struct DebugOptions {
 /// ```
 pub struct ReflectionRenderer {
     device: wgpu::Device,
+    /// Whether the device is a CPU adapter (llvmpipe): `Auto` fused lists stay off there.
+    cpu_adapter: bool,
     /// Steps of the reflection pass; change at any time.
     pub settings: ReflectionSettings,
     /// How the frame plan picks passes and variants.
@@ -190,6 +192,7 @@ impl ReflectionRenderer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, desc: &RendererDesc) -> Self {
         Self {
             device: device.clone(),
+            cpu_adapter: device.adapter_info().device_type == wgpu::DeviceType::Cpu,
             settings: ReflectionSettings::default(),
             plan_params: PlanParams::default(),
             debug: DebugOptions::default(),
@@ -261,9 +264,7 @@ impl ReflectionRenderer {
         if params.subgroup_cull == Choice::Auto && !crate::passes::projection::has_subgroups(&self.device) {
             params.subgroup_cull = Choice::Off;
         }
-        if params.fused_lists == Choice::Auto
-            && self.device.adapter_info().device_type == wgpu::DeviceType::Cpu
-        {
+        if params.fused_lists == Choice::Auto && self.cpu_adapter {
             params.fused_lists = Choice::Off;
         }
         if self.debug.writes {
