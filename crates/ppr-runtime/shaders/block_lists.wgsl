@@ -7,7 +7,8 @@
 //
 // Layout of `block_lists` (u32): one count per block (BLOCK_LIST_CAPACITY + 1 when the
 // list overflowed), then BLOCK_LIST_CAPACITY entries per block, in the order of `visible`
-// (the parallel rule walks groups in that order). Entries are positions in `visible`.
+// (the parallel rule walks groups in that order). Entries are positions in `visible`,
+// flagged INSIDE_ENTRY where the block's box lies inside the shape's pyramid (list_entry).
 
 override SOURCE_BOXES: bool = false;
 override SUPER_TILES: bool = false;
@@ -66,17 +67,21 @@ fn main(
     var written = 0u;
     for (var base = 0u; base < count; base += TILE_GROUP_THREADS) {
         let i = base + lid;
-        var k = 0u;
+        var entry = 0u;
         var passes = false;
         if (!empty && i < count) {
-            k = select(i, super_lists[start + min(i, SUPER_LIST_CAPACITY - 1u)], listed);
+            let k = select(i, super_lists[start + min(i, SUPER_LIST_CAPACITY - 1u)], listed);
             let sb = source_boxes[k];
             let meets = !SOURCE_BOXES || (all(sb.xy < hi) && all(lo < sb.zw));
-            passes = meets && box_may_reflect(tests[k], box.lo, box.hi);
+            if (meets) {
+                let t = tests[k];
+                passes = box_may_reflect(t, box.lo, box.hi);
+                entry = list_entry(k, t, box.lo, box.hi);
+            }
         }
         let r = chunk_rank(lid, base / TILE_GROUP_THREADS, passes);
         if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
-            block_lists[list_start + written + r.x] = k;
+            block_lists[list_start + written + r.x] = entry;
         }
         written += r.y;
     }

@@ -30,15 +30,19 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
     var written = 0u;
     for (var first = 0u; first < c.count; first += TILE_GROUP_THREADS) {
         let i = first + lid;
-        var k = 0u;
+        var entry = 0u;
         var passes = false;
         if (!empty && i < c.count) {
-            k = candidate(c, i);
-            passes = block_meets_source_box(k, lo, hi) && box_may_reflect(shape_test(k), box.lo, box.hi);
+            let k = candidate(c, i);
+            if (block_meets_source_box(k, lo, hi)) {
+                let t = shape_test(k);
+                passes = box_may_reflect(t, box.lo, box.hi);
+                entry = list_entry(k, t, box.lo, box.hi);
+            }
         }
         let r = chunk_rank(lid, first / TILE_GROUP_THREADS, passes);
         if (passes && written + r.x < BLOCK_LIST_CAPACITY) {
-            fused_list[written + r.x] = k;
+            fused_list[written + r.x] = entry;
         }
         written += r.y;
     }

@@ -511,18 +511,23 @@ fn quad_plane(q: Quad, pl: vec4<f32>) -> vec4<f32> {
 
 // Each pixel's distance from the shape's plane where the shape reflects it into its
 // rectangle (in front of the plane by more than the tolerance, inside the pyramid), else -1.
-fn quad_test(q: Quad, t: ShapeTest) -> vec4<f32> {
+// `inside_block`: the block's box lies inside the pyramid (its list entry says so,
+// INSIDE_ENTRY), so the sides pass for every pixel and only the plane is tested.
+fn quad_test(q: Quad, t: ShapeTest, inside_block: bool) -> vec4<f32> {
     let dist = quad_plane(q, t.plane);
+    let front = q.tolerance > vec4<f32>(0.0) & dist > q.tolerance;
+    if (inside_block) {
+        return select(vec4<f32>(-1.0), dist, front);
+    }
     // The pyramid's sides only for a thread with some pixel in front of the plane.
-    if (!any(q.tolerance > vec4<f32>(0.0) & dist > q.tolerance)) {
+    if (!any(front)) {
         return vec4<f32>(-1.0);
     }
     let inside = min(
         min(quad_plane(q, t.side0), quad_plane(q, t.side1)),
         min(quad_plane(q, t.side2), quad_plane(q, t.side3)),
     );
-    let passes = q.tolerance > vec4<f32>(0.0) & dist > q.tolerance & inside >= vec4<f32>(0.0);
-    return select(vec4<f32>(-1.0), dist, passes);
+    return select(vec4<f32>(-1.0), dist, front & inside >= vec4<f32>(0.0));
 }
 
 // The reflection of one pixel (position `p`, `dist` in front of the layer's plane, inside
@@ -587,8 +592,14 @@ struct LoopCandidates {
     list_start: u32,
 }
 
-// Position in `visible` of the loop's candidate `i`, NO_SHAPE when the block [lo, hi)
-// misses its source box.
+// Position in `visible` of a block-list entry (NO_SHAPE stays NO_SHAPE).
+fn entry_position(e: u32) -> u32 {
+    return select(e & ~INSIDE_ENTRY, e, e == NO_SHAPE);
+}
+
+// The loop's candidate `i`: its position in `visible` (a block list's entries flagged
+// INSIDE_ENTRY where the block lies inside the shape's pyramid), NO_SHAPE when the block
+// [lo, hi) misses its source box.
 fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
     if (c.use_list) {
         if (FUSED_LISTS) {
@@ -633,7 +644,7 @@ fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi
             let i = w * 32u + slot;
             var passes = false;
             if (!empty && slot < 32u && i < count) {
-                let k = loop_candidate(c, i, lo, hi);
+                let k = entry_position(loop_candidate(c, i, lo, hi));
                 passes = k != NO_SHAPE && box_may_reflect(shape_test(k), b.lo, b.hi);
             }
             m |= subgroup_ballot32(passes) << r;
@@ -754,8 +765,11 @@ fn main(
             i = next_culled(masks, i, count);
         }
         var k = NO_SHAPE;
+        var inside_block = false;
         if (i < count) {
-            k = loop_candidate(loop_cand, i, lo, hi);
+            let e = loop_candidate(loop_cand, i, lo, hi);
+            inside_block = e != NO_SHAPE && (e & INSIDE_ENTRY) != 0u;
+            k = entry_position(e);
         }
         // Loaded unconditionally (the sentinel step reads entry 0): a conditional load
         // into a variable may cost a trip through local memory.
@@ -787,7 +801,7 @@ fn main(
         if (k == NO_SHAPE) {
             continue;
         }
-        let dist = quad_test(q, t);
+        let dist = quad_test(q, t, inside_block);
         if (PARALLEL_TREES && (t.shape & TREE_TEST_FLAG) != 0u) {
             // In front of the family's lowest plane: walk its tree.
             for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
@@ -820,7 +834,7 @@ fn main(
         if (!block_meets_source_box(k, lo, hi)) {
             continue;
         }
-        let dist = quad_test(q, shape_test(k));
+        let dist = quad_test(q, shape_test(k), false);
         for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
             let d = lane_f32(dist, j);
             if (d >= 0.0) {

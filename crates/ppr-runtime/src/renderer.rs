@@ -132,6 +132,10 @@ pub struct DebugOptions {
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
     pub glossy_taps: Option<u32>,
+    /// The block lists the projection builds flag no entry as lying wholly inside its
+    /// shape's pyramid: every pixel runs the five plane tests (bench only, the same image;
+    /// the block-list pass flags them either way).
+    pub no_inside_entries: bool,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -344,6 +348,7 @@ impl ReflectionRenderer {
             subgroup_cull: plan.subgroup_cull,
             spread_quads: self.debug.spread_quads,
             occlusion_first: plan.occlusion_first,
+            no_inside_entries: self.debug.no_inside_entries,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -69,6 +69,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling on, separate lists", Choice::Auto, Ablation::None),
         ("culling on, empty, separate lists", Choice::Auto, Ablation::Empty),
         ("separate lists", Choice::Auto, Ablation::None),
+        ("culling on, no inside entries", Choice::Auto, Ablation::None),
+        ("no inside entries", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
@@ -266,6 +268,7 @@ pub fn run_runtime(
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
                     block_lists_box_only: name.ends_with("lists box only"),
+                    no_inside_entries: name.ends_with("no inside entries"),
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

@@ -62,6 +62,10 @@ pub struct ProjectionVariant {
     /// A write tests the depth occlusion at its target before its encoding rather than
     /// after (the same buffer; [`crate::PlanParams::occlusion_first`]).
     pub occlusion_first: bool,
+    /// Bench only (the same image): the block lists built in the projection flag no entry
+    /// as lying wholly inside its shape's pyramid, so every pixel runs all five plane
+    /// tests (`INSIDE_ENTRY` of `tile_test.wgsl`).
+    pub no_inside_entries: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -196,6 +200,7 @@ impl ProjectionPass {
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
             ("OCCLUSION_FIRST", flag(v.occlusion_first)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
+            ("INSIDE_ENTRIES", flag(!v.no_inside_entries)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
