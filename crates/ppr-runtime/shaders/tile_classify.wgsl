@@ -5,7 +5,8 @@
 // per shape); each pixel then tests whether it lies on one of them, until its tile is
 // found active. The pixels of the active tiles are then cleared for the projection (with
 // CLEAR_TILES; otherwise the clear pass does it over the active-tile list, one pass more).
-// A second entry point turns the count into indirect dispatch arguments.
+// The blocks that find active tiles also raise the indirect dispatch arguments
+// (append_active_tiles).
 
 override CLEAR_TILES: bool = true;
 
@@ -36,7 +37,7 @@ struct ActiveTileCounter {
 // Per visible shape: its screen rectangle in pixels (min x, min y, max x, max y), exclusive max.
 @group(0) @binding(4) var<storage, read> screen_rects: array<vec4<u32>>;
 @group(0) @binding(5) var<storage, read_write> active_tiles: ActiveTileCounter;
-@group(0) @binding(6) var<storage, read_write> dispatch_args: array<u32, 3>;
+@group(0) @binding(6) var<storage, read_write> dispatch_args: array<atomic<u32>, 3>;
 // Per tile: 1 when active, 0 when not (so that reads across a tile border can tell
 // whether the neighbouring tile was cleared this frame).
 @group(0) @binding(7) var<storage, read_write> tile_flags: array<u32>;
@@ -61,10 +62,9 @@ fn lies_on(p: vec3<f32>, s: Shape) -> bool {
     return abs(dot(l, s.axis_u)) <= s.half_u + margin && abs(dot(l, s.axis_v)) <= s.half_v + margin;
 }
 
-// Whether the pixel shows a visible reflector of the block's list (every visible shape
-// when it overflowed) or a layer reflector.
-fn shows_a_reflector(pixel: vec2<u32>, listed: u32) -> bool {
-    let depth = textureLoad(depth_tex, vec2<i32>(pixel), 0).r;
+// Whether the pixel (its depth `depth`) shows a visible reflector of the block's list
+// (every visible shape when it overflowed) or a layer reflector.
+fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32) -> bool {
     if (!ppr_is_valid_depth(depth)) {
         return false;
     }
@@ -116,11 +116,19 @@ fn classify(
     workgroupBarrier();
     let listed = atomicLoad(&list_len);
     if (listed > 0u) {
+        // The four depths are loaded before any test (one wait instead of four in turn).
+        var depth = vec4<f32>(0.0);
         for (var q = 0u; q < 4u; q++) {
             let pixel = block_lo + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local.xy;
+            let d = textureLoad(depth_tex, vec2<i32>(min(pixel, frame.size - 1u)), 0).r;
+            depth = select(depth, vec4<f32>(d), vec4<u32>(0u, 1u, 2u, 3u) == vec4<u32>(q));
+        }
+        for (var q = 0u; q < 4u; q++) {
+            let pixel = block_lo + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local.xy;
+            let d = select(select(depth.x, depth.y, q == 1u), select(depth.z, depth.w, q == 3u), q > 1u);
             // A tile another thread found active needs no more tests.
             if (all(pixel < frame.size) && atomicLoad(&shows_reflector[q]) == 0u
-                && shows_a_reflector(pixel, listed)) {
+                && shows_a_reflector(pixel, d, listed)) {
                 atomicOr(&shows_reflector[q], 1u);
             }
         }
@@ -136,22 +144,43 @@ fn classify(
         let t = wid.xy * 2u + vec2<u32>(lid & 1u, lid >> 1u);
         let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;
         if (all(t < tiles)) {
-            let tile = t.x + t.y * tiles.x;
-            let is_active = atomicLoad(&shows_reflector[lid]) != 0u;
-            tile_flags[tile] = select(0u, 1u, is_active);
-            if (is_active) {
-                let slot = atomicAdd(&active_tiles.count, 1u);
-                active_tiles.tiles[slot] = tile;
-            }
+            tile_flags[t.x + t.y * tiles.x] = select(0u, 1u, atomicLoad(&shows_reflector[lid]) != 0u);
         }
+    }
+    if (lid == 0u) {
+        append_active_tiles(wid.xy);
     }
 }
 
-// One thread: dispatch arguments (x, y, 1) covering `count` tiles in rows of MAX_GROUPS_X.
-@compute @workgroup_size(1)
-fn finalize() {
-    let n = atomicLoad(&active_tiles.count);
-    dispatch_args[0] = min(n, MAX_GROUPS_X);
-    dispatch_args[1] = (n + MAX_GROUPS_X - 1u) / MAX_GROUPS_X;
-    dispatch_args[2] = 1u;
+// The block's active tiles, appended to the list with one atomic, and the indirect
+// dispatch arguments (x, y, 1) covering the list so far, in rows of MAX_GROUPS_X: each
+// block raises them to its own end of the list with atomicMax, so that once every block
+// has run they cover the whole list (no pass of their own). `dispatch_args` and the count
+// are zero before the pass.
+fn append_active_tiles(block: vec2<u32>) {
+    let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;
+    var found = 0u;
+    for (var q = 0u; q < 4u; q++) {
+        let t = block * 2u + vec2<u32>(q & 1u, q >> 1u);
+        if (all(t < tiles) && atomicLoad(&shows_reflector[q]) != 0u) {
+            found += 1u;
+        }
+    }
+    if (found == 0u) {
+        return;
+    }
+    var slot = atomicAdd(&active_tiles.count, found);
+    for (var q = 0u; q < 4u; q++) {
+        let t = block * 2u + vec2<u32>(q & 1u, q >> 1u);
+        if (all(t < tiles) && atomicLoad(&shows_reflector[q]) != 0u) {
+            active_tiles.tiles[slot] = t.x + t.y * tiles.x;
+            slot += 1u;
+        }
+    }
+    atomicMax(&dispatch_args[0], min(slot, MAX_GROUPS_X));
+    atomicMax(&dispatch_args[1], (slot + MAX_GROUPS_X - 1u) / MAX_GROUPS_X);
+    // The block that appended first sets the constant one.
+    if (slot == found) {
+        atomicStore(&dispatch_args[2], 1u);
+    }
 }

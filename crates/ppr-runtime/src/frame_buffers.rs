@@ -109,7 +109,7 @@ impl FrameBuffers {
             dispatch_args: buffer(
                 "ppr indirect dispatch args",
                 16,
-                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT,
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
             ),
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),

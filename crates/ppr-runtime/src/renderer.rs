@@ -493,8 +493,10 @@ impl ReflectionRenderer {
             count(1);
         }
         if plan.indirect && has_main {
-            // The classification counts the active tiles from zero, at every encode.
+            // The classification counts the active tiles and raises the dispatch arguments
+            // from zero, at every encode.
             encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
+            encoder.clear_buffer(&b.dispatch_args, 0, None);
         }
         if plan.indirect && has_main {
             let bg = self.classify.bind_group(
@@ -517,7 +519,7 @@ impl ReflectionRenderer {
                 timestamp_writes: timestamps(0),
             });
             self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
-            count(2);
+            count(1);
         }
         let clear_main = self.clears_main_in_pass(plan);
         if self.clears_in_pass(plan) {

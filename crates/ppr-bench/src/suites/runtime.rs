@@ -71,6 +71,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("separate lists", Choice::Auto, Ablation::None),
         ("culling on, no inside entries", Choice::Auto, Ablation::None),
         ("no inside entries", Choice::Auto, Ablation::None),
+        ("indirect off", Choice::Auto, Ablation::None),
+        ("indirect on", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
@@ -233,6 +235,10 @@ pub fn run_runtime(
                     params.occlusion_first = Choice::Off;
                 } else if name == "storage tests" {
                     params.uniform_tests = Choice::Off;
+                } else if name == "indirect off" {
+                    params.indirect = Choice::Off;
+                } else if name == "indirect on" {
+                    params.indirect = Choice::On;
                 }
                 // The box-only list pass is the separate pass's.
                 if name.contains("separate lists") || name.ends_with("lists box only") {

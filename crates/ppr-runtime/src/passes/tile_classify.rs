@@ -26,14 +26,14 @@ pub struct ClassifyBindings<'a> {
     pub intermediate: &'a wgpu::Buffer,
 }
 
-/// The tile classification pass (two dispatches: classify, then finalize the arguments).
+/// The tile classification pass (one dispatch: its blocks append their active tiles and
+/// raise the indirect arguments).
 pub struct TileClassifyPass {
     /// With the clear of the active tiles.
     classify: wgpu::ComputePipeline,
     /// Bench only, built on request ([`Self::prepare_separate_clear`]): without it.
     separate_clear: Option<wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
-    finalize: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
 }
 
@@ -58,14 +58,6 @@ impl TileClassifyPass {
         Self {
             classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
             separate_clear: None,
-            finalize: compute_pipeline(
-                device,
-                "ppr tile classify finalize",
-                &layout,
-                &module,
-                "finalize",
-                &[],
-            ),
             module,
             layout,
         }
@@ -102,10 +94,10 @@ impl TileClassifyPass {
     }
 
     /// Records the classification of every tile, with `clear_tiles` the clear of the active
-    /// tiles' pixels (else the clear pass must do it, after [`Self::prepare_separate_clear`]), and the argument fix-up (two
-    /// dispatches). The active-tile count must be zero beforehand: the renderer clears it in
-    /// the encoder before every classification (not once per `prepare`: a second encode
-    /// would append).
+    /// tiles' pixels (else the clear pass must do it, after [`Self::prepare_separate_clear`]),
+    /// and the indirect arguments (one dispatch). The active-tile count and the arguments
+    /// must be zero beforehand: the renderer clears them in the encoder before every
+    /// classification (not once per `prepare`: a second encode would append).
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
@@ -123,7 +115,5 @@ impl TileClassifyPass {
         };
         pass.set_pipeline(classify);
         pass.dispatch_workgroups(x, y, 1);
-        pass.set_pipeline(&self.finalize);
-        pass.dispatch_workgroups(1, 1, 1);
     }
 }
