@@ -94,12 +94,11 @@ pub struct PlanParams {
     /// a visible reflector (indirect dispatch).
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
-    /// at most this share of the screen. Measured on the H200 at 3840×2160
-    /// (docs/perf/scaling.md, fifteenth session, two runs): since the direct reflection pass
-    /// takes one pixel per invocation without wgpu's loop counter (0.057 ms full-screen),
-    /// the classification and the per-tile reflection are faster up to 0.2 (0.117 against
-    /// 0.128 ms), even at 0.3 (0.128 against 0.128) and slower from 0.4 (0.140–0.142
-    /// against 0.128); the eighth session's 0.4 was read against a direct pass of 0.13 ms.
+    /// at most this share of a screen of 3840×2160 pixels or more; smaller screens take a
+    /// smaller share, none up to 2560×1440 ([`Self::indirect_coverage_limit`]). Measured on
+    /// the H200 at 3840×2160 (docs/perf/scaling.md, seventeenth session): the classification
+    /// and the per-tile reflection are faster up to 0.3 (0.127 against 0.129 ms) and slower
+    /// from 0.4 (0.140 against 0.129).
     pub indirect_max_coverage: f32,
     /// Glass panels and water planes get their own atlas regions (a second output, the
     /// layer output). `Off`: glass is not reflected, water goes into the main buffer.
@@ -191,6 +190,28 @@ pub const DEFAULT_MAX_ROUGHNESS: f32 = 0.5;
 /// Most shape tests (visible shapes plus layers) the projection's uniform copy holds: 128 ×
 /// 96 B = 12 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
 pub const UNIFORM_TESTS_CAPACITY: usize = 128;
+
+/// Up to this many pixels (2560×1440) `Auto` never takes indirect dispatch; from
+/// [`INDIRECT_FULL_PIXELS`] (3840×2160) on, up to [`PlanParams::indirect_max_coverage`];
+/// linear in the pixel count between. On the H200 (docs/perf/scaling.md and runtime.md,
+/// seventeenth session) the classification's own cost outweighed what it saved at 1080p
+/// on every frame (one floor mirror at 5 % coverage: 0.0456 against 0.0445 ms; the demo's
+/// overview at 24 %: 0.133 against 0.120; the kitchen's at 4 %, glossy: 0.096 against
+/// 0.082) and at 1440p on the kitchen's (0.105 against 0.099), though not on the floor
+/// mirror up to 10 % (0.064 against 0.066); at 4K it pays up to 30 %.
+const INDIRECT_MIN_PIXELS: f64 = 2560.0 * 1440.0;
+const INDIRECT_FULL_PIXELS: f64 = 3840.0 * 2160.0;
+
+impl PlanParams {
+    /// The largest screen coverage at which `Auto` takes indirect dispatch on a viewport of
+    /// `pixels`: none up to 2560×1440, [`Self::indirect_max_coverage`] from 3840×2160 on,
+    /// linear in the pixel count between.
+    pub fn indirect_coverage_limit(&self, pixels: u64) -> f32 {
+        let share = ((pixels as f64 - INDIRECT_MIN_PIXELS) / (INDIRECT_FULL_PIXELS - INDIRECT_MIN_PIXELS))
+            .clamp(0.0, 1.0);
+        (f64::from(self.indirect_max_coverage) * share) as f32
+    }
+}
 
 impl Default for PlanParams {
     fn default() -> Self {
@@ -445,7 +466,8 @@ impl FramePlan {
         plan.fused_lists = plan.tile_culling && params.fused_lists.decide(true);
         plan.uniform_tests =
             params.uniform_tests.decide(true) && tested + plan.layers.len() <= UNIFORM_TESTS_CAPACITY;
-        plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_max_coverage);
+        let pixels = u64::from(viewport[0]) * u64::from(viewport[1]);
+        plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_coverage_limit(pixels));
         if params.source_boxes.decide(true) {
             let rect = |s: &ShapeSource| source_rect(s, camera.position, &clip_from_rel, viewport);
             let layers = plan.layers.iter().map(|l| rect(&table.shapes[l.shape as usize]));
@@ -840,8 +862,13 @@ mod tests {
                 DVec2::splat(half),
             ));
             let table = ShapeTable::from_set(&set);
-            let p = FramePlan::build(&table, &camera, [320, 180], &d);
+            let p = FramePlan::build(&table, &camera, [3840, 2160], &d);
             assert_eq!(p.indirect, p.coverage <= d.indirect_max_coverage, "half extent {half}: {p}");
+            // At 1440p and below the classification never pays.
+            for size in [[2560, 1440], [1920, 1080], [320, 180]] {
+                let small = FramePlan::build(&table, &camera, size, &d);
+                assert!(!small.indirect, "half extent {half}, {size:?}: {small}");
+            }
             if p.indirect {
                 indirect += 1;
             } else {
@@ -855,6 +882,24 @@ mod tests {
             direct > 0 && indirect > 0,
             "the sizes span the threshold: {direct} direct, {indirect} indirect"
         );
+    }
+
+    #[test]
+    fn the_indirect_coverage_limit_grows_with_the_pixel_count() {
+        let d = PlanParams::default();
+        let limit = |w: u64, h: u64| d.indirect_coverage_limit(w * h);
+        assert_eq!(limit(320, 180), 0.0);
+        assert_eq!(limit(1920, 1080), 0.0);
+        assert_eq!(limit(2560, 1440), 0.0);
+        assert_eq!(limit(3840, 2160), d.indirect_max_coverage);
+        assert_eq!(limit(7680, 4320), d.indirect_max_coverage);
+        let sizes = [(1920, 1080), (2560, 1440), (2880, 1620), (3200, 1800), (3840, 2160), (5120, 2880)];
+        for pair in sizes.windows(2) {
+            let ((w0, h0), (w1, h1)) = (pair[0], pair[1]);
+            assert!(limit(w0, h0) <= limit(w1, h1), "{pair:?}");
+        }
+        assert!(limit(2880, 1620) > 0.0 && limit(3200, 1800) > limit(2880, 1620));
+        assert!(limit(3200, 1800) < d.indirect_max_coverage);
     }
 
     #[test]

@@ -297,8 +297,12 @@ pub fn write_scaling_report(
     md.push_str(&t.render());
     let _ = writeln!(
         md,
-        "- indirect dispatch is never slower up to a coverage of {}\n",
-        indirect_crossover(&o.coverage_rows).map_or("— (never)".into(), |c| format!("{c:.3}"))
+        "- indirect dispatch is never slower up to a coverage of {}\n- the plan's limit at {} \
+         (`PlanParams::indirect_coverage_limit`): {:.3}\n",
+        indirect_crossover(&o.coverage_rows).map_or("— (never)".into(), |c| format!("{c:.3}")),
+        o.resolution,
+        ppr_runtime::PlanParams::default()
+            .indirect_coverage_limit(u64::from(o.resolution.width) * u64::from(o.resolution.height))
     );
 
     let plot_path = dir.join("scaling.png");
