@@ -337,19 +337,9 @@ fn projection_target(pixel: vec2<u32>, mirrored: vec3<f32>) -> vec3<u32> {
 // something stands between the camera and any reflection point of that plane there.
 // A glass panel with a layer this frame does not count: games may write glass to depth,
 // and what lies behind it is still seen (and reflected) through it.
-// The same test as `q = tile_pixel_position(t)` then `dot(q.xyz, n) - d > q.w`, with
-// the tolerance (a second unprojection) computed only where the surface lies in front of
-// the plane at all: the tolerance is positive, so a surface on or behind the plane is
-// never in front by more than it (most targets show the reflector itself, half of them
-// behind its plane by rounding).
 fn occluded_at(t: vec2<u32>, n: vec3<f32>, d: f32) -> bool {
-    let s = pixel_surface(t);
-    let above = dot(s.p, n) - d;
-    if (!s.valid || !(above > 0.0)) {
-        return false;
-    }
-    let q = vec4<f32>(s.p, ppr_on_plane_tolerance(vec2<f32>(t) + 0.5, s.depth, s.p));
-    if (!(above > q.w)) {
+    let q = tile_pixel_position(t);
+    if (!(q.w > 0.0 && dot(q.xyz, n) - d > q.w)) {
         return false;
     }
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {

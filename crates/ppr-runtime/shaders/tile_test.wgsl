@@ -110,33 +110,19 @@ var<workgroup> pass_words: array<u32, PASS_WORDS>;
 // w = 0. The one rule both culling levels and the per-pixel projection use, so that a
 // block's box holds every position its pixels test.
 fn tile_pixel_position(pixel: vec2<u32>) -> vec4<f32> {
-    let s = pixel_surface(pixel);
-    if (!s.valid) {
+    if (!all(pixel < frame.size)) {
         return vec4<f32>(0.0);
     }
-    return vec4<f32>(s.p, ppr_on_plane_tolerance(vec2<f32>(pixel) + 0.5, s.depth, s.p));
-}
-
-// A pixel's camera-relative position and depth, `valid` where tile_pixel_position gives it
-// a tolerance (the tolerance left out: callers that may not need it compute it later).
-struct PixelSurface {
-    p: vec3<f32>,
-    depth: f32,
-    valid: bool,
-}
-
-fn pixel_surface(pixel: vec2<u32>) -> PixelSurface {
-    var s = PixelSurface(vec3<f32>(0.0), 0.0, false);
-    if (!all(pixel < frame.size)) {
-        return s;
+    let depth = textureLoad(depth_tex, vec2<i32>(pixel), 0).r;
+    if (!ppr_is_valid_depth(depth)) {
+        return vec4<f32>(0.0);
     }
-    s.depth = textureLoad(depth_tex, vec2<i32>(pixel), 0).r;
-    if (!ppr_is_valid_depth(s.depth)) {
-        return s;
+    let centre = vec2<f32>(pixel) + 0.5;
+    let p = ppr_unproject(centre, depth);
+    if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30)))) {
+        return vec4<f32>(0.0);
     }
-    s.p = ppr_unproject(vec2<f32>(pixel) + 0.5, s.depth);
-    s.valid = ppr_is_finite2(s.p.xy) && ppr_is_finite(s.p.z) && all(abs(s.p) < vec3<f32>(1e30));
-    return s;
+    return vec4<f32>(p, ppr_on_plane_tolerance(centre, depth, p));
 }
 
 // Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).
