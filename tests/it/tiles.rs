@@ -487,3 +487,35 @@ fn lists_built_in_the_projection_are_the_block_list_pass_lists() {
     }
     assert!(overflowed > 0, "some list must overflow");
 }
+
+#[test]
+fn blocks_wholly_inside_a_pyramid_skip_its_sides_without_changing_a_write() {
+    // Block-list entries are flagged where the block's box of positions lies inside all
+    // four sides of the shape's pyramid, and those pixels test only the plane. Switching
+    // the flags off in the projection's own lists (`DebugOptions::no_inside_entries`) must
+    // change no write and no value, with and without the parallel rule. (That the flags
+    // occur at all is a matter of speed, measured on the GPU: docs/perf/runtime.md.)
+    let mut rng = Rng(0x5eed_0017);
+    let mut written = 0usize;
+    for case in 0..4 {
+        let parallel = case % 2 == 0;
+        let scene = random_scene(&mut rng, parallel);
+        let camera = random_camera(&mut rng);
+        let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+        let set = grouped_set(&scene);
+        let rule = if parallel { Choice::On } else { Choice::Off };
+        let frame = |no_inside_entries: bool| {
+            let mut r = configured(Culling::FusedTiles, rule);
+            r.debug.no_inside_entries = no_inside_entries;
+            r.set_reflectors(&ppr_tests::harness::validated(&set));
+            let out = run(&mut r, &gpu, &camera);
+            assert!(out.plan.tile_culling && out.plan.fused_lists, "{}", out.plan);
+            (debug_masks(&r), out.intermediate)
+        };
+        let (flagged, plain) = (frame(false), frame(true));
+        written += plain.1.iter().filter(|&&v| v != ppr_runtime::CLEAR_VALUE).count();
+        assert_eq!(flagged.0, plain.0, "writes differ in case {case}");
+        assert_eq!(flagged.1, plain.1, "intermediate buffers differ in case {case}");
+    }
+    assert!(written > 1000, "the scenes reflect something: {written} values");
+}
