@@ -76,7 +76,10 @@ fn main(
             if (meets) {
                 let t = tests[k];
                 passes = box_may_reflect(t, box.lo, box.hi);
-                entry = list_entry(k, t, box.lo, box.hi);
+                // The inside test only for the entries that are listed.
+                if (passes) {
+                    entry = list_entry(k, t, box.lo, box.hi);
+                }
             }
         }
         let r = chunk_rank(lid, base / TILE_GROUP_THREADS, passes);

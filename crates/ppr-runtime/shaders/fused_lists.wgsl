@@ -37,7 +37,10 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
             if (block_meets_source_box(k, lo, hi)) {
                 let t = shape_test(k);
                 passes = box_may_reflect(t, box.lo, box.hi);
-                entry = list_entry(k, t, box.lo, box.hi);
+                // The inside test only for the entries that are listed.
+                if (passes) {
+                    entry = list_entry(k, t, box.lo, box.hi);
+                }
             }
         }
         let r = chunk_rank(lid, first / TILE_GROUP_THREADS, passes);
