@@ -272,22 +272,32 @@ fn water_edge_stretch_fills_reflections_missing_at_the_border() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let water = |i: usize| frame.mirror[i].is_some();
-    let count = |stretch: bool| {
+    let layer = |stretch: bool, full_walk: bool| {
         let mut r = renderer();
         r.settings = ReflectionSettings { water_edge_stretch: stretch, ..ReflectionSettings::ALL };
+        r.debug.full_stretch_walk = full_walk;
         r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
         let out = run(&mut r, &gpu, &cam);
         assert!(out.layer_pixels.iter().all(|p| p.is_finite()));
-        (0..out.layer_pixels.len()).filter(|&i| water(i) && out.layer_pixels[i].w > 0.0).count()
+        out.layer_pixels
     };
+    let count = |pixels: &[Vec4]| (0..pixels.len()).filter(|&i| water(i) && pixels[i].w > 0.0).count();
     let water_px = (0..frame.mirror.len()).filter(|&i| water(i)).count();
     let off_screen = (0..frame.mirror.len()).filter(|&i| water(i) && !frame.on_screen[i]).count();
-    let (without, with) = (count(false), count(true));
+    let stretched = layer(true, false);
+    let (without, with) = (count(&layer(false, false)), count(&stretched));
     eprintln!(
         "{water_px} water pixels, {off_screen} reflect off-screen points; with a reflection: {without} without stretch, {with} with"
     );
     assert!(off_screen > 200, "the view must lose reflections at the border: {off_screen}");
     assert!(with >= without + off_screen / 2, "stretch fills at least half of them: {without} -> {with}");
+    // The walk ends where its steps leave the layer's rectangle: the steps it skips read
+    // nothing, so every pixel is bit for bit the full walk's.
+    let full = layer(true, true);
+    let differ = (0..full.len())
+        .filter(|&i| full[i].to_array().map(f32::to_bits) != stretched[i].to_array().map(f32::to_bits))
+        .count();
+    assert_eq!(differ, 0, "pixels where the walk that stops at the rectangle differs from the full walk");
 }
 
 #[test]

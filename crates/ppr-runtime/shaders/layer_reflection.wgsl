@@ -19,6 +19,9 @@
 
 // Longest edge stretch, pixels.
 const STRETCH_MAX: i32 = 48;
+// The edge stretch ends where its steps leave the layer's rectangle (false: bench only,
+// every step is read; the same image).
+override STRETCH_STOPS_AT_RECT: bool = true;
 // Steps of the edge stretch loaded together (divides STRETCH_MAX).
 const STRETCH_BATCH: i32 = 8;
 
@@ -106,7 +109,18 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
             // STRETCH_BATCH steps a trip, their loads issued together: a pixel that finds
             // nothing (a reflection of the sky) waits on 48 / STRETCH_BATCH round trips to
             // memory instead of 48. The first valid step wins, as one step a trip would.
-            for (var k0 = 1; k0 <= STRETCH_MAX; k0 += STRETCH_BATCH) {
+            // Steps past the layer's rectangle read nothing (read_layer): each coordinate
+            // of a step moves monotonically with k, so the walk ends where the first
+            // coordinate must have left the rectangle (a pixel near the rectangle's edge
+            // that finds nothing stops there instead of after STRETCH_MAX steps).
+            let room = select(
+                vec2<f32>(vpos - vec2<i32>(l.rect_min)),
+                vec2<f32>(vec2<i32>(l.rect_max) - 1 - vpos),
+                dir > vec2<f32>(0.0),
+            );
+            let reach = (room + 0.5) / max(abs(dir), vec2<f32>(1e-6));
+            let steps = select(STRETCH_MAX, min(i32(min(reach.x, reach.y)) + 1, STRETCH_MAX), STRETCH_STOPS_AT_RECT);
+            for (var k0 = 1; k0 <= steps; k0 += STRETCH_BATCH) {
                 var q: array<vec2<i32>, STRETCH_BATCH>;
                 var v: array<u32, STRETCH_BATCH>;
                 for (var j = 0; j < STRETCH_BATCH; j++) {

@@ -136,6 +136,9 @@ pub struct DebugOptions {
     /// shape's pyramid: every pixel runs the five plane tests (bench only, the same image;
     /// the block-list pass flags them either way).
     pub no_inside_entries: bool,
+    /// The water edge stretch reads all its steps, also those past the layer's rectangle
+    /// (the walk before the eighteenth session; bench only, the same image).
+    pub full_stretch_walk: bool,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -289,6 +292,9 @@ impl ReflectionRenderer {
                 }
                 if self.debug.block_lists_box_only {
                     self.block_lists.prepare_box_only(&self.device);
+                }
+                if self.debug.full_stretch_walk {
+                    self.layer_reflection.prepare_full_stretch(&self.device);
                 }
             }
             Arc::new(plan)
@@ -671,7 +677,8 @@ impl ReflectionRenderer {
                 timestamp_writes: timestamps(4),
             });
             let r = plan.layer_rect;
-            self.layer_reflection.encode(&mut pass, &bg, [r.max[0] - r.min[0], r.max[1] - r.min[1]]);
+            let extent = [r.max[0] - r.min[0], r.max[1] - r.min[1]];
+            self.layer_reflection.encode(&mut pass, &bg, extent, self.debug.full_stretch_walk);
             count(1);
         }
         if let Some(r) = reduced {

@@ -52,7 +52,9 @@ pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation); the
 /// `reflection: …` rows ablate the reflection pass instead, the `reflection: mirrors …`
-/// rows without the glossy blur (one pixel per invocation, or two by two with `quads`).
+/// rows without the glossy blur (one pixel per invocation, or two by two with `quads`); the
+/// `layers: …` rows change the layer pass (the water edge stretch off, or walking all its
+/// steps as before the eighteenth session).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -84,6 +86,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("tile clear pass", Choice::Auto, Ablation::None),
         ("occlusion first", Choice::Auto, Ablation::None),
         ("occlusion last", Choice::Auto, Ablation::None),
+        ("layers: no water stretch", Choice::Auto, Ablation::None),
+        ("layers: full stretch walk", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -266,6 +270,8 @@ pub fn run_runtime(
                 // the frames whose reflection pass may run two by two pixels per invocation.
                 let settings = if name.starts_with("reflection: mirrors") {
                     ReflectionSettings { glossy: false, ..all }
+                } else if name == "layers: no water stretch" {
+                    ReflectionSettings { water_edge_stretch: false, ..all }
                 } else {
                     all
                 };
@@ -275,6 +281,7 @@ pub fn run_runtime(
                     tile_clear_pass: name == "tile clear pass",
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
+                    full_stretch_walk: name == "layers: full stretch walk",
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

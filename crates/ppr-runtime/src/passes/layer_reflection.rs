@@ -19,6 +19,10 @@ pub struct LayerBindings<'a> {
 /// The layer reflection pass.
 pub struct LayerReflectionPass {
     pipeline: wgpu::ComputePipeline,
+    /// Bench only, built on request ([`Self::prepare_full_stretch`]): the water edge
+    /// stretch walks all its steps, also past the layer's rectangle.
+    full_stretch: Option<wgpu::ComputePipeline>,
+    module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     sampler: wgpu::Sampler,
 }
@@ -74,7 +78,18 @@ impl LayerReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipeline, layout, sampler }
+        Self { pipeline, full_stretch: None, module, layout, sampler }
+    }
+
+    /// Builds the full-walk pipeline (bench only; the renderer asks for it when
+    /// `DebugOptions::full_stretch_walk` is set).
+    pub fn prepare_full_stretch(&mut self, device: &wgpu::Device) {
+        if self.full_stretch.is_none() {
+            let constants = [("STRETCH_STOPS_AT_RECT", 0.0)];
+            let label = "ppr layer reflection (full stretch walk)";
+            self.full_stretch =
+                Some(compute_pipeline(device, label, &self.layout, &self.module, "main", &constants));
+        }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &LayerBindings<'_>) -> wgpu::BindGroup {
@@ -94,9 +109,22 @@ impl LayerReflectionPass {
         })
     }
 
-    /// Records the pass over the layers' screen rectangle (`extent` pixels).
-    pub fn encode(&self, pass: &mut wgpu::ComputePass<'_>, bind_group: &wgpu::BindGroup, extent: [u32; 2]) {
-        pass.set_pipeline(&self.pipeline);
+    /// Records the pass over the layers' screen rectangle (`extent` pixels); with
+    /// `full_stretch` (bench only, the same image) the pipeline of
+    /// [`Self::prepare_full_stretch`].
+    pub fn encode(
+        &self,
+        pass: &mut wgpu::ComputePass<'_>,
+        bind_group: &wgpu::BindGroup,
+        extent: [u32; 2],
+        full_stretch: bool,
+    ) {
+        let pipeline = if full_stretch {
+            self.full_stretch.as_ref().expect("prepare_full_stretch() before a full-walk encode")
+        } else {
+            &self.pipeline
+        };
+        pass.set_pipeline(pipeline);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(extent[0].div_ceil(TILE), extent[1].div_ceil(TILE), 1);
     }
