@@ -121,3 +121,43 @@ fn subgroups_visit_fewer_candidates_and_keep_every_write() {
     eprintln!("subgroup culling: {visited} of {candidates} pixel candidates visited");
     assert!(visited * 10 < candidates * 7, "culling must drop candidates: {visited} of {candidates} visited");
 }
+
+/// The fused lists' box of the block's positions reduced per subgroup first, one invocation
+/// a subgroup then taking part in the workgroup's atomics (`DebugOptions::subgroup_box`),
+/// builds the lists of the workgroup's atomics alone: every pixel's list length and every
+/// write equal.
+#[test]
+fn a_subgroup_reduced_box_builds_the_same_block_lists() {
+    open_device();
+    let mut rng = Rng(0x5eed_0103);
+    let mut listed = 0u64;
+    for case in 0..4 {
+        let scene = random_scene(&mut rng, case % 2 == 1);
+        let camera = random_camera(&mut rng);
+        let frame = GpuFrame::upload(&scene.render(&camera, SIZE));
+        let set = validated(&grouped_set(&scene));
+        let mut lists = Vec::new();
+        let mut intermediates = Vec::new();
+        for subgroup_box in [false, true] {
+            for tile_lists in [false, true] {
+                let mut r = configured(Choice::Off, Choice::On, Choice::Off);
+                r.plan_params.fused_lists = Choice::On;
+                r.debug.subgroup_box = subgroup_box;
+                r.debug.writes = tile_lists;
+                r.debug.tile_lists = tile_lists;
+                r.set_reflectors(&set);
+                let out = run(&mut r, &frame, &camera);
+                assert!(out.plan.tile_culling && out.plan.fused_lists, "{}", out.plan);
+                if tile_lists {
+                    lists.push(debug_words(&r));
+                } else {
+                    intermediates.push(out.intermediate);
+                }
+            }
+        }
+        assert_eq!(lists[0], lists[1], "the subgroup box changed a block's list: case {case}");
+        assert_eq!(intermediates[0], intermediates[1], "the subgroup box changed a write: case {case}");
+        listed += lists[0].iter().filter(|&&n| n != u32::MAX).map(|&n| u64::from(n)).sum::<u64>();
+    }
+    assert!(listed > 0, "the blocks must list candidates");
+}

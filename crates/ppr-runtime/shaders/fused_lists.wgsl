@@ -24,7 +24,16 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
             own = TileBox(min(own.lo, p), max(own.hi, p));
         }
     }
-    let box = workgroup_box(lid, own.lo, own.hi);
+    // SUBGROUP_BOX: each subgroup's box first, then one invocation a subgroup takes part
+    // in the workgroup's reduction (8 sets of atomics on a 32-wide device instead of 256).
+    // Without subgroup operations the subgroups are of one invocation: the same box.
+    var part = own;
+    var takes_part = true;
+    if (SUBGROUP_BOX) {
+        part = subgroup_box(own.lo, own.hi);
+        takes_part = subgroup_elected(lid);
+    }
+    let box = workgroup_box_of(lid, part.lo, part.hi, takes_part);
     let empty = box.lo.x > box.hi.x;
     let c = block_candidates(wid);
     var written = 0u;

@@ -80,6 +80,8 @@ override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
 override OCCLUSION_FIRST: bool = false;
 override SUBGROUP_CULL: bool = false;
+// The fused lists' box of positions reduced per subgroup first (fused_lists.wgsl).
+override SUBGROUP_BOX: bool = false;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;

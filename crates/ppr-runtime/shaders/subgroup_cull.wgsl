@@ -16,6 +16,11 @@ fn subgroup_lane() -> vec2<u32> {
     return vec2<u32>(subgroupExclusiveAdd(1u), subgroupAdd(1u));
 }
 
+// Whether this invocation (local index `lid`) is its subgroup's first active one.
+fn subgroup_elected(lid: u32) -> bool {
+    return subgroupBroadcastFirst(lid) == lid;
+}
+
 // Bit i set when invocation i of the subgroup (i < 32) passes `p`.
 fn subgroup_ballot32(p: bool) -> u32 {
     return subgroupBallot(p).x;

@@ -12,6 +12,10 @@ fn subgroup_lane() -> vec2<u32> {
     return vec2<u32>(0u, 1u);
 }
 
+fn subgroup_elected(lid: u32) -> bool {
+    return true;
+}
+
 fn subgroup_ballot32(p: bool) -> u32 {
     return select(0u, 1u, p);
 }

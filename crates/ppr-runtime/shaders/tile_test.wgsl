@@ -152,6 +152,12 @@ fn from_ordered3(u: vec3<u32>) -> vec3<f32> {
 }
 
 fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
+    return workgroup_box_of(lid, lo, hi, true);
+}
+
+// workgroup_box where only the invocations with `takes_part` bring their [lo, hi] (the
+// projection's SUBGROUP_BOX: one invocation a subgroup, holding the subgroup's box).
+fn workgroup_box_of(lid: u32, lo: vec3<f32>, hi: vec3<f32>, takes_part: bool) -> TileBox {
     if (lid < BOX_SLOTS) {
         for (var c = 0u; c < 3u; c++) {
             atomicStore(&box_min[lid][c], 0xffffffffu);
@@ -164,7 +170,7 @@ fn workgroup_box(lid: u32, lo: vec3<f32>, hi: vec3<f32>) -> TileBox {
     }
     workgroupBarrier();
     let slot = lid % BOX_SLOTS;
-    if (lo.x <= hi.x) {
+    if (takes_part && lo.x <= hi.x) {
         let l = ordered3(lo);
         let h = ordered3(hi);
         atomicMin(&box_min[slot][0], l.x);

@@ -139,6 +139,9 @@ pub struct DebugOptions {
     /// The water edge stretch reads all its steps, also those past the layer's rectangle
     /// (the walk before the eighteenth session; bench only, the same image).
     pub full_stretch_walk: bool,
+    /// The block lists the projection builds reduce the box of the block's positions per
+    /// subgroup first (bench only, the same lists; `ProjectionVariant::subgroup_box`).
+    pub subgroup_box: bool,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -355,6 +358,7 @@ impl ReflectionRenderer {
             spread_quads: self.debug.spread_quads,
             occlusion_first: plan.occlusion_first,
             no_inside_entries: self.debug.no_inside_entries,
+            subgroup_box: self.debug.subgroup_box,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -73,6 +73,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("separate lists", Choice::Auto, Ablation::None),
         ("culling on, no inside entries", Choice::Auto, Ablation::None),
         ("no inside entries", Choice::Auto, Ablation::None),
+        ("culling on, subgroup box", Choice::Auto, Ablation::None),
+        ("subgroup box", Choice::Auto, Ablation::None),
+        ("culling on, empty, subgroup box", Choice::Auto, Ablation::Empty),
         ("indirect off", Choice::Auto, Ablation::None),
         ("indirect on", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
@@ -282,6 +285,7 @@ pub fn run_runtime(
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",
+                    subgroup_box: name.ends_with("subgroup box"),
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

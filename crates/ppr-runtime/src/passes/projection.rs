@@ -66,6 +66,11 @@ pub struct ProjectionVariant {
     /// as lying wholly inside its shape's pyramid, so every pixel runs all five plane
     /// tests (`INSIDE_ENTRY` of `tile_test.wgsl`).
     pub no_inside_entries: bool,
+    /// Bench only (the same lists): the fused lists' box of the block's positions is
+    /// reduced per subgroup first, then one invocation a subgroup takes part in the
+    /// workgroup's atomics (`SUBGROUP_BOX` of `fused_lists.wgsl`; on a device without
+    /// [`wgpu::Features::SUBGROUP`] every invocation takes part, as without it).
+    pub subgroup_box: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -201,10 +206,12 @@ impl ProjectionPass {
             ("OCCLUSION_FIRST", flag(v.occlusion_first)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("INSIDE_ENTRIES", flag(!v.no_inside_entries)),
+            ("SUBGROUP_BOX", flag(v.subgroup_box)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
-        let module = self.module(device, v.subgroup_cull && self.subgroups, v.tile_culling && v.fused_lists);
+        let subgroup_ops = (v.subgroup_cull || v.subgroup_box) && self.subgroups;
+        let module = self.module(device, subgroup_ops, v.tile_culling && v.fused_lists);
         let pipeline = compute_pipeline(device, &label, &self.layout, &module, "main", &constants);
         self.pipelines.insert(v, pipeline);
     }
