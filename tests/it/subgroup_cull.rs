@@ -6,7 +6,7 @@
 //! `subgroup_cull_fallback.wgsl`) and in `subgroups` on lavapipe through Vulkan, whose
 //! subgroups run `subgroup_cull.wgsl`.
 
-use ppr_runtime::{Choice, ReflectionRenderer};
+use ppr_runtime::{BoxReduction, Choice, ReflectionRenderer};
 
 use ppr_tests::gpu::{gpu, read_buffer};
 use ppr_tests::harness::{GpuFrame, renderer, run, validated};
@@ -122,13 +122,23 @@ fn subgroups_visit_fewer_candidates_and_keep_every_write() {
     assert!(visited * 10 < candidates * 7, "culling must drop candidates: {visited} of {candidates} visited");
 }
 
-/// The fused lists' box of the block's positions reduced per subgroup first, one invocation
-/// a subgroup then taking part in the workgroup's atomics (`DebugOptions::subgroup_box`),
-/// builds the lists of the workgroup's atomics alone: every pixel's list length and every
-/// write equal.
+/// The fused lists' box of the block's positions reduced per subgroup first
+/// (`DebugOptions::box_reduction`), then either with one invocation a subgroup in the
+/// workgroup's atomics or through a slot per subgroup and one barrier, builds the lists of
+/// the workgroup's atomics alone: every pixel's list length and every write equal. On
+/// lavapipe (8-wide subgroups) the slots run as themselves; on llvmpipe through GL both
+/// subgroup reductions fall back to subgroups of one.
 #[test]
 fn a_subgroup_reduced_box_builds_the_same_block_lists() {
     open_device();
+    if crate::REQUIRE_SUBGROUPS {
+        let info = &gpu().info;
+        assert!(
+            info.subgroup_min_size >= 8,
+            "the slots' reduction needs subgroups at least 8 wide (else it falls back and goes \
+             untested here); got {info:?}"
+        );
+    }
     let mut rng = Rng(0x5eed_0103);
     let mut listed = 0u64;
     for case in 0..4 {
@@ -138,11 +148,13 @@ fn a_subgroup_reduced_box_builds_the_same_block_lists() {
         let set = validated(&grouped_set(&scene));
         let mut lists = Vec::new();
         let mut intermediates = Vec::new();
-        for subgroup_box in [false, true] {
+        for box_reduction in
+            [BoxReduction::Atomics, BoxReduction::SubgroupAtomics, BoxReduction::SubgroupSlots]
+        {
             for tile_lists in [false, true] {
                 let mut r = configured(Choice::Off, Choice::On, Choice::Off);
                 r.plan_params.fused_lists = Choice::On;
-                r.debug.subgroup_box = subgroup_box;
+                r.debug.box_reduction = box_reduction;
                 r.debug.writes = tile_lists;
                 r.debug.tile_lists = tile_lists;
                 r.set_reflectors(&set);
@@ -155,8 +167,10 @@ fn a_subgroup_reduced_box_builds_the_same_block_lists() {
                 }
             }
         }
-        assert_eq!(lists[0], lists[1], "the subgroup box changed a block's list: case {case}");
-        assert_eq!(intermediates[0], intermediates[1], "the subgroup box changed a write: case {case}");
+        for (k, name) in [(1, "subgroup atomics"), (2, "subgroup slots")] {
+            assert_eq!(lists[0], lists[k], "the {name}' box changed a block's list: case {case}");
+            assert_eq!(intermediates[0], intermediates[k], "the {name}' box changed a write: case {case}");
+        }
         listed += lists[0].iter().filter(|&&n| n != u32::MAX).map(|&n| u64::from(n)).sum::<u64>();
     }
     assert!(listed > 0, "the blocks must list candidates");

@@ -24,16 +24,22 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
             own = TileBox(min(own.lo, p), max(own.hi, p));
         }
     }
-    // SUBGROUP_BOX: each subgroup's box first, then one invocation a subgroup takes part
-    // in the workgroup's reduction (8 sets of atomics on a 32-wide device instead of 256).
-    // Without subgroup operations the subgroups are of one invocation: the same box.
-    var part = own;
-    var takes_part = true;
-    if (SUBGROUP_BOX) {
-        part = subgroup_box(own.lo, own.hi);
-        takes_part = subgroup_elected(lid);
+    var box: TileBox;
+    if (SUBGROUP_BOX == 2u) {
+        box = box_by_subgroup_slots(lid, own);
+    } else {
+        // SUBGROUP_BOX 1: each subgroup's box first, then one invocation a subgroup takes
+        // part in the workgroup's atomics (8 sets of atomics on a 32-wide device instead of
+        // 256). Without subgroup operations the subgroups are of one invocation: the same
+        // box.
+        var part = own;
+        var takes_part = true;
+        if (SUBGROUP_BOX == 1u) {
+            part = subgroup_box(own.lo, own.hi);
+            takes_part = subgroup_elected(lid);
+        }
+        box = workgroup_box_of(lid, part.lo, part.hi, takes_part);
     }
-    let box = workgroup_box_of(lid, part.lo, part.hi, takes_part);
     let empty = box.lo.x > box.hi.x;
     let c = block_candidates(wid);
     var written = 0u;
@@ -61,4 +67,45 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
     // The list is complete before any thread reads it.
     workgroupBarrier();
     return written;
+}
+
+// SUBGROUP_BOX 2: the box of the workgroup's positions (as workgroup_box_of) with one barrier
+// and no atomics. Each subgroup's first invocation stores the subgroup's box in the
+// subgroup's slot of six words at the start of `fused_list` (free until the list is
+// built: every thread has read the slots before the first chunk's ranks, whose barriers
+// come before any entry is written); then every subgroup reduces all the slots itself.
+// Min and max of floats give the atomics' box of ordered bits (only a zero's sign may
+// differ, which no plane test sees). Needs subgroups of consecutive local indices (as on
+// every Vulkan driver we know) at least 8 wide, so that the slots fit in the list: the
+// renderer picks it only on such adapters (wgpu::AdapterInfo::subgroup_min_size). Also
+// zeroes the first chunk's pass bits, as workgroup_box_of does. Call from uniform control
+// flow.
+fn box_by_subgroup_slots(lid: u32, own: TileBox) -> TileBox {
+    let part = subgroup_box(own.lo, own.hi);
+    let lane = subgroup_lane();
+    if (lane.x == 0u) {
+        let s = 6u * (lid / lane.y);
+        fused_list[s] = bitcast<u32>(part.lo.x);
+        fused_list[s + 1u] = bitcast<u32>(part.lo.y);
+        fused_list[s + 2u] = bitcast<u32>(part.lo.z);
+        fused_list[s + 3u] = bitcast<u32>(part.hi.x);
+        fused_list[s + 4u] = bitcast<u32>(part.hi.y);
+        fused_list[s + 5u] = bitcast<u32>(part.hi.z);
+    }
+    if (lid < PASS_WORDS) {
+        atomicStore(&pass_bits[0][lid], 0u);
+    }
+    workgroupBarrier();
+    var lo = vec3<f32>(3.0e38);
+    var hi = vec3<f32>(-3.0e38);
+    for (var s = lane.x; s < TILE_GROUP_THREADS / lane.y; s += lane.y) {
+        let w = 6u * s;
+        lo = min(lo, bitcast<vec3<f32>>(vec3<u32>(fused_list[w], fused_list[w + 1u], fused_list[w + 2u])));
+        hi = max(hi, bitcast<vec3<f32>>(vec3<u32>(fused_list[w + 3u], fused_list[w + 4u], fused_list[w + 5u])));
+    }
+    let b = subgroup_box(lo, hi);
+    if (b.lo.x <= b.hi.x) {
+        return b;
+    }
+    return TileBox(vec3<f32>(1.0), vec3<f32>(-1.0));
 }

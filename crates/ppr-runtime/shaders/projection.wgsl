@@ -80,8 +80,9 @@ override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
 override OCCLUSION_FIRST: bool = false;
 override SUBGROUP_CULL: bool = false;
-// The fused lists' box of positions reduced per subgroup first (fused_lists.wgsl).
-override SUBGROUP_BOX: bool = false;
+// How the fused lists reduce the box of the block's positions (fused_lists.wgsl): 0 the
+// workgroup's atomics, 1 per subgroup first, 2 per subgroup into slots, one barrier.
+override SUBGROUP_BOX: u32 = 0u;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;

@@ -16,7 +16,7 @@ use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
 use crate::passes::layer_reflection::LayerBindings;
-use crate::passes::projection::ProjectionBindings;
+use crate::passes::projection::{BoxReduction, ProjectionBindings};
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
@@ -139,9 +139,9 @@ pub struct DebugOptions {
     /// The water edge stretch reads all its steps, also those past the layer's rectangle
     /// (the walk before the eighteenth session; bench only, the same image).
     pub full_stretch_walk: bool,
-    /// The block lists the projection builds reduce the box of the block's positions per
-    /// subgroup first (bench only, the same lists; `ProjectionVariant::subgroup_box`).
-    pub subgroup_box: bool,
+    /// How the block lists the projection builds reduce the box of the block's positions
+    /// (bench only, the same lists; `ProjectionVariant::box_reduction`).
+    pub box_reduction: BoxReduction,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -358,7 +358,7 @@ impl ReflectionRenderer {
             spread_quads: self.debug.spread_quads,
             occlusion_first: plan.occlusion_first,
             no_inside_entries: self.debug.no_inside_entries,
-            subgroup_box: self.debug.subgroup_box,
+            box_reduction: self.debug.box_reduction,
             ablation: self.debug.projection_ablation,
         }
     }

@@ -1,7 +1,7 @@
 //! Runtime numbers (issue 4): each PPR pass timed on real scenes, against the bandwidth
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
-use ppr_runtime::passes::Ablation;
+use ppr_runtime::passes::{Ablation, BoxReduction};
 use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionAblation, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
@@ -76,6 +76,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling on, subgroup box", Choice::Auto, Ablation::None),
         ("subgroup box", Choice::Auto, Ablation::None),
         ("culling on, empty, subgroup box", Choice::Auto, Ablation::Empty),
+        ("culling on, subgroup box atomics", Choice::Auto, Ablation::None),
+        ("culling on, empty, subgroup box atomics", Choice::Auto, Ablation::Empty),
         ("indirect off", Choice::Auto, Ablation::None),
         ("indirect on", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
@@ -285,7 +287,13 @@ pub fn run_runtime(
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",
-                    subgroup_box: name.ends_with("subgroup box"),
+                    box_reduction: if name.ends_with("subgroup box") {
+                        BoxReduction::SubgroupSlots
+                    } else if name.ends_with("subgroup box atomics") {
+                        BoxReduction::SubgroupAtomics
+                    } else {
+                        BoxReduction::Atomics
+                    },
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

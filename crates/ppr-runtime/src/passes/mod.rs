@@ -14,7 +14,7 @@ pub use block_lists::BlockListPass;
 pub use clear::ClearPass;
 pub use downsample::DownsamplePass;
 pub use layer_reflection::LayerReflectionPass;
-pub use projection::{Ablation, ProjectionPass, ProjectionVariant};
+pub use projection::{Ablation, BoxReduction, ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
 pub use super_tile_lists::SuperTileListPass;
 pub use tile_classify::TileClassifyPass;

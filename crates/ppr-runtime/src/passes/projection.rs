@@ -66,11 +66,9 @@ pub struct ProjectionVariant {
     /// as lying wholly inside its shape's pyramid, so every pixel runs all five plane
     /// tests (`INSIDE_ENTRY` of `tile_test.wgsl`).
     pub no_inside_entries: bool,
-    /// Bench only (the same lists): the fused lists' box of the block's positions is
-    /// reduced per subgroup first, then one invocation a subgroup takes part in the
-    /// workgroup's atomics (`SUBGROUP_BOX` of `fused_lists.wgsl`; on a device without
-    /// [`wgpu::Features::SUBGROUP`] every invocation takes part, as without it).
-    pub subgroup_box: bool,
+    /// Bench only (the same lists): how the fused lists reduce the box of the block's
+    /// positions (`SUBGROUP_BOX` of `fused_lists.wgsl`).
+    pub box_reduction: BoxReduction,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -84,6 +82,24 @@ impl ProjectionVariant {
     pub fn spread_quads(&self) -> bool {
         self.spread_quads || (self.parallel_trees && !self.subgroup_cull)
     }
+}
+
+/// How the block lists the projection builds reduce the box of the block's positions
+/// (bench only: every choice gives the same box and lists).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum BoxReduction {
+    /// Every invocation in the workgroup's atomics (eight copies of each bound), four
+    /// barriers.
+    #[default]
+    Atomics,
+    /// Each subgroup's box first, then one invocation a subgroup in the atomics. On a
+    /// device without [`wgpu::Features::SUBGROUP`] every invocation takes part, as with
+    /// [`Self::Atomics`].
+    SubgroupAtomics,
+    /// Each subgroup's box into a slot of workgroup memory, then every subgroup reduces
+    /// the slots: one barrier, no atomics. Needs subgroups at least 8 wide
+    /// ([`wgpu::AdapterInfo::subgroup_min_size`]); elsewhere [`Self::SubgroupAtomics`].
+    SubgroupSlots,
 }
 
 /// What an ablated projection leaves out (bench only: `ppr-bench runtime
@@ -151,6 +167,8 @@ pub struct ProjectionPass {
     /// lists' workgroup memory only in the variants that use it.
     modules: HashMap<(bool, bool), wgpu::ShaderModule>,
     subgroups: bool,
+    /// Subgroups are at least 8 wide: [`BoxReduction::SubgroupSlots`] runs as itself.
+    subgroup_slots: bool,
     layout: wgpu::BindGroupLayout,
     pipelines: HashMap<ProjectionVariant, wgpu::ComputePipeline>,
 }
@@ -179,7 +197,9 @@ impl ProjectionPass {
             ],
         });
         let subgroups = has_subgroups(device);
-        let mut pass = Self { modules: HashMap::new(), subgroups, layout, pipelines: HashMap::new() };
+        let subgroup_slots = subgroups && device.adapter_info().subgroup_min_size >= 8;
+        let mut pass =
+            Self { modules: HashMap::new(), subgroups, subgroup_slots, layout, pipelines: HashMap::new() };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
     }
@@ -206,14 +226,23 @@ impl ProjectionPass {
             ("OCCLUSION_FIRST", flag(v.occlusion_first)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("INSIDE_ENTRIES", flag(!v.no_inside_entries)),
-            ("SUBGROUP_BOX", flag(v.subgroup_box)),
+            ("SUBGROUP_BOX", self.box_reduction_code(v.box_reduction)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
-        let subgroup_ops = (v.subgroup_cull || v.subgroup_box) && self.subgroups;
+        let subgroup_ops = (v.subgroup_cull || v.box_reduction != BoxReduction::Atomics) && self.subgroups;
         let module = self.module(device, subgroup_ops, v.tile_culling && v.fused_lists);
         let pipeline = compute_pipeline(device, &label, &self.layout, &module, "main", &constants);
         self.pipelines.insert(v, pipeline);
+    }
+
+    /// `SUBGROUP_BOX` for `r` on this device (slots only where subgroups are 8 wide or more).
+    fn box_reduction_code(&self, r: BoxReduction) -> f64 {
+        match r {
+            BoxReduction::Atomics => 0.0,
+            BoxReduction::SubgroupSlots if self.subgroup_slots => 2.0,
+            BoxReduction::SubgroupAtomics | BoxReduction::SubgroupSlots => 1.0,
+        }
     }
 
     /// The module with (or without) subgroup operations and the fused lists' code.
