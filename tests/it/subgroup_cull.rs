@@ -1,7 +1,8 @@
 //! Subgroup culling (`PlanParams::subgroup_cull`): each subgroup of the projection visits
-//! only the candidates whose box test passes against the box of its pixels' positions.
-//! It writes what every candidate writes (bit for bit, with and without block lists and
-//! the parallel rule) and visits fewer candidates. Runs in `it` on the default adapter
+//! only the candidates whose box test passes against the box of its pixels' positions, and
+//! tests only the plane of those whose pyramid holds that whole box. It writes what every
+//! candidate writes (bit for bit, with and without block lists and the parallel rule) and
+//! visits fewer candidates. Runs in `it` on the default adapter
 //! (llvmpipe through GL in CI: no subgroup operations, so each invocation culls alone with
 //! `subgroup_cull_fallback.wgsl`) and in `subgroups` on lavapipe through Vulkan, whose
 //! subgroups run `subgroup_cull.wgsl`.

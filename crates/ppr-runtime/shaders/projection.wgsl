@@ -46,9 +46,11 @@
 // - SUBGROUP_CULL: each subgroup takes the box of its pixels' positions and tests its
 //   candidates' boxes against it, one candidate per invocation (subgroup_cull.wgsl, a
 //   ballot per 32 candidates, no barrier): the loop then visits only the candidates that
-//   may reflect some pixel of the subgroup. The block-list pass's test at the subgroup's
-//   scale, without its pass; with subgroup_cull_fallback.wgsl (no subgroup operations)
-//   each invocation alone, for the tests.
+//   may reflect some pixel of the subgroup, and those whose pyramid holds the subgroup's
+//   whole box test the plane only (a second ballot, as block lists' INSIDE_ENTRY). The
+//   block-list pass's test at the subgroup's scale, without its pass; with
+//   subgroup_cull_fallback.wgsl (no subgroup operations) each invocation alone, for the
+//   tests.
 // - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
 //   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
 //   without writing.
@@ -620,10 +622,23 @@ fn loop_candidate(c: LoopCandidates, i: u32, lo: vec2<u32>, hi: vec2<u32>) -> u3
 // Most candidates subgroup culling sorts (a bit each); beyond, the loop visits them all.
 const CULL_CAPACITY: u32 = 128u;
 
-// Per 32 candidates of the loop, a bit for each that may reflect some pixel of the
-// subgroup (the conservative box test of tile_test.wgsl against the box of the
-// subgroup's positions). Call from uniform control flow, `count` <= CULL_CAPACITY.
-fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi: vec2<u32>) -> vec4<u32> {
+// Subgroup culling's bits, per 32 candidates of the loop: `passes`, a bit for each that may
+// reflect some pixel of the subgroup (the conservative box test of tile_test.wgsl against
+// the box of the subgroup's positions); `inside`, a bit for each of those whose pyramid
+// holds the whole box (box_inside_sides, as a block list's INSIDE_ENTRY: the subgroup's
+// pixels then test its plane only).
+struct CullMasks {
+    passes: vec4<u32>,
+    inside: vec4<u32>,
+}
+
+// Whether bit `i` is set in `m` (`i` < 128).
+fn mask_bit(m: vec4<u32>, i: u32) -> bool {
+    return (lane_u32(m, i / 32u) & (1u << (i % 32u))) != 0u;
+}
+
+// Call from uniform control flow, `count` <= CULL_CAPACITY.
+fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi: vec2<u32>) -> CullMasks {
     let valid = q.tolerance > vec4<f32>(0.0);
     let far = vec4<f32>(3.0e38);
     let own_lo = vec3<f32>(
@@ -639,20 +654,28 @@ fn subgroup_cull_masks(q: Quad, c: LoopCandidates, count: u32, lo: vec2<u32>, hi
     let b = subgroup_box(own_lo, own_hi);
     let empty = b.lo.x > b.hi.x;
     let lane = subgroup_lane();
-    var masks = vec4<u32>(0u);
+    var masks = CullMasks(vec4<u32>(0u), vec4<u32>(0u));
     for (var w = 0u; w < 4u && w * 32u < count; w++) {
         var m = 0u;
+        var m_inside = 0u;
         for (var r = 0u; r < 32u; r += lane.y) {
             let slot = r + lane.x;
             let i = w * 32u + slot;
             var passes = false;
+            var inside = false;
             if (!empty && slot < 32u && i < count) {
                 let k = entry_position(loop_candidate(c, i, lo, hi));
-                passes = k != NO_SHAPE && box_may_reflect(shape_test(k), b.lo, b.hi);
+                if (k != NO_SHAPE) {
+                    let t = shape_test(k);
+                    passes = box_may_reflect(t, b.lo, b.hi);
+                    inside = passes && box_inside_sides(t, b.lo, b.hi);
+                }
             }
             m |= subgroup_ballot32(passes) << r;
+            m_inside |= subgroup_ballot32(inside) << r;
         }
-        masks = select(masks, vec4<u32>(m), lane_mask(w));
+        masks.passes = select(masks.passes, vec4<u32>(m), lane_mask(w));
+        masks.inside = select(masks.inside, vec4<u32>(m_inside), lane_mask(w));
     }
     return masks;
 }
@@ -759,13 +782,13 @@ fn main(
     var group = NO_SHAPE;
     let loop_cand = LoopCandidates(cand, use_list, list_start);
     let culled = SUBGROUP_CULL && count <= CULL_CAPACITY;
-    var masks = vec4<u32>(0u);
+    var masks = CullMasks(vec4<u32>(0u), vec4<u32>(0u));
     if (culled) {
         masks = subgroup_cull_masks(q, loop_cand, count, lo, hi);
     }
     for (var i = 0u; i <= count; i++) {
         if (culled && i < count) {
-            i = next_culled(masks, i, count);
+            i = next_culled(masks.passes, i, count);
         }
         var k = NO_SHAPE;
         var inside_block = false;
@@ -775,6 +798,9 @@ fn main(
             // untiled loop ran 0.005 ms slower on the H200 with the test in it).
             let listed = TILE_CULLING && use_list;
             inside_block = listed && e != NO_SHAPE && (e & INSIDE_ENTRY) != 0u;
+            // Subgroup culling flags them for the subgroup's own (smaller) box: compiled
+            // out without it.
+            inside_block = inside_block || (culled && mask_bit(masks.inside, i));
             k = select(e, entry_position(e), listed);
         }
         // Loaded unconditionally (the sentinel step reads entry 0): a conditional load
@@ -852,7 +878,7 @@ fn main(
         var n = select(0xffffffffu, count, use_list);
         if (culled) {
             // With subgroup culling: the candidates the pixel's subgroup visits.
-            n = dot(countOneBits(masks), vec4<u32>(1u));
+            n = dot(countOneBits(masks.passes), vec4<u32>(1u));
         }
         for (var j = 0u; j < 4u; j++) {
             let pixel = quad_pixel(base, j);

@@ -57,7 +57,8 @@ fn ppr_box_plane_min(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
 // every pixel of the block passes the four side tests and the projection tests only the
 // plane. The rest of the entry is the position in `visible`.
 const INSIDE_ENTRY: u32 = 0x80000000u;
-// Bench only (false: no entry is flagged, every pixel runs the five tests).
+// Bench only (false: no entry is flagged, and subgroup culling flags no candidate: every
+// pixel runs the five tests).
 override INSIDE_ENTRIES: bool = true;
 
 // Conservative box test: may some point of the box [lo, hi] (a block's pixel positions)
@@ -78,8 +79,16 @@ fn box_may_reflect(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
 // box_may_reflect for the box [lo, hi]: `k`, flagged INSIDE_ENTRY where the box lies
 // inside all four sides of the pyramid.
 fn list_entry(k: u32, t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> u32 {
+    return select(k, k | INSIDE_ENTRY, box_inside_sides(t, lo, hi));
+}
+
+// Whether the whole box [lo, hi] lies inside all four sides of the shape's pyramid (every
+// side's smallest value over the box > 0, with the margin): then every point of the box
+// that lies in front of the plane is reflected into the rectangle. Always false without
+// INSIDE_ENTRIES.
+fn box_inside_sides(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
     if (!INSIDE_ENTRIES) {
-        return k;
+        return false;
     }
     let c = 0.5 * (lo + hi);
     let h = 0.5 * (hi - lo);
@@ -87,7 +96,7 @@ fn list_entry(k: u32, t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> u32 {
         min(ppr_box_plane_min(t.side0, c, h), ppr_box_plane_min(t.side1, c, h)),
         min(ppr_box_plane_min(t.side2, c, h), ppr_box_plane_min(t.side3, c, h)),
     );
-    return select(k, k | INSIDE_ENTRY, inside > 0.0);
+    return inside > 0.0;
 }
 
 // The box reduction: BOX_SLOTS copies of each bound (ordered float bits), so that at most

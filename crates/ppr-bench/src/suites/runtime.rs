@@ -88,6 +88,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("no subgroup culling", Choice::Auto, Ablation::None),
         ("spread quads", Choice::Auto, Ablation::None),
         ("subgroup culling on", Choice::Auto, Ablation::None),
+        ("subgroup culling only", Choice::Auto, Ablation::None),
+        ("subgroup culling only, no inside entries", Choice::Auto, Ablation::None),
+        ("subgroup culling only, tests only", Choice::Auto, Ablation::TestsOnly),
         ("tile clear pass", Choice::Auto, Ablation::None),
         ("occlusion first", Choice::Auto, Ablation::None),
         ("occlusion last", Choice::Auto, Ablation::None),
@@ -257,6 +260,9 @@ pub fn run_runtime(
                     params.subgroup_cull = Choice::Off;
                 } else if name.starts_with("subgroup culling on") {
                     params.subgroup_cull = Choice::On;
+                } else if name.starts_with("subgroup culling only") {
+                    params.subgroup_cull = Choice::On;
+                    params.tile_culling = Choice::Off;
                 }
 
                 let spread_quads = name.starts_with("spread quads");
