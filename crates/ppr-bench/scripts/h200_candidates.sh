@@ -10,7 +10,9 @@
 #   box and the list cost on their own);
 # - `subgroup culling only` (no tile lists; each subgroup culls its candidates against its
 #   own box and flags those whose pyramid holds it) with and without its inside flags, and
-#   `... tests only` against `culling on, tests only`.
+#   `... tests only` against `culling on, tests only`; and `subgroup culling on` (the
+#   block lists culled again per subgroup, with the subgroup's inside flags: the rooms'
+#   10-30 candidates a block facing every way).
 # Expected: about 100 s for the default scenes (6 cameras, two sizes), 150 s for the rest.
 set -u
 for f in .gl/*.deb; do dpkg -x "$f" /; done
@@ -31,7 +33,7 @@ ROWS=()
 for row in "culling on" "culling on, subgroup box" "culling on, subgroup box atomics" \
     "culling on, empty" "culling on, empty, subgroup box" "culling on, empty, subgroup box atomics" \
     "culling on, tests only" "subgroup culling only" "subgroup culling only, no inside entries" \
-    "subgroup culling only, tests only"; do
+    "subgroup culling only, tests only" "subgroup culling on"; do
   ROWS+=(--profile-row "$row")
 done
 step candidates 200 $B runtime $C --projection-profile "${ROWS[@]}" --frames 10 \
