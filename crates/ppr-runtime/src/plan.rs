@@ -9,7 +9,7 @@ use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::parallel_trees::FrameTree;
 use crate::shapes::{ShapeSource, ShapeTable};
-use crate::source_box::source_rect;
+use crate::source_box::SourceBoxes;
 
 /// A reflector's rectangle on screen, in pixels (inclusive min, exclusive max).
 #[repr(C)]
@@ -469,17 +469,16 @@ impl FramePlan {
         let pixels = u64::from(viewport[0]) * u64::from(viewport[1]);
         plan.indirect = params.indirect.decide(plan.coverage <= params.indirect_coverage_limit(pixels));
         if params.source_boxes.decide(true) {
-            let rect = |s: &ShapeSource| source_rect(s, camera.position, &clip_from_rel, viewport);
+            let boxes = SourceBoxes::new(camera.position, &clip_from_rel, viewport);
+            let rect = |s: &ShapeSource| boxes.rect(s);
             let layers = plan.layers.iter().map(|l| rect(&table.shapes[l.shape as usize]));
             let entries = plan.tested.iter().map(|e| match *e {
                 TestedEntry::Shape(i) => rect(&table.shapes[i as usize]),
                 TestedEntry::PlaneGroup(g) => rect(&table.plane_groups.groups[g as usize].bounding_shape()),
-                TestedEntry::ParallelTree(t) => plan.trees[t as usize]
-                    .members
-                    .iter()
-                    .map(|&m| rect(&table.shapes[m as usize]))
-                    .reduce(union_rect)
-                    .expect("a tree has members"),
+                TestedEntry::ParallelTree(t) => {
+                    let members = &plan.trees[t as usize].members;
+                    boxes.union(members.len(), |k| &table.shapes[members[k] as usize]).0
+                }
             });
             plan.source_rects = entries.chain(layers).collect();
         }
@@ -676,20 +675,6 @@ impl FramePlan {
     /// Number of 16 × 16 tiles of the viewport.
     pub fn tile_count(&self) -> u32 {
         self.viewport[0].div_ceil(16) * self.viewport[1].div_ceil(16)
-    }
-}
-
-/// The smallest rectangle holding both (an empty one holds nothing).
-fn union_rect(a: ScreenRect, b: ScreenRect) -> ScreenRect {
-    if a.area() == 0 {
-        return b;
-    }
-    if b.area() == 0 {
-        return a;
-    }
-    ScreenRect {
-        min: [a.min[0].min(b.min[0]), a.min[1].min(b.min[1])],
-        max: [a.max[0].max(b.max[0]), a.max[1].max(b.max[1])],
     }
 }
 
