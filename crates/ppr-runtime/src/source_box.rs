@@ -124,7 +124,8 @@ impl SourceBoxes {
         let [w, h] = self.size;
         let mut points = [[0.0f64; 2]; 8];
         for (p, v) in points.iter_mut().zip(c.into_iter().chain(d)) {
-            if !(v.w > 1e-9 * v.abs().max_element()) {
+            // On or behind the camera's plane, or NaN.
+            if v.w.partial_cmp(&(1e-9 * v.abs().max_element())) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
             *p = [(v.x / v.w * 0.5 + 0.5) * f64::from(w), (0.5 - v.y / v.w * 0.5) * f64::from(h)];
