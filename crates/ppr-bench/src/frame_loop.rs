@@ -83,12 +83,22 @@ pub struct FrameRun {
     pub source: TimingSource,
     /// The technique's plan of the last frame.
     pub plan: String,
+    /// Per timed frame, the CPU milliseconds of the technique's `prepare` and `encode`
+    /// (recording its commands; not the cache flush, not the submit).
+    pub cpu_ms: Vec<f64>,
 }
 
 impl FrameRun {
     /// The median of the frames' totals (infinite for a run without frames).
     pub fn median_ms(&self) -> f64 {
         self.timings.total().map_or(f64::INFINITY, |s| s.median)
+    }
+
+    /// The median of [`Self::cpu_ms`] (NaN for a run without frames).
+    pub fn cpu_median_ms(&self) -> f64 {
+        let mut v = self.cpu_ms.clone();
+        v.sort_by(f64::total_cmp);
+        v.get(v.len() / 2).copied().unwrap_or(f64::NAN)
     }
 }
 
@@ -226,12 +236,17 @@ fn run_frames(
     let _ = technique.read_timings(device);
     let mut total = counts.timed;
     let mut i = 0;
+    let mut cpu_ms = Vec::with_capacity(total);
     while i < total {
+        let prepare_start = Instant::now();
         plan = technique.prepare(device, queue, camera, size);
+        let prepared = prepare_start.elapsed();
         let mut encoder =
             device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("bench frame") });
         flush.encode(&mut encoder);
+        let encode_start = Instant::now();
         technique.encode(&mut encoder, frame);
+        cpu_ms.push((prepared + encode_start.elapsed()).as_secs_f64() * 1e3);
         let start = Instant::now();
         queue.submit([encoder.finish()]);
         let passes = technique.read_timings(device);
@@ -250,7 +265,7 @@ fn run_frames(
         timings.push_frame(&passes);
         i += 1;
     }
-    FrameRun { timings, source, plan: plan.replace('\n', " | ") }
+    FrameRun { timings, source, plan: plan.replace('\n', " | "), cpu_ms }
 }
 
 #[cfg(test)]
@@ -261,7 +276,7 @@ mod tests {
     fn run_of(ms: f64) -> FrameRun {
         let mut timings = TimingSeries::default();
         timings.push_frame(&[PassTime::new("projection", ms)]);
-        FrameRun { timings, source: TimingSource::GpuTimestamps, plan: String::new() }
+        FrameRun { timings, source: TimingSource::GpuTimestamps, plan: String::new(), cpu_ms: vec![ms] }
     }
 
     #[test]

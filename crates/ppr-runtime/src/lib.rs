@@ -45,6 +45,8 @@ pub mod source_box;
 mod stereo;
 #[doc(hidden)]
 pub mod timestamps;
+// Reused staging buffers for the frame uploads.
+mod upload_ring;
 mod wgpu_compat;
 
 pub use camera::{Camera, CameraError, DepthMode, Projection};

@@ -1,6 +1,6 @@
 //! `ReflectionRenderer`: what a game creates once and calls twice per frame.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::sync::Arc;
 
 use glam::DMat4;
@@ -31,6 +31,7 @@ use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shape_tests::frame_tests;
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
+use crate::upload_ring::UploadRing;
 
 /// Pixels within this fraction of their camera distance from a reflector's plane count as
 /// lying on it and are not reflected by it (else a reflector reflects itself). 1e-4 covers
@@ -192,6 +193,9 @@ pub struct ReflectionRenderer {
     pub(crate) views: Vec<PreparedView>,
     timer: Option<PassTimer>,
     pub(crate) dispatches: Cell<u32>,
+    /// Where `encode` writes each view's upload for its copies: staging buffers that come
+    /// back once their encoder's commands are submitted and done.
+    upload_ring: RefCell<UploadRing>,
     /// Whether the frames want layers: the last `encode` that gave a layer output, or had
     /// layers without one (`None` before either).
     layer_output_given: Cell<Option<bool>>,
@@ -222,6 +226,7 @@ impl ReflectionRenderer {
             views: Vec::new(),
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
+            upload_ring: RefCell::new(UploadRing::new(device)),
             layer_output_given: Cell::new(None),
         }
     }
@@ -311,12 +316,18 @@ impl ReflectionRenderer {
             self.buffers = Some(FrameBuffers::new(&self.device, &self.table, &all, self.debug.writes));
             self.table_dirty = false;
         }
+        // The last frame's upload memory, reused (a fresh allocation of megabytes a frame
+        // costs page faults on every frame with thousands of shapes).
+        let mut recycled: Vec<Vec<u8>> = std::mem::take(&mut self.views)
+            .into_iter()
+            .filter_map(|v| v.upload.map(FrameUpload::into_bytes))
+            .collect();
         self.views = cameras
             .iter()
             .zip(&plans)
             .map(|(camera, plan)| PreparedView {
                 plan: Arc::clone(plan),
-                upload: self.upload(camera, plan),
+                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default()),
                 full_viewport: viewport,
                 reduced_active,
             })
@@ -365,7 +376,7 @@ impl ReflectionRenderer {
 
     /// What `encode` copies into the frame buffers for this view (`None` for an empty plan:
     /// nothing is encoded).
-    fn upload(&self, camera: &Camera, plan: &FramePlan) -> Option<FrameUpload> {
+    fn upload(&self, camera: &Camera, plan: &FramePlan, recycled: Vec<u8>) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
         let shapes = self.table.gpu_shapes(camera.position);
         let b = self.buffers.as_ref().expect("prepare_views allocates the buffers");
@@ -416,7 +427,6 @@ impl ReflectionRenderer {
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
-            &self.device,
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
                 (UploadTarget::Shapes, bytemuck::cast_slice(&shapes)),
@@ -435,6 +445,7 @@ impl ReflectionRenderer {
                     if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },
                 ),
             ],
+            recycled,
         ))
     }
 
@@ -484,7 +495,11 @@ impl ReflectionRenderer {
 
         // This prepared frame's uniforms, shapes and lists, copied in here (not at the
         // submit), so that each encode runs with the camera it was prepared for.
-        view.upload.as_ref().expect("prepare() builds the upload").encode_copies(encoder, b);
+        view.upload.as_ref().expect("prepare() builds the upload").encode_copies(
+            encoder,
+            b,
+            &mut self.upload_ring.borrow_mut(),
+        );
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(

@@ -21,3 +21,25 @@ impl<E> MappedRange for Result<wgpu::BufferView, E> {
         self.ok()
     }
 }
+
+/// `BufferSlice::get_mapped_range_mut()`: a `BufferViewMut` in wgpu 29, a `Result` of one
+/// in 30.
+pub(crate) trait MappedRangeMut {
+    /// The view of a slice known to be mapped for writing.
+    ///
+    /// # Panics
+    /// Where wgpu 30 reports the range could not be mapped.
+    fn into_view_mut(self) -> wgpu::BufferViewMut;
+}
+
+impl MappedRangeMut for wgpu::BufferViewMut {
+    fn into_view_mut(self) -> wgpu::BufferViewMut {
+        self
+    }
+}
+
+impl<E: std::fmt::Debug> MappedRangeMut for Result<wgpu::BufferViewMut, E> {
+    fn into_view_mut(self) -> wgpu::BufferViewMut {
+        self.expect("a staging buffer of the upload ring is mapped for writing")
+    }
+}

@@ -37,6 +37,7 @@ pub fn write_runtime_report(
         "floor_ms",
         "ratio_to_floor",
         "adapter",
+        "cpu_ms",
     ]);
     let mut table = MarkdownTable::new(&[
         "scene",
@@ -50,6 +51,7 @@ pub fn write_runtime_report(
         "#MB moved",
         "#floor ms",
         "#× floor",
+        "#CPU ms",
     ]);
     let bw = outcome.bandwidth;
     for r in &outcome.rows {
@@ -81,6 +83,7 @@ pub fn write_runtime_report(
                 num(floor, 4),
                 num(s.median / floor, 2),
                 outcome.adapter.clone(),
+                num(r.cpu_ms, 4),
             ]);
             table.push(vec![
                 r.scene.clone(),
@@ -94,6 +97,7 @@ pub fn write_runtime_report(
                 bytes.map_or("–".into(), |b| format!("{:.1}", b as f64 / 1e6)),
                 ms(floor),
                 if floor.is_nan() { "–".into() } else { format!("{:.1}", s.median / floor) },
+                String::new(),
             ]);
         }
         if let Some(t) = r.timings.total() {
@@ -110,6 +114,7 @@ pub fn write_runtime_report(
                 format!("{:.1}", total_bytes as f64 / 1e6),
                 ms(floor),
                 if floor.is_nan() { "–".into() } else { format!("**{:.1}**", t.median / floor) },
+                ms(r.cpu_ms),
             ]);
         }
     }
@@ -143,7 +148,9 @@ pub fn write_runtime_report(
          projection reads depth 4 B/px and writes 4 B per written pixel; reflection reads the \
          intermediate 4 B/px (neighbours from cache) and writes the output 8 B/px over the \
          dispatched pixels, and reads colour 8 B per pixel with data. Floor = bytes / copy \
-         bandwidth; × floor = median / floor.\n"
+         bandwidth; × floor = median / floor. CPU ms (on the frame's row): the median CPU time \
+         of the renderer's `prepare` and `encode` a frame, on this machine's CPU (planning, \
+         packing the upload, recording the passes; not the submit).\n"
     );
     for n in &outcome.notes {
         let _ = writeln!(md, "- {n}");

@@ -135,6 +135,9 @@ pub struct RuntimeRow {
     pub timings: TimingSeries,
     pub source: TimingSource,
     pub bytes: Vec<PassBytes>,
+    /// Median CPU milliseconds of the renderer's `prepare` and `encode` a frame (planning,
+    /// packing the upload, recording the passes).
+    pub cpu_ms: f64,
 }
 
 /// Everything the runtime suite found.
@@ -351,6 +354,7 @@ pub fn run_runtime(
         })?;
         for ((&(v, c, res), run), job_facts) in jobs.iter().zip(runs).zip(facts) {
             let (facts, visible) = job_facts.expect("read after the first round's run");
+            let cpu_ms = run.cpu_median_ms();
             rows.push(RuntimeRow {
                 scene: format!("{}{}", scene.name, runners[v].0),
                 camera: scene.cameras[c].name.clone(),
@@ -358,6 +362,7 @@ pub fn run_runtime(
                 plan: run.plan,
                 visible,
                 facts,
+                cpu_ms,
                 timings: run.timings,
                 source: run.source,
                 bytes: pass_bytes(&facts),

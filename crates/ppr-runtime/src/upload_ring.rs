@@ -1,0 +1,58 @@
+//! Staging buffers for the frame uploads, reused frame after frame: a buffer written for
+//! one encode comes back, mapped for writing again, once that encoder's commands have
+//! been submitted and run. Creating a staging buffer a frame cost page faults and zeroing
+//! of megabytes on every frame with thousands of shapes.
+
+use std::sync::mpsc;
+
+use crate::wgpu_compat::MappedRangeMut;
+
+/// Smallest staging buffer: a frame of a few hundred shapes fits in one.
+const MIN_BYTES: u64 = 1 << 20;
+/// Most buffers kept waiting for a frame (the largest are kept).
+const MAX_FREE: usize = 4;
+
+pub(crate) struct UploadRing {
+    device: wgpu::Device,
+    /// Mapped for writing, ready.
+    free: Vec<wgpu::Buffer>,
+    sender: mpsc::Sender<wgpu::Buffer>,
+    returned: mpsc::Receiver<wgpu::Buffer>,
+}
+
+impl UploadRing {
+    pub fn new(device: &wgpu::Device) -> Self {
+        let (sender, returned) = mpsc::channel();
+        Self { device: device.clone(), free: Vec::new(), sender, returned }
+    }
+
+    /// A staging buffer holding `bytes` (a non-empty whole number of 4-byte words) at
+    /// offset 0, for copies recorded in `encoder`; it comes back to the ring once
+    /// `encoder`'s commands are submitted and done (one never submitted is dropped).
+    pub fn stage(&mut self, encoder: &wgpu::CommandEncoder, bytes: &[u8]) -> wgpu::Buffer {
+        self.free.extend(self.returned.try_iter());
+        if self.free.len() > MAX_FREE {
+            self.free.sort_by_key(|b| std::cmp::Reverse(b.size()));
+            self.free.truncate(MAX_FREE);
+        }
+        let size = bytes.len() as u64;
+        let buffer = match self.free.iter().position(|b| b.size() >= size) {
+            Some(i) => self.free.swap_remove(i),
+            None => self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("ppr frame upload"),
+                size: size.max(MIN_BYTES).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
+                usage: wgpu::BufferUsages::MAP_WRITE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: true,
+            }),
+        };
+        buffer.slice(..size).get_mapped_range_mut().into_view_mut().copy_from_slice(bytes);
+        buffer.unmap();
+        let (sender, back) = (self.sender.clone(), buffer.clone());
+        encoder.map_buffer_on_submit(&buffer, wgpu::MapMode::Write, .., move |mapped| {
+            if mapped.is_ok() {
+                let _ = sender.send(back);
+            }
+        });
+        buffer
+    }
+}
