@@ -192,14 +192,13 @@ impl FrameTree {
         words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
         words.extend([tests_start, 0, 0, 0]);
         let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
-        // Per member: its plane offset, its centre's v and its corners' (u, v).
-        let geometry: Vec<(f64, f64, [[f64; 2]; 4])> = self
+        let geometry: Vec<MemberSpan> = self
             .members
             .iter()
             .map(|&m| {
                 let s = &table.shapes[m as usize];
                 let corners = s.corners().map(|c| [(c - eye).dot(au), (c - eye).dot(av)]);
-                (s.plane_dist_from(eye), (s.center - eye).dot(av), corners)
+                MemberSpan::new(s.plane_dist_from(eye), (s.center - eye).dot(av), corners)
             })
             .collect();
         let depth = leaves.trailing_zeros();
@@ -215,32 +214,54 @@ impl FrameTree {
     }
 }
 
+/// What a node needs of a member: its plane offset, its centre's v, and its corners' u
+/// and v ranges (the corners themselves are not needed: `v - α·offset` is monotone in v,
+/// in f64 rounding too, so its range over the corners is that of the corners' v range).
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct MemberSpan {
+    offset: f64,
+    centre_v: f64,
+    u: [f64; 2],
+    v: [f64; 2],
+}
+
+impl MemberSpan {
+    fn new(offset: f64, centre_v: f64, corners: [[f64; 2]; 4]) -> Self {
+        let (mut u, mut v) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
+        for [cu, cv] in corners {
+            u = [u[0].min(cu), u[1].max(cu)];
+            v = [v[0].min(cv), v[1].max(cv)];
+        }
+        Self { offset, centre_v, u, v }
+    }
+}
+
 /// A node's words: the range of its members' plane offsets, the u range of their corners,
 /// the slope `α` of their centres' v against the offset (least squares: a stairway's
 /// treads climb along v) and the range of `v − α·offset` over their corners, all rounded
 /// outwards to f32, and `1/α` (0 for α = 0). No members: a lowest offset of f32::MAX, which no pixel lies above.
-fn node_words(members: &[(f64, f64, [[f64; 2]; 4])]) -> [u32; TREE_NODE_WORDS] {
+fn node_words(members: &[MemberSpan]) -> [u32; TREE_NODE_WORDS] {
     if members.is_empty() {
         return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
     }
     let n = members.len() as f64;
-    let (mean_d, mean_v) = members.iter().fold((0.0, 0.0), |(a, b), m| (a + m.0 / n, b + m.1 / n));
+    let (mean_d, mean_v) =
+        members.iter().fold((0.0, 0.0), |(a, b), m| (a + m.offset / n, b + m.centre_v / n));
     let (mut sdd, mut sdv) = (0.0, 0.0);
     for m in members {
-        sdd += (m.0 - mean_d) * (m.0 - mean_d);
-        sdv += (m.0 - mean_d) * (m.1 - mean_v);
+        sdd += (m.offset - mean_d) * (m.offset - mean_d);
+        sdv += (m.offset - mean_d) * (m.centre_v - mean_v);
     }
     let slope = if sdd > 1e-12 * n { (sdv / sdd).clamp(-1e4, 1e4) } else { 0.0 };
     // The slope the GPU multiplies by, so that the slab is computed with it.
     let alpha = slope as f32;
     let a = f64::from(alpha);
     let (mut d, mut u, mut w) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
-    for &(offset, _, corners) in members {
-        d = [d[0].min(offset), d[1].max(offset)];
-        for [cu, cv] in corners {
-            u = [u[0].min(cu), u[1].max(cu)];
-            w = [w[0].min(cv - a * offset), w[1].max(cv - a * offset)];
-        }
+    for m in members {
+        d = [d[0].min(m.offset), d[1].max(m.offset)];
+        u = [u[0].min(m.u[0]), u[1].max(m.u[1])];
+        let shift = a * m.offset;
+        w = [w[0].min(m.v[0] - shift), w[1].max(m.v[1] - shift)];
     }
     let inv_alpha = if alpha == 0.0 { 0.0 } else { 1.0 / alpha };
     [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, inv_alpha].map(f32::to_bits)
@@ -357,6 +378,48 @@ fn node_meets(lim: [f32; 8], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> 
 mod tests {
     use super::*;
     use crate::shape_tests::shape_test;
+
+    /// The node words from every corner of every member (how they were first computed).
+    fn node_words_from_corners(members: &[(f64, f64, [[f64; 2]; 4])]) -> [u32; TREE_NODE_WORDS] {
+        if members.is_empty() {
+            return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
+        }
+        let n = members.len() as f64;
+        let (mean_d, mean_v) = members.iter().fold((0.0, 0.0), |(a, b), m| (a + m.0 / n, b + m.1 / n));
+        let (mut sdd, mut sdv) = (0.0, 0.0);
+        for m in members {
+            sdd += (m.0 - mean_d) * (m.0 - mean_d);
+            sdv += (m.0 - mean_d) * (m.1 - mean_v);
+        }
+        let slope = if sdd > 1e-12 * n { (sdv / sdd).clamp(-1e4, 1e4) } else { 0.0 };
+        let alpha = slope as f32;
+        let a = f64::from(alpha);
+        let (mut d, mut u, mut w) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
+        for &(offset, _, corners) in members {
+            d = [d[0].min(offset), d[1].max(offset)];
+            for [cu, cv] in corners {
+                u = [u[0].min(cu), u[1].max(cu)];
+                w = [w[0].min(cv - a * offset), w[1].max(cv - a * offset)];
+            }
+        }
+        let inv_alpha = if alpha == 0.0 { 0.0 } else { 1.0 / alpha };
+        [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, inv_alpha].map(f32::to_bits)
+    }
+
+    proptest::proptest! {
+        /// A node's words from its members' u and v ranges are the words from all their
+        /// corners, bit for bit.
+        #[test]
+        fn node_words_from_member_ranges_match_the_corners(
+            members in proptest::collection::vec(
+                (-50.0f64..50.0, -50.0f64..50.0, proptest::array::uniform4(proptest::array::uniform2(-60.0f64..60.0))),
+                0..12,
+            ),
+        ) {
+            let spans: Vec<MemberSpan> = members.iter().map(|&(d, v, c)| MemberSpan::new(d, v, c)).collect();
+            proptest::prop_assert_eq!(node_words(&spans), node_words_from_corners(&members));
+        }
+    }
 
     fn tread(i: u32, center: DVec3, half: [f32; 2]) -> ShapeSource {
         crate::shapes::floor_mirror(i, center, half, 0)
