@@ -1,4 +1,4 @@
-//! What one `prepare` hands to the GPU, in a buffer of its own: the frame uniforms, the
+//! What one `prepare` hands to the GPU, packed in one block: the frame uniforms, the
 //! camera-relative shapes, the visible list, the screen rectangles, the layers, the shape
 //! tests, the source boxes and the merged plane groups' headers.
 //! `encode` writes it into a staging buffer (`upload_ring.rs`: reused frame after frame)
