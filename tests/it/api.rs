@@ -351,3 +351,41 @@ fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
         }
     }
 }
+
+#[test]
+fn frames_reuse_their_upload_staging_buffers() {
+    // Each encode writes its view's upload into a staging buffer that comes back once the
+    // encoder's commands have run: frames submitted one after the other reuse one, and an
+    // encoder dropped without a submit loses its buffer but breaks nothing.
+    let s = scene();
+    let set = s.reflector_set();
+    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
+    let frames: Vec<GpuFrame> = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    let mut r = renderer();
+    r.set_reflectors(&ppr_tests::harness::validated(&set));
+    let first: Vec<Vec<Vec4>> = (0..2).map(|k| run(&mut r, &frames[k], &cams[k]).pixels).collect();
+    assert!(bits(&first[0]) != bits(&first[1]), "the two views must differ");
+    for round in 0..3 {
+        for k in 0..2 {
+            let again = run(&mut r, &frames[k], &cams[k]).pixels;
+            assert!(
+                bits(&again) == bits(&first[k]),
+                "view {k}, round {round}: a reused buffer changed the frame"
+            );
+        }
+    }
+    assert!(
+        r.upload_staging_buffers_created() <= 2,
+        "8 frames, each waited for, created {} staging buffers",
+        r.upload_staging_buffers_created()
+    );
+    // An encoder recorded and dropped: its staging buffer never comes back.
+    let g = gpu();
+    r.prepare(&cams[0], SIZE);
+    let out = fresh_output();
+    let mut dropped = g.device.create_command_encoder(&Default::default());
+    encode_into(&r, &mut dropped, &frames[0], &out);
+    drop(dropped);
+    let after = run(&mut r, &frames[1], &cams[1]).pixels;
+    assert!(bits(&after) == bits(&first[1]), "the frame after a dropped encoder");
+}

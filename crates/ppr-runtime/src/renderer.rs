@@ -335,6 +335,13 @@ impl ReflectionRenderer {
         plans
     }
 
+    /// How many staging buffers `encode` has created for the frame uploads (they are
+    /// reused once their frame's commands have run: tests and diagnostics).
+    #[doc(hidden)]
+    pub fn upload_staging_buffers_created(&self) -> usize {
+        self.upload_ring.borrow().created()
+    }
+
     /// The plan of the last [`Self::prepare`].
     pub fn plan(&self) -> Option<&FramePlan> {
         self.views.first().map(|v| v.plan.as_ref())

@@ -18,12 +18,19 @@ pub(crate) struct UploadRing {
     free: Vec<wgpu::Buffer>,
     sender: mpsc::Sender<wgpu::Buffer>,
     returned: mpsc::Receiver<wgpu::Buffer>,
+    /// Buffers created so far (the tests check that frames reuse them).
+    created: usize,
 }
 
 impl UploadRing {
     pub fn new(device: &wgpu::Device) -> Self {
         let (sender, returned) = mpsc::channel();
-        Self { device: device.clone(), free: Vec::new(), sender, returned }
+        Self { device: device.clone(), free: Vec::new(), sender, returned, created: 0 }
+    }
+
+    /// How many staging buffers the ring has created.
+    pub fn created(&self) -> usize {
+        self.created
     }
 
     /// A staging buffer holding `bytes` (a non-empty whole number of 4-byte words) at
@@ -38,12 +45,15 @@ impl UploadRing {
         let size = bytes.len() as u64;
         let buffer = match self.free.iter().position(|b| b.size() >= size) {
             Some(i) => self.free.swap_remove(i),
-            None => self.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("ppr frame upload"),
-                size: size.max(MIN_BYTES).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
-                usage: wgpu::BufferUsages::MAP_WRITE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: true,
-            }),
+            None => {
+                self.created += 1;
+                self.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some("ppr frame upload"),
+                    size: size.max(MIN_BYTES).next_multiple_of(wgpu::COPY_BUFFER_ALIGNMENT),
+                    usage: wgpu::BufferUsages::MAP_WRITE | wgpu::BufferUsages::COPY_SRC,
+                    mapped_at_creation: true,
+                })
+            }
         };
         buffer.slice(..size).get_mapped_range_mut().into_view_mut().copy_from_slice(bytes);
         buffer.unmap();
