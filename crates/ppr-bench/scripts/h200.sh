@@ -7,26 +7,11 @@
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).
-set -u
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export WGPU_BACKEND=vulkan
-ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-if [ -f "$ICD" ]; then export VK_DRIVER_FILES=$ICD; fi
-B=.gpu/ppr-bench
-C="--scenes-dir .gpu/scenes"
-R=/tmp/results
-mkdir -p "$R"
+source crates/ppr-bench/scripts/h200_env.sh
 # The GPU's clocks, power and temperature every half second, beside the results: the
 # scaling suite's 10 000-shape rows have met a slow state (every pass 1.5-2x slower) after
 # its heavy rows; this log says whether the clocks fell with it.
 nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,temperature.gpu,clocks_throttle_reasons.active --format=csv -lms 500 > "$R/clocks.csv" 2>&1 &
-nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
-# Each step packs the archive again, so that a call cut short brings back what it measured.
-step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
-  timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
-  echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"
-  tar czf "$OUT/results.tar.gz" -C /tmp results; }
 step profile 330 $B runtime $C --projection-profile --write-probe --frames 20 --out $R/profile
 # The generated levels' profile (runtime.md, "Generated levels").
 step generated 250 $B runtime $C --projection-profile --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof

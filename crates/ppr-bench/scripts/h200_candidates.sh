@@ -14,21 +14,7 @@
 #   block lists culled again per subgroup, with the subgroup's inside flags: the rooms'
 #   10-30 candidates a block facing every way).
 # Expected: about 100 s for the default scenes (6 cameras, two sizes), 150 s for the rest.
-set -u
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-export WGPU_BACKEND=vulkan
-ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-if [ -f "$ICD" ]; then export VK_DRIVER_FILES=$ICD; fi
-B=.gpu/ppr-bench
-C="--scenes-dir .gpu/scenes"
-R=/tmp/results
-mkdir -p "$R"
-nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.mem --format=csv > "$R/nvidia-smi.txt" 2>&1
-step() { local name=$1 limit=$2; shift 2; local t0=$(date +%s)
-  timeout "$limit" "$@" > "$R/$name.log" 2>&1; local rc=$?
-  echo "$name rc=$rc $(( $(date +%s) - t0 )) s"; tail -n 2 "$R/$name.log"
-  tar czf "$OUT/results.tar.gz" -C /tmp results; }
+source crates/ppr-bench/scripts/h200_env.sh
 ROWS=()
 for row in "culling on" "culling on, subgroup box" "culling on, subgroup box atomics" \
     "culling on, empty" "culling on, empty, subgroup box" "culling on, empty, subgroup box atomics" \
