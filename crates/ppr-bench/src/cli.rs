@@ -104,6 +104,10 @@ pub struct RuntimeArgs {
     /// name is an error that lists them. Default: every row.
     #[arg(long = "profile-row", value_name = "NAME")]
     pub profile_rows: Vec<String>,
+    /// With `--projection-profile`: leave out the profile rows of this name (repeat), e.g.
+    /// rows already timed in an earlier call; an unknown name is an error that lists them.
+    #[arg(long = "skip-profile-row", value_name = "NAME")]
+    pub skip_profile_rows: Vec<String>,
     /// Also time full-screen `Rgba16Float` writes (compute storage texture in several
     /// layouts, storage buffer, fragment pass) at each resolution: the floor of the
     /// reflection and upsample passes' output write.
@@ -355,6 +359,7 @@ where
                 features_off: a.features_off,
                 projection_profile: a.projection_profile,
                 profile_rows: a.profile_rows.clone(),
+                skip_profile_rows: a.skip_profile_rows.clone(),
                 write_probe: a.write_probe,
                 glossy: a.glossy,
                 stereo_sizes: a.stereo.clone(),

@@ -33,6 +33,8 @@ pub struct RuntimeConfig {
     pub projection_profile: bool,
     /// With `projection_profile`: only these rows (every row when empty).
     pub profile_rows: Vec<String>,
+    /// With `projection_profile`: leave out these rows.
+    pub skip_profile_rows: Vec<String>,
     /// Also time full-screen image writes (`write_probe.rs`) at each resolution.
     pub write_probe: bool,
     /// Also run every scene with every reflector at roughness [`GLOSSY_PROBE_ROUGHNESS`],
@@ -106,20 +108,32 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     ]
 }
 
-/// The rows of [`projection_profile`] that `wanted` names (all when it is empty).
+/// The rows of [`projection_profile`] that `wanted` names (all when it is empty), less
+/// those `skipped` names.
 ///
 /// # Errors
-/// A name that is no row's, with the list of rows.
-fn profile_rows(wanted: &[String]) -> Result<Vec<(&'static str, Choice, Ablation)>, BenchError> {
+/// A name that is no row's, with the flag that gave it and the list of rows.
+fn profile_rows(
+    wanted: &[String],
+    skipped: &[String],
+) -> Result<Vec<(&'static str, Choice, Ablation)>, BenchError> {
     let all = projection_profile();
-    if let Some(unknown) = wanted.iter().find(|w| !all.iter().any(|(n, ..)| n == w)) {
-        let names: Vec<_> = all.iter().map(|(n, ..)| format!("\"{n}\"")).collect();
-        return Err(BenchError::Spec(format!(
-            "--profile-row \"{unknown}\" is no row of the projection profile; the rows: {}",
-            names.join(", ")
-        )));
+    let named =
+        wanted.iter().map(|w| ("--profile-row", w)).chain(skipped.iter().map(|s| ("--skip-profile-row", s)));
+    for (flag, name) in named {
+        if !all.iter().any(|(n, ..)| n == name) {
+            let names: Vec<_> = all.iter().map(|(n, ..)| format!("\"{n}\"")).collect();
+            return Err(BenchError::Spec(format!(
+                "{flag} \"{name}\" is no row of the projection profile; the rows: {}",
+                names.join(", ")
+            )));
+        }
     }
-    Ok(all.into_iter().filter(|(n, ..)| wanted.is_empty() || wanted.iter().any(|w| w == n)).collect())
+    Ok(all
+        .into_iter()
+        .filter(|(n, ..)| wanted.is_empty() || wanted.iter().any(|w| w == n))
+        .filter(|(n, ..)| !skipped.iter().any(|s| s == n))
+        .collect())
 }
 
 /// One scene, camera and size.
@@ -163,7 +177,7 @@ pub fn run_runtime(
 ) -> Result<RuntimeOutcome, BenchError> {
     let (device, queue) = (&gpu.device, &gpu.queue);
     // The profile's rows, once; an unknown `--profile-row` fails before any GPU work.
-    let profile = profile_rows(&rc.profile_rows)?;
+    let profile = profile_rows(&rc.profile_rows, &rc.skip_profile_rows)?;
     let reps = cfg.frames.timed.max(3);
     let bandwidth = measure_copy_bandwidth(device, queue, rc.copy_bytes, reps);
     if let Some(b) = bandwidth {
@@ -432,16 +446,31 @@ mod tests {
 
     #[test]
     fn profile_rows_keep_the_named_rows_in_profile_order() {
-        let all = profile_rows(&[]).expect("no filter");
+        let all = profile_rows(&[], &[]).expect("no filter");
         assert_eq!(all.len(), projection_profile().len());
         let wanted = ["reflection: mirrors".to_owned(), "empty".to_owned()];
-        let names: Vec<_> = profile_rows(&wanted).expect("known rows").iter().map(|(n, ..)| *n).collect();
+        let names: Vec<_> =
+            profile_rows(&wanted, &[]).expect("known rows").iter().map(|(n, ..)| *n).collect();
         assert_eq!(names, ["empty", "reflection: mirrors"]);
     }
 
     #[test]
+    fn skipped_profile_rows_are_left_out_of_the_named_or_all_rows() {
+        let skipped = ["empty".to_owned()];
+        let rest = profile_rows(&[], &skipped).expect("known rows");
+        assert_eq!(rest.len(), projection_profile().len() - 1);
+        assert!(rest.iter().all(|(n, ..)| *n != "empty"));
+        let wanted = ["reflection: mirrors".to_owned(), "empty".to_owned()];
+        let names: Vec<_> =
+            profile_rows(&wanted, &skipped).expect("known rows").iter().map(|(n, ..)| *n).collect();
+        assert_eq!(names, ["reflection: mirrors"]);
+        let err = profile_rows(&[], &["emtpy".to_owned()]).expect_err("no such row").to_string();
+        assert!(err.contains("--skip-profile-row \"emtpy\""), "{err}");
+    }
+
+    #[test]
     fn an_unknown_profile_row_is_an_error_that_lists_the_rows() {
-        let err = profile_rows(&["tests onyl".to_owned()]).expect_err("no such row").to_string();
+        let err = profile_rows(&["tests onyl".to_owned()], &[]).expect_err("no such row").to_string();
         assert!(err.contains("\"tests onyl\"") && err.contains("\"tests only\""), "{err}");
     }
 }
