@@ -7,8 +7,8 @@
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).
-# `bash h200.sh 1|2|3` runs one call's steps (1: profile, generated levels' profile,
-# collision; 2: scaling, compare; 3: rooms, bounces), no argument all of them. The profile
+# `bash h200.sh 1|2|3` runs one call's steps (1: profile, collision; 2: scaling,
+# compare; 3: the generated levels' profile, rooms, bounces), no argument all of them. The profile
 # leaves out the rows h200_candidates.sh timed (SKIP below).
 PART=${1:-all}
 part() { [ "$PART" = all ] || [ "$PART" = "$1" ]; }
@@ -26,8 +26,6 @@ for row in "culling on, subgroup box" "subgroup box" "culling on, empty, subgrou
 done
 if part 1; then
 step profile 330 $B runtime $C --projection-profile "${SKIP[@]}" --write-probe --frames 20 --out $R/profile
-# The generated levels' profile (runtime.md, "Generated levels").
-step generated 150 $B runtime $C --projection-profile "${SKIP[@]}" --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
 step collision 110 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
 fi
 if part 2; then
@@ -36,6 +34,8 @@ T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique 
 step compare 290 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 fi
 if part 3; then
+# The generated levels' profile (runtime.md, "Generated levels").
+step generated 150 $B runtime $C --projection-profile "${SKIP[@]}" --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
 step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
 # Mirror facing mirror (docs/perf/comparison.md; 1080p in the 2026-12-02 run):
 step bounces 200 $B compare $C --out $R/bounces --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 1080p --frames 20 --technique ppr --technique ppr:reference-bounces=2 --technique ppr:bounces=2 --technique ppr:tier=half,bounces=2 --technique ssr-brute:reference-bounces=2 --technique exact --technique exact:bounces=2
