@@ -465,24 +465,34 @@ fn lists_built_in_the_projection_are_the_block_list_pass_lists() {
         for (separate, fused) in
             [(Culling::Tiles, Culling::FusedTiles), (Culling::SuperTiles, Culling::FusedSuperTiles)]
         {
-            let lists = |culling: Culling| {
+            // `prefetch`: the fused lists load their first chunk before the box (the same
+            // lists; the 1 200 puddles' blocks take several chunks).
+            let lists = |culling: Culling, prefetch: bool| {
                 let mut r = configured(culling, Choice::On);
                 r.debug.tile_lists = true;
+                r.debug.list_prefetch = prefetch;
                 r.set_reflectors(&ppr_tests::harness::validated(set));
                 let out = run(&mut r, gpu, camera);
                 assert_eq!(out.plan.fused_lists, culling.fused(), "{}", out.plan);
                 let mut w = configured(culling, Choice::On);
+                w.debug.list_prefetch = prefetch;
                 w.set_reflectors(&ppr_tests::harness::validated(set));
                 let written = run(&mut w, gpu, camera);
                 (debug_masks(&r), debug_masks(&w), written.intermediate)
             };
-            let (a, b) = (lists(separate), lists(fused));
+            let a = lists(separate, false);
             let listed = a.0.iter().filter(|&&n| n != u32::MAX).count();
             overflowed += a.0.len() - listed;
             eprintln!("case {case}, {fused:?}: {listed} pixels with a list, {} without", a.0.len() - listed);
-            assert_eq!(a.0, b.0, "list lengths differ in case {case}, {fused:?}");
-            assert_eq!(a.1, b.1, "writes differ in case {case}, {fused:?}");
-            assert_eq!(a.2, b.2, "intermediate buffers differ in case {case}, {fused:?}");
+            for prefetch in [false, true] {
+                let b = lists(fused, prefetch);
+                assert_eq!(a.0, b.0, "list lengths differ in case {case}, {fused:?}, prefetch {prefetch}");
+                assert_eq!(a.1, b.1, "writes differ in case {case}, {fused:?}, prefetch {prefetch}");
+                assert_eq!(
+                    a.2, b.2,
+                    "intermediate buffers differ in case {case}, {fused:?}, prefetch {prefetch}"
+                );
+            }
         }
     }
     assert!(overflowed > 0, "some list must overflow");

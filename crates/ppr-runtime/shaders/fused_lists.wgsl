@@ -17,6 +17,20 @@ fn fused_list_entry(i: u32) -> u32 {
 // test passes. Returns the list's length (over BLOCK_LIST_CAPACITY when it overflowed:
 // the entries past it are not kept). Call from uniform control flow.
 fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi: vec2<u32>) -> u32 {
+    let c = block_candidates(wid);
+    // LIST_PREFETCH: the first chunk's candidate, source-box test and shape test loaded
+    // before the box (whose barriers they then overlap), unconditionally (entry 0 where
+    // there is none: a conditional load into a variable may cost a trip through local
+    // memory).
+    var pre_k = 0u;
+    var pre_meets = false;
+    var pre_t: ShapeTest;
+    if (LIST_PREFETCH) {
+        let has = lid < c.count;
+        pre_k = select(0u, candidate(c, min(lid, max(c.count, 1u) - 1u)), has);
+        pre_meets = has && block_meets_source_box(pre_k, lo, hi);
+        pre_t = shape_test(pre_k);
+    }
     var own = TileBox(vec3<f32>(3.0e38), vec3<f32>(-3.0e38));
     for (var j = 0u; j < 4u; j++) {
         if (lane_f32(q.tolerance, j) > 0.0) {
@@ -41,16 +55,24 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
         box = workgroup_box_of(lid, part.lo, part.hi, takes_part);
     }
     let empty = box.lo.x > box.hi.x;
-    let c = block_candidates(wid);
     var written = 0u;
     for (var first = 0u; first < c.count; first += TILE_GROUP_THREADS) {
         let i = first + lid;
         var entry = 0u;
         var passes = false;
         if (!empty && i < c.count) {
-            let k = candidate(c, i);
-            if (block_meets_source_box(k, lo, hi)) {
-                let t = shape_test(k);
+            let prefetched = LIST_PREFETCH && first == 0u;
+            var k = pre_k;
+            var meets = pre_meets;
+            if (!prefetched) {
+                k = candidate(c, i);
+                meets = block_meets_source_box(k, lo, hi);
+            }
+            if (meets) {
+                var t = pre_t;
+                if (!prefetched) {
+                    t = shape_test(k);
+                }
                 passes = box_may_reflect(t, box.lo, box.hi);
                 // The inside test only for the entries that are listed.
                 if (passes) {

@@ -85,6 +85,9 @@ override SUBGROUP_CULL: bool = false;
 // How the fused lists reduce the box of the block's positions (fused_lists.wgsl): 0 the
 // workgroup's atomics, 1 per subgroup first, 2 per subgroup into slots, one barrier.
 override SUBGROUP_BOX: u32 = 0u;
+// The fused lists' first chunk of candidates loaded before the box reduction's barriers
+// (fused_lists.wgsl), so that the loads wait beside them instead of after them.
+override LIST_PREFETCH: bool = false;
 override ABLATION: u32 = 0u;
 
 const NO_SHAPE: u32 = 0xffffffffu;

@@ -143,6 +143,10 @@ pub struct DebugOptions {
     /// How the block lists the projection builds reduce the box of the block's positions
     /// (bench only, the same lists; `ProjectionVariant::box_reduction`).
     pub box_reduction: BoxReduction,
+    /// The block lists the projection builds load their first chunk's candidates and shape
+    /// tests before the box reduction (bench only, the same lists;
+    /// `ProjectionVariant::list_prefetch`).
+    pub list_prefetch: bool,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -377,6 +381,7 @@ impl ReflectionRenderer {
             occlusion_first: plan.occlusion_first,
             no_inside_entries: self.debug.no_inside_entries,
             box_reduction: self.debug.box_reduction,
+            list_prefetch: self.debug.list_prefetch,
             ablation: self.debug.projection_ablation,
         }
     }

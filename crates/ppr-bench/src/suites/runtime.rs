@@ -80,6 +80,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling on, empty, subgroup box", Choice::Auto, Ablation::Empty),
         ("culling on, subgroup box atomics", Choice::Auto, Ablation::None),
         ("culling on, empty, subgroup box atomics", Choice::Auto, Ablation::Empty),
+        ("culling on, prefetch", Choice::Auto, Ablation::None),
+        ("culling on, empty, prefetch", Choice::Auto, Ablation::Empty),
         ("indirect off", Choice::Auto, Ablation::None),
         ("indirect on", Choice::Auto, Ablation::None),
         ("culling off", Choice::Auto, Ablation::None),
@@ -317,6 +319,7 @@ pub fn run_runtime(
                     } else {
                         BoxReduction::Atomics
                     },
+                    list_prefetch: name.ends_with("prefetch"),
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

@@ -69,6 +69,9 @@ pub struct ProjectionVariant {
     /// Bench only (the same lists): how the fused lists reduce the box of the block's
     /// positions (`SUBGROUP_BOX` of `fused_lists.wgsl`).
     pub box_reduction: BoxReduction,
+    /// Bench only (the same lists): the fused lists load their first chunk's candidates
+    /// and shape tests before the box reduction's barriers (`LIST_PREFETCH`).
+    pub list_prefetch: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -227,6 +230,7 @@ impl ProjectionPass {
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("INSIDE_ENTRIES", flag(!v.no_inside_entries)),
             ("SUBGROUP_BOX", self.box_reduction_code(v.box_reduction)),
+            ("LIST_PREFETCH", flag(v.list_prefetch)),
             ("ABLATION", v.ablation.code()),
         ];
         let label = format!("ppr projection {v:?}");
