@@ -7,16 +7,17 @@
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).
-# `bash h200.sh 1|2|3` runs one call's steps (1: profile, collision; 2: scaling,
-# compare; 3: the generated levels' profile, rooms, bounces), no argument all of them. The profile
-# leaves out the rows h200_candidates.sh timed (SKIP below).
-PART=${1:-all}
-part() { [ "$PART" = all ] || [ "$PART" = "$1" ]; }
+# `bash h200.sh STEP...` runs only the named steps (profile, collision, scaling, compare,
+# generated, rooms, bounces), in this order; no argument runs them all (split them into
+# calls of at most 600 s). The profile leaves out the rows h200_candidates.sh timed (SKIP
+# below).
+STEPS=" $* "
+want() { [ "$STEPS" = "  " ] || [[ "$STEPS" == *" $1 "* ]]; }
 source crates/ppr-bench/scripts/h200_env.sh
 # The GPU's clocks, power and temperature every half second, beside the results: the
 # scaling suite's 10 000-shape rows have met a slow state (every pass 1.5-2x slower) after
 # its heavy rows; this log says whether the clocks fell with it.
-nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,temperature.gpu,clocks_throttle_reasons.active --format=csv -lms 500 > "$R/clocks_$PART.csv" 2>&1 &
+nvidia-smi --query-gpu=timestamp,clocks.sm,clocks.mem,power.draw,temperature.gpu,clocks_throttle_reasons.active --format=csv -lms 500 > "$R/clocks_$(date +%s).csv" 2>&1 &
 SKIP=()
 for row in "culling on, subgroup box" "subgroup box" "culling on, empty, subgroup box" \
     "culling on, subgroup box atomics" "culling on, empty, subgroup box atomics" \
@@ -24,19 +25,13 @@ for row in "culling on, subgroup box" "subgroup box" "culling on, empty, subgrou
     "subgroup culling only, tests only"; do
   SKIP+=(--skip-profile-row "$row")
 done
-if part 1; then
-step profile 330 $B runtime $C --projection-profile "${SKIP[@]}" --write-probe --frames 20 --out $R/profile
-step collision 110 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
-fi
-if part 2; then
-step scaling 300 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5,0.6
+want profile && step profile 330 $B runtime $C --projection-profile "${SKIP[@]}" --write-probe --frames 20 --out $R/profile
+want collision && step collision 110 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
+want scaling && step scaling 300 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5,0.6
 T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
-step compare 290 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
-fi
-if part 3; then
+want compare && step compare 290 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 # The generated levels' profile (runtime.md, "Generated levels").
-step generated 150 $B runtime $C --projection-profile "${SKIP[@]}" --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
-step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
+want generated && step generated 150 $B runtime $C --projection-profile "${SKIP[@]}" --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
+want rooms && step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
 # Mirror facing mirror (docs/perf/comparison.md; 1080p in the 2026-12-02 run):
-step bounces 200 $B compare $C --out $R/bounces --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 1080p --frames 20 --technique ppr --technique ppr:reference-bounces=2 --technique ppr:bounces=2 --technique ppr:tier=half,bounces=2 --technique ssr-brute:reference-bounces=2 --technique exact --technique exact:bounces=2
-fi
+want bounces && step bounces 200 $B compare $C --out $R/bounces --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 1080p --frames 20 --technique ppr --technique ppr:reference-bounces=2 --technique ppr:bounces=2 --technique ppr:tier=half,bounces=2 --technique ssr-brute:reference-bounces=2 --technique exact --technique exact:bounces=2
