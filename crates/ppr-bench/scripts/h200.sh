@@ -7,8 +7,8 @@
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).
-# `bash h200.sh STEP...` runs only the named steps (profile, collision, scaling, scalecounts,
-# compare, generated, rooms, bounces), in this order; no argument runs them all (split them into
+# `bash h200.sh STEP...` runs only the named steps (profile, collision, scaling, compare,
+# scalecounts, generated, rooms, bounces), in this order; no argument runs them all (split them into
 # calls of at most 600 s). The profile leaves out the rows h200_candidates.sh timed (SKIP
 # below).
 STEPS=" $* "
@@ -28,11 +28,11 @@ done
 want profile && step profile 330 $B runtime $C --projection-profile "${SKIP[@]}" --write-probe --frames 20 --out $R/profile
 want collision && step collision 110 $B compare $C --out $R/collision --scene collision-world --reference mirror --resolution 1080p --resolution 4k --frames 10 --technique ppr --technique ppr:subgroups=off --technique ppr-raw --technique ppr:tier=half --technique ssr-low --technique exact
 want scaling && step scaling 300 $B scaling $C --out $R/scaling --counts 1,10,100,1000,10000 --threshold-counts 1,2,4,8,16,32,64,128,256,512 --coverages 0.1,0.2,0.3,0.4,0.5,0.6
+T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
+want compare && step compare 290 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 # The scaling goal's rows alone (shape counts; the threshold and coverage sweeps cut to one
 # point each), when the device time left does not fit the full sweep.
 want scalecounts && step scalecounts 240 $B scaling $C --out $R/scalecounts --frames 10 --counts 1,10,100,1000,10000 --threshold-counts 8 --coverages 0.3
-T="--technique ppr-raw --technique ppr-holes --technique ppr-filter --technique ppr --technique ppr:glossy=off --technique ppr:fade=0.1 --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique ssr-low:stride=16,refine=4 --technique ssr-hiz --technique ssr-glossy --technique sspr"
-want compare && step compare 290 $B compare $C --out $R/compare --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 $T
 # The generated levels' profile (runtime.md, "Generated levels").
 want generated && step generated 150 $B runtime $C --projection-profile "${SKIP[@]}" --frames 10 --scene stairway-1000 --scene stairway-10000 --scene rooms-1000 --resolution 4k --out $R/stprof
 want rooms && step rooms 330 $B compare $C --out $R/rooms --scene mirror-room --scene mirror-room-6 --scene mirror-corridor --resolution 4k --frames 20 --technique ppr-raw --technique ppr --technique ppr:tier=half --technique ppr:tier=quarter --technique exact --technique ssr-brute --technique ssr-low --technique sspr
