@@ -6,8 +6,8 @@
 // Each workgroup covers a 32x32-pixel block, each thread four pixels (two rows of two
 // pixels 16 apart, so that every load of the block is coalesced; QUAD_ROW_STEP in
 // tile_test.wgsl says how far apart the rows are): the four depths are loaded before any
-// work, and each shape's test (five planes, ShapeTest in tile_test.wgsl) is loaded once
-// for the four pixels.
+// work, and each shape's test (its plane and two axis forms, ShapeTest in tile_test.wgsl)
+// is loaded once for the four pixels.
 //
 // Variants (pipeline-overridable constants, chosen by the FramePlan):
 // - TILE_CULLING: each block's pixels test only the block's list of the visible shapes
@@ -234,18 +234,13 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
             }
             let t = tests[tests_start + node - leaves];
             let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-            let inside = min(
-                min(p.x * t.side0.x + p.y * t.side0.y + p.z * t.side0.z + t.side0.w,
-                    p.x * t.side1.x + p.y * t.side1.y + p.z * t.side1.z + t.side1.w),
-                min(p.x * t.side2.x + p.y * t.side2.y + p.z * t.side2.z + t.side2.w,
-                    p.x * t.side3.x + p.y * t.side3.y + p.z * t.side3.z + t.side3.w),
-            );
+            let inside = inside_pyramid(t, p, dist);
             if (ABLATION == 3u) {
                 // Tests only: the walk and the members' tests, no write.
-                if (dist == 1234.5 && inside == 1234.5) {
+                if (dist == 1234.5 && inside) {
                     atomicStore(&intermediate[0], 0u);
                 }
-            } else if (dist > tol && inside >= 0.0) {
+            } else if (dist > tol && inside) {
                 reflect_pixel(pixel, p, dist, t.plane, t.shape);
             }
         }
@@ -527,15 +522,14 @@ fn quad_test(q: Quad, t: ShapeTest, inside_block: bool) -> vec4<f32> {
     if (inside_block) {
         return select(vec4<f32>(-1.0), dist, front);
     }
-    // The pyramid's sides only for a thread with some pixel in front of the plane.
+    // The pyramid's sides only for a thread with some pixel in front of the plane: per
+    // axis, the form within the bound (inside_pyramid, four pixels at once).
     if (!any(front)) {
         return vec4<f32>(-1.0);
     }
-    let inside = min(
-        min(quad_plane(q, t.side0), quad_plane(q, t.side1)),
-        min(quad_plane(q, t.side2), quad_plane(q, t.side3)),
-    );
-    return select(vec4<f32>(-1.0), dist, front & inside >= vec4<f32>(0.0));
+    let inside_u = abs(quad_plane(q, t.across_u)) <= t.extent.x * dist + t.extent.y;
+    let inside_v = abs(quad_plane(q, t.across_v)) <= t.extent.z * dist + t.extent.w;
+    return select(vec4<f32>(-1.0), dist, front & inside_u & inside_v);
 }
 
 // The reflection of one pixel (position `p`, `dist` in front of the layer's plane, inside

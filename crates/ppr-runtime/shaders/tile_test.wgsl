@@ -1,6 +1,7 @@
 // Culling shared by the block-list pass and the projection (32x32-pixel blocks) and the
-// super-tile list pass (64x64 super-tiles): each visible shape's test as five planes (ShapeTest), the box of a
-// workgroup's pixel positions, the conservative test of a box against a shape, and the
+// super-tile list pass (64x64 super-tiles): each visible shape's test (ShapeTest: a plane
+// and two axis forms, the five planes of its pyramid), the box of a workgroup's pixel
+// positions, the conservative test of a box against a shape, and the
 // ordered compaction that turns per-thread pass flags into a list. Needs `frame`,
 // `depth_tex` and the view module; uses the workgroup arrays below.
 
@@ -22,13 +23,14 @@ const SUPER_LIST_CAPACITY: u32 = 1024u;
 // (crates/ppr-runtime/src/shape_tests.rs). A point p in front of the reflector's plane is
 // reflected into its rectangle exactly when it lies in the pyramid from the mirrored
 // camera through the rectangle: `dist = dot(p, plane.xyz) + plane.w > 0` (the distance
-// from the plane) and `dot(p, side_i.xyz) + side_i.w >= 0` for the pyramid's four sides.
+// from the plane) and, per rectangle axis, `|dot(p, across.xyz) + across.w| <= k * dist +
+// m` (`extent` holds k_u, m_u, k_v, m_v): the pyramid's two opposite sides of that axis
+// with one form and one product (test_side gives them as planes, for the box tests).
 struct ShapeTest {
     plane: vec4<f32>,
-    side0: vec4<f32>,
-    side1: vec4<f32>,
-    side2: vec4<f32>,
-    side3: vec4<f32>,
+    across_u: vec4<f32>,
+    across_v: vec4<f32>,
+    extent: vec4<f32>,
     // Index of the shape in `shapes`, its parallel group.
     shape: u32,
     group: u32,
@@ -36,20 +38,57 @@ struct ShapeTest {
     _pad1: u32,
 }
 
+// Whether the position `p` (its distance `dist` from the test's plane) lies inside the
+// test's pyramid (the per-pixel form of the four sides).
+fn inside_pyramid(t: ShapeTest, p: vec3<f32>, dist: f32) -> bool {
+    let lu = p.x * t.across_u.x + p.y * t.across_u.y + p.z * t.across_u.z + t.across_u.w;
+    let lv = p.x * t.across_v.x + p.y * t.across_v.y + p.z * t.across_v.z + t.across_v.w;
+    return abs(lu) <= t.extent.x * dist + t.extent.y && abs(lv) <= t.extent.z * dist + t.extent.w;
+}
+
+// The pyramid's side `i` as a plane (inside >= 0; not unit length): k * dist + m - L for
+// sides 0 (u) and 1 (v), k * dist + m + L for sides 2 (u) and 3 (v); with `reach`, the
+// magnitudes of the terms the per-pixel test sums, which the box tests' rounding margin
+// must cover (they may be much larger than the side's own where the form and the bound
+// nearly cancel: a camera grazing the plane).
+struct TestSide {
+    plane: vec4<f32>,
+    reach: vec4<f32>,
+}
+
+fn test_side(t: ShapeTest, i: u32) -> TestSide {
+    let on_u = (i & 1u) == 0u;
+    let a = select(t.across_v, t.across_u, on_u);
+    let km = select(t.extent.zw, t.extent.xy, on_u);
+    let kp = km.x * t.plane;
+    let bound = vec4<f32>(kp.xyz, kp.w + km.y);
+    let sign = select(-1.0, 1.0, i >= 2u);
+    return TestSide(bound + sign * a, abs(kp) + vec4<f32>(0.0, 0.0, 0.0, abs(km.y)) + abs(a));
+}
+
 // The largest value of a plane over the box (centre c, half extents h), plus a margin for
-// the f32 rounding of per-pixel values against this one.
-fn ppr_box_plane_max(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
-    let a = abs(pl.xyz);
-    let reach = dot(abs(c) + h, a) + abs(pl.w);
-    return dot(c, pl.xyz) + dot(h, a) + pl.w + 1e-5 * reach;
+// the f32 rounding of per-pixel values against this one (`mag`: the magnitudes of the
+// terms the per-pixel value sums, abs(pl) for a plane tested as it is).
+fn ppr_box_plane_max(pl: vec4<f32>, mag: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
+    let reach = dot(abs(c) + h, mag.xyz) + mag.w;
+    return dot(c, pl.xyz) + dot(h, abs(pl.xyz)) + pl.w + 1e-5 * reach;
 }
 
 // The smallest value of a plane over the box (centre c, half extents h), minus the same
 // margin: every per-pixel value of a point of the box is at least this.
-fn ppr_box_plane_min(pl: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
-    let a = abs(pl.xyz);
-    let reach = dot(abs(c) + h, a) + abs(pl.w);
-    return dot(c, pl.xyz) - dot(h, a) + pl.w - 1e-5 * reach;
+fn ppr_box_plane_min(pl: vec4<f32>, mag: vec4<f32>, c: vec3<f32>, h: vec3<f32>) -> f32 {
+    let reach = dot(abs(c) + h, mag.xyz) + mag.w;
+    return dot(c, pl.xyz) - dot(h, abs(pl.xyz)) + pl.w - 1e-5 * reach;
+}
+
+fn box_side_max(t: ShapeTest, i: u32, c: vec3<f32>, h: vec3<f32>) -> f32 {
+    let s = test_side(t, i);
+    return ppr_box_plane_max(s.plane, s.reach, c, h);
+}
+
+fn box_side_min(t: ShapeTest, i: u32, c: vec3<f32>, h: vec3<f32>) -> f32 {
+    let s = test_side(t, i);
+    return ppr_box_plane_min(s.plane, s.reach, c, h);
 }
 
 // Bit of a block-list entry: the whole box of the block's positions lies inside the
@@ -68,11 +107,11 @@ override INSIDE_ENTRIES: bool = true;
 fn box_may_reflect(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
     let c = 0.5 * (lo + hi);
     let h = 0.5 * (hi - lo);
-    return ppr_box_plane_max(t.plane, c, h) > 0.0
-        && ppr_box_plane_max(t.side0, c, h) >= 0.0
-        && ppr_box_plane_max(t.side1, c, h) >= 0.0
-        && ppr_box_plane_max(t.side2, c, h) >= 0.0
-        && ppr_box_plane_max(t.side3, c, h) >= 0.0;
+    return ppr_box_plane_max(t.plane, abs(t.plane), c, h) > 0.0
+        && box_side_max(t, 0u, c, h) >= 0.0
+        && box_side_max(t, 1u, c, h) >= 0.0
+        && box_side_max(t, 2u, c, h) >= 0.0
+        && box_side_max(t, 3u, c, h) >= 0.0;
 }
 
 // The block-list entry of the shape at position `k` of `visible` whose test `t` passed
@@ -93,8 +132,8 @@ fn box_inside_sides(t: ShapeTest, lo: vec3<f32>, hi: vec3<f32>) -> bool {
     let c = 0.5 * (lo + hi);
     let h = 0.5 * (hi - lo);
     let inside = min(
-        min(ppr_box_plane_min(t.side0, c, h), ppr_box_plane_min(t.side1, c, h)),
-        min(ppr_box_plane_min(t.side2, c, h), ppr_box_plane_min(t.side3, c, h)),
+        min(box_side_min(t, 0u, c, h), box_side_min(t, 1u, c, h)),
+        min(box_side_min(t, 2u, c, h), box_side_min(t, 3u, c, h)),
     );
     return inside > 0.0;
 }

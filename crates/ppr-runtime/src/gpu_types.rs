@@ -95,22 +95,68 @@ pub struct GpuShape {
 }
 const _: () = assert!(std::mem::size_of::<GpuShape>() == 96);
 
-/// `ShapeTest` of `tile_test.wgsl`: a visible shape's reflection test as five planes
-/// (`xyz · p + w`), camera-relative. A point is reflected into the rectangle when the
-/// first is positive (its distance from the reflector's plane) and the four others are not
-/// negative (the sides of the pyramid from the mirrored camera through the rectangle).
+/// `ShapeTest` of `tile_test.wgsl`: a visible shape's reflection test, camera-relative. A
+/// point `p` is reflected into the rectangle when its distance from the reflector's plane,
+/// `dist = plane.xyz · p + plane.w`, is positive and, for each rectangle axis, the axis'
+/// form `L = across.xyz · p + across.w` (the reflection point's offset from the centre
+/// along the axis, multiplied out by the positive `dist + h`, `h` the camera's height over
+/// the plane) lies within `±(k · dist + m)` (the half extent, multiplied out the same way):
+/// `extent` holds `(k_u, m_u, k_v, m_v)`. The two bounds of an axis are the pyramid's two
+/// opposite sides ([`GpuShapeTest::sides`]), tested with one form and one product instead of
+/// two planes.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
 pub struct GpuShapeTest {
     pub plane: [f32; 4],
-    pub sides: [[f32; 4]; 4],
+    pub across_u: [f32; 4],
+    pub across_v: [f32; 4],
+    pub extent: [f32; 4],
     /// Index of the shape in the shape table.
     pub shape: u32,
     /// Its parallel group.
     pub group: u32,
     pub _pad: [u32; 2],
 }
-const _: () = assert!(std::mem::size_of::<GpuShapeTest>() == 96);
+const _: () = assert!(std::mem::size_of::<GpuShapeTest>() == 80);
+
+impl GpuShapeTest {
+    /// Axes' forms and extents every point passes (a parallel tree's entry: its members
+    /// test their own rectangles).
+    pub const NO_SIDES: ([f32; 4], [f32; 4], [f32; 4]) = ([0.0; 4], [0.0; 4], [0.0, 1.0, 0.0, 1.0]);
+
+    /// The per-pixel test of `projection.wgsl` (`quad_test`), in the same f32 operations:
+    /// the distance from the plane where `p` (on-plane tolerance `tolerance`) is reflected
+    /// into the rectangle, else `None`.
+    pub fn reflects(&self, p: glam::Vec3, tolerance: f32) -> Option<f32> {
+        let form = |a: [f32; 4]| p.x * a[0] + p.y * a[1] + p.z * a[2] + a[3];
+        let dist = form(self.plane);
+        let [ku, mu, kv, mv] = self.extent;
+        let inside =
+            form(self.across_u).abs() <= ku * dist + mu && form(self.across_v).abs() <= kv * dist + mv;
+        (tolerance > 0.0 && dist > tolerance && inside).then_some(dist)
+    }
+
+    /// The pyramid's four sides as planes (`xyz · p + w ≥ 0` inside; not unit length): per
+    /// axis `k · dist + m ∓ L`, the bounds the block culling tests a box against.
+    pub fn sides(&self) -> [[f32; 4]; 4] {
+        let bound = |k: f32, m: f32, a: [f32; 4], sign: f32| {
+            let pl = self.plane;
+            [
+                k * pl[0] + sign * a[0],
+                k * pl[1] + sign * a[1],
+                k * pl[2] + sign * a[2],
+                k * pl[3] + m + sign * a[3],
+            ]
+        };
+        let [ku, mu, kv, mv] = self.extent;
+        [
+            bound(ku, mu, self.across_u, -1.0),
+            bound(kv, mv, self.across_v, -1.0),
+            bound(ku, mu, self.across_u, 1.0),
+            bound(kv, mv, self.across_v, 1.0),
+        ]
+    }
+}
 
 /// Most glossy reflectors one frame blurs (`GLOSSY_CAPACITY` of `glossy.wgsl`): the largest
 /// on screen; the others are reflected as mirrors ([`crate::FramePlan::glossy_dropped`]).

@@ -510,9 +510,7 @@ mod tests {
                 for &leaf in &reached {
                     let m = tree.members[leaf as usize];
                     let test = shape_test(&t.shapes[m as usize], m, eye);
-                    let plane = |a: [f32; 4]| p.x * a[0] + p.y * a[1] + p.z * a[2] + a[3];
-                    let inside = test.sides.iter().map(|&s| plane(s)).fold(f32::MAX, f32::min);
-                    hits += usize::from(plane(test.plane) > tol && inside >= 0.0);
+                    hits += usize::from(test.reflects(p, tol).is_some());
                 }
                 nodes += tested;
                 leaves += reached.len();
@@ -590,10 +588,7 @@ mod tests {
                     pixels += 1;
                     reached_total += reached.len();
                     for (k, test) in tests.iter().enumerate() {
-                        let plane = |a: [f32; 4]| p.x * a[0] + p.y * a[1] + p.z * a[2] + a[3];
-                        let dist = plane(test.plane);
-                        let inside = test.sides.iter().map(|&s| plane(s)).fold(f32::MAX, f32::min);
-                        if dist > tol && inside >= 0.0 {
+                        if test.reflects(p, tol).is_some() {
                             hits += 1;
                             assert!(
                                 reached.contains(&(k as u32)),

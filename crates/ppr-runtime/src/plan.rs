@@ -188,7 +188,7 @@ pub struct PlanParams {
 pub const DEFAULT_MAX_ROUGHNESS: f32 = 0.5;
 
 /// Most shape tests (visible shapes plus layers) the projection's uniform copy holds: 128 ×
-/// 96 B = 12 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
+/// 80 B = 10 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
 pub const UNIFORM_TESTS_CAPACITY: usize = 128;
 
 /// Up to this many pixels (2560×1440) `Auto` never takes indirect dispatch; from

@@ -1,4 +1,4 @@
-//! Each visible shape's reflection test as five planes, built per frame in f64 and
+//! Each visible shape's reflection test (a plane and two axis forms), built per frame in f64 and
 //! camera-relative, for the projection pass's per-pixel loop and its block culling.
 //!
 //! A point `p` in front of a reflector is reflected into its rectangle when the ray from
@@ -6,9 +6,13 @@
 //! ray gives the segment from the mirrored camera `e'` to `p`, which crosses the plane at
 //! the same point: the test is whether `p` lies in the pyramid from `e'` through the
 //! rectangle. That is four half-spaces (the pyramid's sides, each through `e'` and one
-//! edge) plus the reflector's own (in front of the plane), so the per-pixel test is five
-//! dot products, without a division, and a block of pixels is culled by the same five
-//! planes against the box of its positions.
+//! edge) plus the reflector's own (in front of the plane). Opposite sides share their
+//! terms: with `h` the camera's height over the plane and `dist` the point's, the crossing
+//! lies within the half extent `a` along an axis exactly when `|L| ≤ a (dist + h)`, `L` a
+//! linear form of the point (the crossing's offset along the axis times `dist + h`). So
+//! the per-pixel test is three dot products and two products, without a division
+//! ([`GpuShapeTest`]), and a block of pixels is culled by the five planes
+//! ([`GpuShapeTest::sides`]) against the box of its positions.
 
 use glam::{DVec3, DVec4};
 
@@ -63,7 +67,7 @@ pub fn frame_tests(table: &ShapeTable, plan: &FramePlan, eye: DVec3) -> FrameTes
                 // Lowered by a margin, so that no member reflects a point the entry's plane
                 // does not (their normals may differ in the last bits).
                 test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;
-                test.sides = [[0.0, 0.0, 0.0, 1.0]; 4];
+                (test.across_u, test.across_v, test.extent) = GpuShapeTest::NO_SIDES;
                 test
             }
         })
@@ -83,36 +87,43 @@ pub fn shape_test(shape: &ShapeSource, index: u32, eye: DVec3) -> GpuShapeTest {
     let n = shape.normal.as_dvec3();
     let d = shape.plane_dist_from(eye);
     let plane = n.extend(-d);
-    let sides = pyramid_sides(shape, eye);
+    let [(across_u, ku, mu), (across_v, kv, mv)] = axis_forms(shape, eye);
     GpuShapeTest {
         plane: plane.as_vec4().to_array(),
-        sides: sides.map(|s| s.as_vec4().to_array()),
+        across_u: across_u.as_vec4().to_array(),
+        across_v: across_v.as_vec4().to_array(),
+        extent: [ku, mu, kv, mv].map(|x| x as f32),
         shape: index,
         group: shape.parallel_group,
         _pad: [0; 2],
     }
 }
 
-/// The four sides of the pyramid from the mirrored camera through the rectangle, as unit
-/// normals and offsets (`xyz · p + w ≥ 0` inside), camera-relative. A degenerate side (the
-/// camera on the plane, which the plan culls) is a plane every point passes.
-pub fn pyramid_sides(shape: &ShapeSource, eye: DVec3) -> [DVec4; 4] {
+/// Per rectangle axis, the form `L` and the bound's `k`, `m` of [`GpuShapeTest`]: a point
+/// `p` at distance `dist` in front of the plane is reflected within the rectangle's extent
+/// along the axis when `|L · (p, 1)| ≤ k · dist + m`, camera-relative.
+///
+/// With `h` the camera's height over the plane (`-plane_dist`), `c` the centre's
+/// coordinate along the axis and `a` the half extent: the segment from the mirrored camera
+/// (coordinate `-c` from the centre, `h` behind the plane) to `p` crosses the plane at the
+/// offset `(h · (p · axis - c) - c · dist) / (dist + h)` from the centre, so
+/// `L = (h · axis - c · n) · p - 2 c h` and the bound is `a · (dist + h)`; both are divided
+/// by `|h · axis - c · n|` (a unit normal, as the sides had). A camera on or behind the
+/// plane (which the plan culls) gets a test no point passes.
+pub fn axis_forms(shape: &ShapeSource, eye: DVec3) -> [(DVec4, f64, f64); 2] {
     let n = shape.normal.as_dvec3();
-    let apex = 2.0 * shape.plane_dist_from(eye) * n;
-    let corners = shape.corners().map(|c| c - eye);
+    let h = -shape.plane_dist_from(eye);
     let center = shape.center - eye;
+    let axes = [shape.axis_u.as_dvec3(), shape.axis_v.as_dvec3()];
     std::array::from_fn(|i| {
-        let (a, b) = (corners[i] - apex, corners[(i + 1) % 4] - apex);
-        let mut normal = a.cross(b);
+        let (axis, half) = (axes[i], f64::from(shape.half_extents[i]));
+        let c = center.dot(axis);
+        let normal = h * axis - c * n;
         let len = normal.length();
-        if !(len > 0.0 && len.is_finite()) {
-            return DVec4::new(0.0, 0.0, 0.0, 1.0);
+        if !(h > 0.0 && len > 0.0 && len.is_finite()) {
+            return (DVec4::ZERO, 0.0, -1.0);
         }
-        normal /= len;
-        if normal.dot(center - apex) < 0.0 {
-            normal = -normal;
-        }
-        normal.extend(-normal.dot(apex))
+        ((normal / len).extend(-2.0 * c * h / len), half / len, half * h / len)
     })
 }
 
@@ -155,32 +166,56 @@ mod tests {
     }
 
     #[test]
-    fn five_planes_agree_with_mirroring_and_casting() {
+    fn the_axis_forms_and_the_sides_agree_with_mirroring_and_casting() {
         let shape = mirror();
-        let eye = DVec3::new(9.0, 1.7, 2.0);
-        let t = shape_test(&shape, 7, eye);
-        assert_eq!((t.shape, t.group), (7, 3));
-        let planes: Vec<DVec4> =
-            std::iter::once(t.plane).chain(t.sides).map(|a| DVec4::from(a.map(f64::from))).collect();
         let mut state = 0x1234_5678_u64;
         let mut next = || {
             state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
             (state >> 11) as f64 / (1u64 << 53) as f64
         };
-        let (mut inside, mut disagree) = (0, 0);
-        for _ in 0..20_000 {
-            let p = DVec3::new(next() * 8.0 - 3.0, next() * 4.0 - 1.0, next() * 10.0 - 12.0);
-            let values: Vec<f64> = planes.iter().map(|pl| pl.truncate().dot(p) + pl.w).collect();
-            let by_planes = values[0] > 0.0 && values[1..].iter().all(|&v| v >= 0.0);
-            let by_reference = reflects(&shape, eye, p);
-            inside += usize::from(by_reference);
-            // Points within f32 rounding of a side may go either way.
-            let margin = values[1..].iter().map(|v| v.abs()).fold(f64::MAX, f64::min);
-            if by_planes != by_reference && margin > 1e-5 {
-                disagree += 1;
+        // Above the mirror, grazing it from afar, and off to one side of it.
+        for eye in [DVec3::new(9.0, 1.7, 2.0), DVec3::new(9.5, 0.05, 6.0), DVec3::new(16.0, 0.6, -3.5)] {
+            let t = shape_test(&shape, 7, eye);
+            assert_eq!((t.shape, t.group), (7, 3));
+            let planes: Vec<DVec4> =
+                std::iter::once(t.plane).chain(t.sides()).map(|a| DVec4::from(a.map(f64::from))).collect();
+            let (mut inside, mut disagree) = (0, 0);
+            for k in 0..20_000 {
+                // Half anywhere near the mirror, half along reflected rays through a
+                // rectangle 1.3 times the mirror's (in and out of the pyramid, close to its
+                // sides from every camera).
+                let p = if k % 2 == 0 {
+                    DVec3::new(next() * 8.0 - 3.0, next() * 4.0 - 1.0, next() * 10.0 - 12.0)
+                } else {
+                    let [a, b] = shape.half_extents.map(|x| 1.3 * f64::from(x));
+                    let hit = shape.center
+                        + shape.axis_u.as_dvec3() * (next() * 2.0 - 1.0) * a
+                        + shape.axis_v.as_dvec3() * (next() * 2.0 - 1.0) * b;
+                    let n = shape.normal.as_dvec3();
+                    let ray = (hit - eye).normalize();
+                    hit + (ray - 2.0 * ray.dot(n) * n) * (0.1 + 5.0 * next()) - eye
+                };
+                let values: Vec<f64> = planes.iter().map(|pl| pl.truncate().dot(p) + pl.w).collect();
+                let by_planes = values[0] > 0.0 && values[1..].iter().all(|&v| v >= 0.0);
+                let by_forms = t.reflects(p.as_vec3(), 1e-30).is_some();
+                let by_reference = reflects(&shape, eye, p);
+                inside += usize::from(by_reference);
+                // Points within f32 rounding of a side may go either way.
+                let margin = values.iter().map(|v| v.abs()).fold(f64::MAX, f64::min);
+                if (by_planes != by_reference || by_forms != by_reference) && margin > 1e-5 {
+                    disagree += 1;
+                }
             }
+            assert!(inside > 200, "the sample must hit the pyramid from {eye}: {inside}");
+            assert_eq!(disagree, 0, "from {eye}");
         }
-        assert!(inside > 500, "the sample must hit the pyramid: {inside}");
-        assert_eq!(disagree, 0);
+    }
+
+    #[test]
+    fn a_camera_behind_the_plane_gets_a_test_no_point_passes() {
+        let t = shape_test(&mirror(), 0, DVec3::new(9.0, -1.0, 2.0));
+        for p in [glam::Vec3::new(1.0, 1.5, -5.0), glam::Vec3::new(1.0, -1.5, -5.0), glam::Vec3::ZERO] {
+            assert_eq!(t.reflects(p, 1e-30), None, "{p}");
+        }
     }
 }
