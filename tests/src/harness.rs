@@ -399,11 +399,19 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
         hp.truncate() / hp.w
     };
     // `ppr_on_plane_tolerance` of view.wgsl: the f32 unprojection error or four depth ulps
-    // along the view ray, whichever is larger.
+    // along the view ray (the unprojection's derivative in depth times them), whichever is
+    // larger.
     let on_plane_tolerance = |x: u32, y: u32, d: f64, p: glam::DVec3| {
         let ulps = 4.0 * f64::from(f32::EPSILON) * d.abs().max(1e-30);
-        let toward_near = if far > 0.5 { -ulps } else { ulps };
-        let along = (unproject(x, y, d + toward_near) - p).length();
+        let ndc = glam::DVec4::new(
+            (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
+            1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
+            d,
+            1.0,
+        );
+        let hw = (rel_from_clip * ndc).w;
+        let c = rel_from_clip.z_axis;
+        let along = (c.truncate() - p * c.w).length() * ulps / hw.abs();
         (f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length()).max(if along.is_finite() {
             along
         } else {

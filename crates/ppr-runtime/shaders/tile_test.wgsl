@@ -165,12 +165,12 @@ fn tile_pixel_position(pixel: vec2<u32>) -> vec4<f32> {
     if (!ppr_is_valid_depth(depth)) {
         return vec4<f32>(0.0);
     }
-    let centre = vec2<f32>(pixel) + 0.5;
-    let p = ppr_unproject(centre, depth);
+    let h = ppr_unproject_homogeneous(vec2<f32>(pixel) + 0.5, depth);
+    let p = h.xyz / h.w;
     if (!(ppr_is_finite2(p.xy) && ppr_is_finite(p.z) && all(abs(p) < vec3<f32>(1e30)))) {
         return vec4<f32>(0.0);
     }
-    return vec4<f32>(p, ppr_on_plane_tolerance(centre, depth, p));
+    return vec4<f32>(p, ppr_on_plane_tolerance(depth, h.w, p));
 }
 
 // Order-preserving map of a float to a u32 (for atomicMin/atomicMax on signed floats).

@@ -1,10 +1,16 @@
 // View helpers for passes that declare `frame: FrameUniforms`: pixel <-> camera-relative
 // position, and which depths count as rendered.
 
+// The homogeneous camera-relative point of a pixel centre at a depth (ppr_unproject
+// divides its xyz by its w).
+fn ppr_unproject_homogeneous(pixel: vec2<f32>, depth: f32) -> vec4<f32> {
+    let uv = pixel * frame.resolution.zw;
+    return frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+}
+
 // Camera-relative position of a pixel centre at a depth.
 fn ppr_unproject(pixel: vec2<f32>, depth: f32) -> vec3<f32> {
-    let uv = pixel * frame.resolution.zw;
-    let h = frame.rel_from_clip * vec4<f32>(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, depth, 1.0);
+    let h = ppr_unproject_homogeneous(pixel, depth);
     return h.xyz / h.w;
 }
 
@@ -21,16 +27,19 @@ fn ppr_is_valid_depth(depth: f32) -> bool {
 }
 
 // How far from a plane a reconstructed point may lie and still be on it: the larger of the
-// f32 error of the unprojection (frame.plane_epsilon times the distance) and the distance along the view ray
-// that four depth-buffer steps (ulps) at this depth cover, taken towards the near plane.
-// With standard Z the second dominates far from the camera (the depth buffer's
-// resolution falls with distance squared), so pixels of a reflector within depth error of
-// its own plane are never reflected by it (they would land on themselves).
-fn ppr_on_plane_tolerance(pixel_centre: vec2<f32>, depth: f32, p: vec3<f32>) -> f32 {
+// f32 error of the unprojection (frame.plane_epsilon times the distance) and the distance
+// along the view ray that four depth-buffer steps (ulps) at this depth cover. With
+// standard Z the second dominates far from the camera (the depth buffer's resolution falls
+// with distance squared), so pixels of a reflector within depth error of its own plane are
+// never reflected by it (they would land on themselves). The distance is the
+// unprojection's derivative in depth times the four steps: with `h` the homogeneous point
+// (`p = h.xyz / h.w`) and `c` the inverse projection's depth column, `dp / ddepth =
+// (c.xyz - p * c.w) / h.w` (a second unprojection four steps away, what this replaced,
+// gave the same to within the steps' curvature for twice the arithmetic).
+fn ppr_on_plane_tolerance(depth: f32, h_w: f32, p: vec3<f32>) -> f32 {
     let ulps = 4.0 * 1.1920929e-7 * max(abs(depth), 1.0e-30);
-    let toward_near = select(ulps, -ulps, frame.far_depth > 0.5);
-    let q = ppr_unproject(pixel_centre, depth + toward_near);
-    var along = length(q - p);
+    let c = frame.rel_from_clip[2];
+    var along = length(c.xyz - p * c.w) * (ulps / abs(h_w));
     if (!ppr_is_finite(along)) {
         along = 0.0;
     }
