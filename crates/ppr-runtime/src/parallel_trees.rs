@@ -19,7 +19,7 @@
 //! their offset grows; a plain v range would meet every pixel's segment along the whole
 //! flight). A pixel walks the tree and descends only into nodes its reflection point can
 //! reach (for the node's offsets), and tests each leaf it reaches with the member's own
-//! five planes, the test the plain loop runs, so the writes are the same. On the 10 000-tread
+//! test, the one the plain loop runs, so the writes are the same. On the 10 000-tread
 //! stairway of the scaling suite a pixel on the treads tests about 50 nodes and 8 leaves
 //! for its 4.5 reflections, not 10 000 shapes.
 //!

@@ -134,7 +134,7 @@ pub struct DebugOptions {
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
     pub glossy_taps: Option<u32>,
     /// The block lists the projection builds flag no entry as lying wholly inside its
-    /// shape's pyramid: every pixel runs the five plane tests (bench only, the same image;
+    /// shape's pyramid: every pixel runs the side tests (bench only, the same image;
     /// the block-list pass flags them either way).
     pub no_inside_entries: bool,
     /// The water edge stretch reads all its steps, also those past the layer's rectangle

@@ -63,7 +63,7 @@ pub struct ProjectionVariant {
     /// after (the same buffer; [`crate::PlanParams::occlusion_first`]).
     pub occlusion_first: bool,
     /// Bench only (the same image): the block lists built in the projection flag no entry
-    /// as lying wholly inside its shape's pyramid, so every pixel runs all five plane
+    /// as lying wholly inside its shape's pyramid, so every pixel runs the side
     /// tests (`INSIDE_ENTRY` of `tile_test.wgsl`).
     pub no_inside_entries: bool,
     /// Bench only (the same lists): how the fused lists reduce the box of the block's
