@@ -97,7 +97,14 @@ pub(crate) fn compute_pipeline(
         layout: Some(&pipeline_layout),
         module,
         entry_point: Some(entry),
-        compilation_options: wgpu::PipelineCompilationOptions { constants, ..Default::default() },
+        // Every pass writes the workgroup memory it reads before it reads it (the box slots,
+        // the pass bits, the lists: `tile_test.wgsl`, `fused_lists.wgsl`,
+        // `tile_classify.wgsl`), so the zeroing WebGPU asks for at every workgroup's start
+        // (stores and a barrier) is left out.
+        compilation_options: wgpu::PipelineCompilationOptions {
+            constants,
+            zero_initialize_workgroup_memory: false,
+        },
         cache: None,
     })
 }
