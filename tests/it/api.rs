@@ -116,14 +116,19 @@ fn fresh_output() -> wgpu::Texture {
     })
 }
 
+/// The scene's set, two cameras on it and their frames (a split screen's two views).
+fn two_views() -> (ppr_format::ReflectorSet, [Camera; 2], Vec<GpuFrame>) {
+    let s = scene();
+    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
+    let frames = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    (s.reflector_set(), cams, frames)
+}
+
 #[test]
 fn views_prepared_before_one_submit_each_get_their_own_camera() {
     // Split screen (or two probes) with one renderer, and with one renderer per view:
     // prepare, encode, prepare, encode, then one submit.
-    let s = scene();
-    let set = s.reflector_set();
-    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
-    let frames: Vec<GpuFrame> = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    let (set, cams, frames) = two_views();
     let g = gpu();
     for indirect in [Choice::Off, Choice::On] {
         // Each view alone.
@@ -357,10 +362,7 @@ fn frames_reuse_their_upload_staging_buffers() {
     // Each encode writes its view's upload into a staging buffer that comes back once the
     // encoder's commands have run: frames submitted one after the other reuse one, and an
     // encoder dropped without a submit loses its buffer but breaks nothing.
-    let s = scene();
-    let set = s.reflector_set();
-    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
-    let frames: Vec<GpuFrame> = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
+    let (set, cams, frames) = two_views();
     let mut r = renderer();
     r.set_reflectors(&ppr_tests::harness::validated(&set));
     let first: Vec<Vec<Vec4>> = (0..2).map(|k| run(&mut r, &frames[k], &cams[k]).pixels).collect();
