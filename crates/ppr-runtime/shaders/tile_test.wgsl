@@ -184,8 +184,8 @@ fn from_ordered_bits(u: u32) -> f32 {
 }
 
 // The box of the positions the workgroup's threads hold (`lo` > `hi` on an axis for a
-// thread without any). Every thread gets the box; `lo.x > hi.x` when it is empty. Call
-// from uniform control flow.
+// thread without any). Every thread gets the box; `lo.x > hi.x` when it is empty. Once a
+// workgroup (the slots are not reset for a second box), from uniform control flow.
 struct TileBox {
     lo: vec3<f32>,
     hi: vec3<f32>,
@@ -247,8 +247,8 @@ fn workgroup_box_of(lid: u32, lo: vec3<f32>, hi: vec3<f32>, takes_part: bool) ->
     workgroupBarrier();
     let mins = vec3<u32>(box_words[0], box_words[1], box_words[2]);
     let maxs = vec3<u32>(box_words[3], box_words[4], box_words[5]);
-    // Every thread has read the box before anyone writes the slots again.
-    workgroupBarrier();
+    // No barrier after these reads: every caller takes one box a workgroup, so neither the
+    // slots nor `box_words` are written again.
     if (mins.x <= maxs.x) {
         return TileBox(from_ordered3(mins), from_ordered3(maxs));
     }
