@@ -48,14 +48,12 @@ fn ppr_basis_index(o: vec2<i32>) -> u32 {
     return select(3u, 2u, o.y >= 0);
 }
 
-// Screen space -> packing basis (minor, major).
+// Screen space -> packing basis (minor, major): basis 0 (-y, x), 1 (y, -x), 2 (x, y),
+// 3 (-x, -y), as a swap for the x bases and a sign for the odd ones (two selects, no
+// branch).
 fn ppr_to_basis(v: vec2<i32>, basis: u32) -> vec2<i32> {
-    switch basis {
-        case 0u: { return vec2<i32>(-v.y, v.x); }
-        case 1u: { return vec2<i32>(v.y, -v.x); }
-        case 2u: { return v; }
-        default: { return -v; }
-    }
+    let swapped = select(v, vec2<i32>(-v.y, v.x), basis < 2u);
+    return select(swapped, -swapped, (basis & 1u) != 0u);
 }
 
 // Packing basis (minor, major) -> screen space.
@@ -75,10 +73,23 @@ fn ppr_div_round(a: i32, b: i32) -> i32 {
     return -((-2 * a + b) / (2 * b));
 }
 
-fn ppr_quantise_fraction(p: i32, den: i32, bits: u32) -> u32 {
+// encoding.rs's quantise_fraction: min(num / ((8192 / 2^bits) * den), 2^bits - 1) with
+// num = 181 p + 4096 den (> 0). Without an integer division (bits <= 3, den <= 2^17, num <
+// 2^31): num / (2^(13 - bits) * den) = (num >> (13 - bits)) / den for whole numbers, and
+// that quotient is estimated with `inv_den` (1 / den, shared by both of an offset's
+// fractions) and corrected by one step, which makes it exact (estimates of quotients up
+// to 2^bits + 1 are off by under 0.01; larger ones are capped, then clamped below).
+fn ppr_quantise_fraction(p: i32, den: i32, bits: u32, inv_den: f32) -> u32 {
     let mult = 1u << bits;
     let num = u32(PPR_FRACTION_SCALE_NUMERATOR * p + 4096 * den);
-    let q = num / ((8192u / mult) * u32(den));
+    let n = num >> (13u - bits);
+    let d = u32(den);
+    var q = min(u32(f32(n) * inv_den), mult);
+    if (q * d > n) {
+        q -= 1u;
+    } else if ((q + 1u) * d <= n) {
+        q += 1u;
+    }
     return min(q, mult - 1u);
 }
 
@@ -137,8 +148,9 @@ fn ppr_encode_parts(whole_s: vec2<i32>, fract_in: vec2<f32>, enc: EncodingParams
         p_minor = fract.x * den - 2 * t * s;
         p_major = fract.y * den - 2 * k * s;
     }
-    let q_minor = ppr_quantise_fraction(p_minor, den, enc.minor_frac_bits);
-    let q_major = ppr_quantise_fraction(p_major, den, enc.major_frac_bits);
+    let inv_den = 1.0 / f32(den);
+    let q_minor = ppr_quantise_fraction(p_minor, den, enc.minor_frac_bits, inv_den);
+    let q_major = ppr_quantise_fraction(p_major, den, enc.major_frac_bits, inv_den);
 
     let major_field = (u32(whole.y) << enc.major_frac_bits) | q_major;
     let minor_field = (u32(whole.x + minor_bias) << enc.minor_frac_bits) | q_minor;
