@@ -66,11 +66,20 @@ fn ppr_to_screen(v: vec2<f32>, basis: u32) -> vec2<f32> {
     }
 }
 
+// encoding.rs's div_round: a / b rounded half away from zero, (2|a| + b) / (2b) with a's
+// sign, for b > 0 and |a| <= 256 b (the tangent's range: |minor| <= major). Without an
+// integer division: a float estimate of a quotient of at most 256.5 (off by under 0.001)
+// and a one-step correction, which make it exact.
 fn ppr_div_round(a: i32, b: i32) -> i32 {
-    if (a >= 0) {
-        return (2 * a + b) / (2 * b);
+    let n = u32(2 * abs(a) + b);
+    let d = u32(2 * b);
+    var q = min(u32(f32(n) / f32(d)), 257u);
+    if (q * d > n) {
+        q -= 1u;
+    } else if ((q + 1u) * d <= n) {
+        q += 1u;
     }
-    return -((-2 * a + b) / (2 * b));
+    return select(-i32(q), i32(q), a >= 0);
 }
 
 // encoding.rs's quantise_fraction: min(num / ((8192 / 2^bits) * den), 2^bits - 1) with
