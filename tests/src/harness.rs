@@ -388,14 +388,18 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
     let rel_from_clip = clip_from_rel.inverse();
     let mut buf = vec![ppr_runtime::CLEAR_VALUE; (w * h) as usize];
     let far = f64::from(camera.projection.far_depth());
-    let unproject = |x: u32, y: u32, d: f64| {
+    // `ppr_unproject_homogeneous` of view.wgsl: the pixel centre's homogeneous point.
+    let homogeneous = |x: u32, y: u32, d: f64| {
         let ndc = glam::DVec4::new(
             (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
             1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
             d,
             1.0,
         );
-        let hp = rel_from_clip * ndc;
+        rel_from_clip * ndc
+    };
+    let unproject = |x: u32, y: u32, d: f64| {
+        let hp = homogeneous(x, y, d);
         hp.truncate() / hp.w
     };
     // `ppr_on_plane_tolerance` of view.wgsl: the f32 unprojection error or four depth ulps
@@ -403,13 +407,7 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
     // larger.
     let on_plane_tolerance = |x: u32, y: u32, d: f64, p: glam::DVec3| {
         let ulps = 4.0 * f64::from(f32::EPSILON) * d.abs().max(1e-30);
-        let ndc = glam::DVec4::new(
-            (x as f64 + 0.5) / w as f64 * 2.0 - 1.0,
-            1.0 - (y as f64 + 0.5) / h as f64 * 2.0,
-            d,
-            1.0,
-        );
-        let hw = (rel_from_clip * ndc).w;
+        let hw = homogeneous(x, y, d).w;
         let c = rel_from_clip.z_axis;
         let along = (c.truncate() - p * c.w).length() * ulps / hw.abs();
         (f64::from(ppr_runtime::renderer::PLANE_EPSILON) * p.length()).max(if along.is_finite() {

@@ -95,12 +95,15 @@ fn ppr_glossy_early_depth(vpos: vec2<i32>) -> f32 {
     return valid_depth_at(vpos);
 }
 
-// The offset from the reflected point's pixel of glossy tap `k` of `taps`.
-fn ppr_glossy_tap(k: u32, taps: u32, radius: f32, along: vec2<f32>, side: vec2<f32>, cos_i: f32) -> vec2<f32> {
+// The colour of glossy tap `k` of `taps` around the reflected point `src` (its offset
+// `radius * r` along the lobe's axes `along` and `cos_i * side`).
+fn ppr_glossy_tap(src: vec2<f32>, k: u32, taps: u32, radius: f32, along: vec2<f32>, side: vec2<f32>, cos_i: f32) -> vec3<f32> {
     let xi = (f32(k) + 0.5) / f32(taps);
     let r = sqrt(xi / (1.0 - xi));
     let phi = f32(k) * 2.39996323;
-    return radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
+    let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
+    let uv = (src + offset) * frame.resolution.zw;
+    return textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb;
 }
 
 // The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
@@ -165,10 +168,10 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, early_depth: f3
             // Written out, not a private array indexed in a loop (which a driver may keep
             // in local memory).
             let k = min(vec4<u32>(k0) + vec4<u32>(0u, 1u, 2u, 3u), vec4<u32>(taps - 1u));
-            let s0 = textureSampleLevel(color_tex, linear_sampler, (src + ppr_glossy_tap(k.x, taps, radius, along, side, cos_i)) * frame.resolution.zw, 0.0).rgb;
-            let s1 = textureSampleLevel(color_tex, linear_sampler, (src + ppr_glossy_tap(k.y, taps, radius, along, side, cos_i)) * frame.resolution.zw, 0.0).rgb;
-            let s2 = textureSampleLevel(color_tex, linear_sampler, (src + ppr_glossy_tap(k.z, taps, radius, along, side, cos_i)) * frame.resolution.zw, 0.0).rgb;
-            let s3 = textureSampleLevel(color_tex, linear_sampler, (src + ppr_glossy_tap(k.w, taps, radius, along, side, cos_i)) * frame.resolution.zw, 0.0).rgb;
+            let s0 = ppr_glossy_tap(src, k.x, taps, radius, along, side, cos_i);
+            let s1 = ppr_glossy_tap(src, k.y, taps, radius, along, side, cos_i);
+            let s2 = ppr_glossy_tap(src, k.z, taps, radius, along, side, cos_i);
+            let s3 = ppr_glossy_tap(src, k.w, taps, radius, along, side, cos_i);
             // In tap order, as the loop below adds them; a repeated tap adds nothing.
             sum += finite_colour(s0);
             if (k0 + 1u < taps) {
@@ -183,9 +186,7 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, early_depth: f3
         }
     } else {
         for (var k = 0u; k < taps; k++) {
-            let offset = ppr_glossy_tap(k, taps, radius, along, side, cos_i);
-            let uv = (src + offset) * frame.resolution.zw;
-            sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
+            sum += finite_colour(ppr_glossy_tap(src, k, taps, radius, along, side, cos_i));
         }
     }
     return vec4<f32>(sum / f32(taps + 1u), sharp.a);
