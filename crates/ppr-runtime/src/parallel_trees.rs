@@ -167,7 +167,7 @@ impl FrameTree {
 
     /// Appends this tree's words for a camera at `eye` to `words` (whose first word sits at
     /// word `base` of the buffer), its members' tests starting at `tests_start`; returns
-    /// the header's word position in the buffer.
+    /// the header's word position in the buffer. `scratch`: working memory, reused.
     pub fn append_words(
         &self,
         table: &ShapeTable,
@@ -175,6 +175,7 @@ impl FrameTree {
         base: u32,
         tests_start: u32,
         words: &mut Vec<u32>,
+        scratch: &mut TreeScratch,
     ) -> u32 {
         let family = &table.parallel_families.families[self.family as usize];
         let header = base + words.len() as u32;
@@ -192,26 +193,41 @@ impl FrameTree {
         words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
         words.extend([tests_start, 0, 0, 0]);
         let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
-        let geometry: Vec<MemberSpan> = self
-            .members
-            .iter()
-            .map(|&m| {
-                let s = &table.shapes[m as usize];
-                let corners = s.corners().map(|c| [(c - eye).dot(au), (c - eye).dot(av)]);
-                MemberSpan::new(s.plane_dist_from(eye), (s.center - eye).dot(av), corners)
-            })
-            .collect();
+        let TreeScratch { spans: geometry, moments } = scratch;
+        geometry.clear();
+        geometry.extend(self.members.iter().map(|&m| {
+            let s = &table.shapes[m as usize];
+            let corners = s.corners().map(|c| [(c - eye).dot(au), (c - eye).dot(av)]);
+            MemberSpan::new(s.plane_dist_from(eye), (s.center - eye).dot(av), corners)
+        }));
+        // Every node's moments, in heap order, merged from its children's: the slopes
+        // without a pass over the members per node (one pass is left, for the ranges).
+        moments.clear();
+        moments.resize(2 * leaves, Moments::default());
+        for (leaf, m) in moments[leaves..].iter_mut().zip(geometry.iter()) {
+            *leaf = Moments::of(m);
+        }
+        for k in (1..leaves).rev() {
+            moments[k] = moments[2 * k].merge(&moments[2 * k + 1]);
+        }
         let depth = leaves.trailing_zeros();
-        for k in 1..2 * leaves {
+        for (k, m) in moments.iter().enumerate().skip(1) {
             let level = usize::BITS - 1 - k.leading_zeros();
             let span = 1 << (depth - level);
             let first = (k - (1 << level)) * span;
             let range = first.min(geometry.len())..(first + span).min(geometry.len());
-            words.extend(node_words(&geometry[range]));
+            words.extend(node_words(&geometry[range], m.slope()));
         }
         debug_assert_eq!(words.len() as u32 + base - header, tree_words(self.members.len()) as u32);
         header
     }
+}
+
+/// Working memory of [`FrameTree::append_words`], kept from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub struct TreeScratch {
+    spans: Vec<MemberSpan>,
+    moments: Vec<Moments>,
 }
 
 /// What a node needs of a member: its plane offset, its centre's v, and its corners' u
@@ -236,23 +252,57 @@ impl MemberSpan {
     }
 }
 
+/// The least-squares moments of a node's members' centres in (offset, v): their count,
+/// means and centred sums, a node's merged from its children's (Chan, Golub and LeVeque's
+/// pairwise update).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+struct Moments {
+    n: f64,
+    mean_d: f64,
+    mean_v: f64,
+    sdd: f64,
+    sdv: f64,
+}
+
+impl Moments {
+    fn of(m: &MemberSpan) -> Self {
+        Self { n: 1.0, mean_d: m.offset, mean_v: m.centre_v, sdd: 0.0, sdv: 0.0 }
+    }
+
+    fn merge(&self, other: &Self) -> Self {
+        if other.n == 0.0 {
+            return *self;
+        }
+        if self.n == 0.0 {
+            return *other;
+        }
+        let n = self.n + other.n;
+        let (dd, dv) = (other.mean_d - self.mean_d, other.mean_v - self.mean_v);
+        let w = self.n * other.n / n;
+        Self {
+            n,
+            mean_d: self.mean_d + dd * (other.n / n),
+            mean_v: self.mean_v + dv * (other.n / n),
+            sdd: self.sdd + other.sdd + dd * dd * w,
+            sdv: self.sdv + other.sdv + dd * dv * w,
+        }
+    }
+
+    /// The slope of v against the offset; 0 where the offsets (nearly) agree.
+    fn slope(&self) -> f64 {
+        if self.sdd > 1e-12 * self.n { (self.sdv / self.sdd).clamp(-1e4, 1e4) } else { 0.0 }
+    }
+}
+
 /// A node's words: the range of its members' plane offsets, the u range of their corners,
-/// the slope `α` of their centres' v against the offset (least squares: a stairway's
-/// treads climb along v) and the range of `v − α·offset` over their corners, all rounded
-/// outwards to f32, and `1/α` (0 for α = 0). No members: a lowest offset of f32::MAX, which no pixel lies above.
-fn node_words(members: &[MemberSpan]) -> [u32; TREE_NODE_WORDS] {
+/// the slope `α` of their centres' v against the offset (`slope`, their least squares
+/// slope: a stairway's treads climb along v) and the range of `v − α·offset` over their
+/// corners, all rounded outwards to f32, and `1/α` (0 for α = 0). No members: a lowest
+/// offset of f32::MAX, which no pixel lies above.
+fn node_words(members: &[MemberSpan], slope: f64) -> [u32; TREE_NODE_WORDS] {
     if members.is_empty() {
         return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
     }
-    let n = members.len() as f64;
-    let (mean_d, mean_v) =
-        members.iter().fold((0.0, 0.0), |(a, b), m| (a + m.offset / n, b + m.centre_v / n));
-    let (mut sdd, mut sdv) = (0.0, 0.0);
-    for m in members {
-        sdd += (m.offset - mean_d) * (m.offset - mean_d);
-        sdv += (m.offset - mean_d) * (m.centre_v - mean_v);
-    }
-    let slope = if sdd > 1e-12 * n { (sdv / sdd).clamp(-1e4, 1e4) } else { 0.0 };
     // The slope the GPU multiplies by, so that the slab is computed with it.
     let alpha = slope as f32;
     let a = f64::from(alpha);
@@ -379,11 +429,8 @@ mod tests {
     use super::*;
     use crate::shape_tests::shape_test;
 
-    /// The node words from every corner of every member (how they were first computed).
-    fn node_words_from_corners(members: &[(f64, f64, [[f64; 2]; 4])]) -> [u32; TREE_NODE_WORDS] {
-        if members.is_empty() {
-            return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
-        }
+    /// The least-squares slope of `(offset, v)` in two passes (how the nodes first got it).
+    fn two_pass_slope(members: &[(f64, f64)]) -> f64 {
         let n = members.len() as f64;
         let (mean_d, mean_v) = members.iter().fold((0.0, 0.0), |(a, b), m| (a + m.0 / n, b + m.1 / n));
         let (mut sdd, mut sdv) = (0.0, 0.0);
@@ -391,7 +438,14 @@ mod tests {
             sdd += (m.0 - mean_d) * (m.0 - mean_d);
             sdv += (m.0 - mean_d) * (m.1 - mean_v);
         }
-        let slope = if sdd > 1e-12 * n { (sdv / sdd).clamp(-1e4, 1e4) } else { 0.0 };
+        if sdd > 1e-12 * n { (sdv / sdd).clamp(-1e4, 1e4) } else { 0.0 }
+    }
+
+    /// The node words from every corner of every member (how they were first computed).
+    fn node_words_from_corners(members: &[(f64, f64, [[f64; 2]; 4])], slope: f64) -> [u32; TREE_NODE_WORDS] {
+        if members.is_empty() {
+            return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
+        }
         let alpha = slope as f32;
         let a = f64::from(alpha);
         let (mut d, mut u, mut w) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
@@ -408,16 +462,34 @@ mod tests {
 
     proptest::proptest! {
         /// A node's words from its members' u and v ranges are the words from all their
-        /// corners, bit for bit.
+        /// corners, bit for bit; and the slope merged from two halves' moments is the
+        /// two-pass slope of all of them within rounding (exactly 0 where every offset agrees).
         #[test]
         fn node_words_from_member_ranges_match_the_corners(
             members in proptest::collection::vec(
                 (-50.0f64..50.0, -50.0f64..50.0, proptest::array::uniform4(proptest::array::uniform2(-60.0f64..60.0))),
                 0..12,
             ),
+            split in 0usize..12,
+            flat in proptest::bool::ANY,
         ) {
+            let mut members = members;
+            if flat {
+                for m in &mut members {
+                    m.0 = 7.25;
+                }
+            }
             let spans: Vec<MemberSpan> = members.iter().map(|&(d, v, c)| MemberSpan::new(d, v, c)).collect();
-            proptest::prop_assert_eq!(node_words(&spans), node_words_from_corners(&members));
+            let dv: Vec<(f64, f64)> = members.iter().map(|m| (m.0, m.1)).collect();
+            let reference = two_pass_slope(&dv);
+            let fold = |s: &[MemberSpan]| s.iter().fold(Moments::default(), |acc, m| acc.merge(&Moments::of(m)));
+            let split = split.min(spans.len());
+            let merged = fold(&spans[..split]).merge(&fold(&spans[split..])).slope();
+            if flat {
+                proptest::prop_assert_eq!(merged, 0.0);
+            }
+            proptest::prop_assert!((merged - reference).abs() <= 1e-9 * (1.0 + reference.abs()), "{} against {}", merged, reference);
+            proptest::prop_assert_eq!(node_words(&spans, merged), node_words_from_corners(&members, merged));
         }
     }
 
@@ -487,7 +559,7 @@ mod tests {
             let eye = DVec3::new(-7.0, 11.0, 8.0);
             let tree = FrameTree { family: 0, members: table.parallel_families.families[0].members.clone() };
             let mut words = Vec::new();
-            let header = tree.append_words(&table, eye, 0, 0, &mut words);
+            let header = tree.append_words(&table, eye, 0, 0, &mut words, &mut TreeScratch::default());
             Self { table, eye, tree, words, header, run }
         }
     }
@@ -577,7 +649,7 @@ mod tests {
                 let tree = FrameTree { family: 0, members: family.members.clone() };
                 let mut words = Vec::new();
                 let base = 40;
-                let header = tree.append_words(&t, eye, base, 0, &mut words);
+                let header = tree.append_words(&t, eye, base, 0, &mut words, &mut TreeScratch::default());
                 assert_eq!(words.len(), tree_words(tree.members.len()));
                 let tests: Vec<_> =
                     tree.members.iter().map(|&m| shape_test(&t.shapes[m as usize], m, eye)).collect();

@@ -415,7 +415,8 @@ impl FramePlan {
                 plan.culled_frustum += 1;
                 continue;
             }
-            plan.occluder_tests |= table.has_blocking_occluders(i);
+            // One shape with a blocking occluder turns the tests on: the rest need no look.
+            plan.occluder_tests = plan.occluder_tests || table.has_blocking_occluders(i);
             plan.normal_maps |= s.normal_map;
             let rect = screen_rect(&clip, viewport);
             match s.kind {
@@ -435,10 +436,13 @@ impl FramePlan {
         plan.occluder_tests &= params.occluder_lists.decide(false);
         // Sorted by parallel group (then set order): the projection pass's parallel rule
         // walks each group as one run.
-        let mut order: Vec<usize> = (0..plan.visible.len()).collect();
-        order.sort_by_key(|&k| (table.shapes[plan.visible[k] as usize].parallel_group, plan.visible[k]));
-        plan.visible = order.iter().map(|&k| plan.visible[k]).collect();
-        plan.screen_rects = order.iter().map(|&k| plan.screen_rects[k]).collect();
+        // The keys are unique (a shape is visible once): an unstable sort gives that order.
+        let mut order: Vec<(u32, u32, u32)> = (plan.visible.iter().enumerate())
+            .map(|(k, &i)| (table.shapes[i as usize].parallel_group, i, k as u32))
+            .collect();
+        order.sort_unstable();
+        plan.visible = order.iter().map(|&(_, i, _)| i).collect();
+        plan.screen_rects = order.iter().map(|&(_, _, k)| plan.screen_rects[k as usize]).collect();
 
         let screen = (w as f64 * h as f64).max(1.0);
         let covered: f64 = plan.screen_rects.iter().map(|r| r.area() as f64).sum();

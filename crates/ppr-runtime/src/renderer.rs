@@ -11,7 +11,7 @@ use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::frame_upload::{FrameUpload, UploadTarget};
 use crate::glossy::glossy_shapes;
-use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
+use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, GpuShape, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
@@ -28,7 +28,7 @@ use crate::passes::{
 use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
-use crate::shape_tests::frame_tests;
+use crate::shape_tests::FrameTests;
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
 use crate::upload_ring::UploadRing;
@@ -201,6 +201,9 @@ pub struct ReflectionRenderer {
     buffers: Option<FrameBuffers>,
     /// What the last `prepare` (one view) or `prepare_stereo` (two) planned and uploads.
     pub(crate) views: Vec<PreparedView>,
+    /// The shapes and tests `prepare` packs into each view's upload, refilled frame after
+    /// frame in the same memory.
+    scratch: (Vec<GpuShape>, FrameTests),
     timer: Option<PassTimer>,
     pub(crate) dispatches: Cell<u32>,
     /// Where `encode` writes each view's upload for its copies: staging buffers that come
@@ -234,6 +237,7 @@ impl ReflectionRenderer {
             table_dirty: true,
             buffers: None,
             views: Vec::new(),
+            scratch: Default::default(),
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             upload_ring: RefCell::new(UploadRing::new(device)),
@@ -332,16 +336,18 @@ impl ReflectionRenderer {
             .into_iter()
             .filter_map(|v| v.upload.map(FrameUpload::into_bytes))
             .collect();
+        let mut scratch = std::mem::take(&mut self.scratch);
         self.views = cameras
             .iter()
             .zip(&plans)
             .map(|(camera, plan)| PreparedView {
                 plan: Arc::clone(plan),
-                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default()),
+                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default(), &mut scratch),
                 full_viewport: viewport,
                 reduced_active,
             })
             .collect();
+        self.scratch = scratch;
         plans
     }
 
@@ -396,13 +402,20 @@ impl ReflectionRenderer {
 
     /// What `encode` copies into the frame buffers for this view (`None` for an empty plan:
     /// nothing is encoded).
-    fn upload(&self, camera: &Camera, plan: &FramePlan, recycled: Vec<u8>) -> Option<FrameUpload> {
+    /// `scratch`: the shapes' and tests' memory, refilled.
+    fn upload(
+        &self,
+        camera: &Camera,
+        plan: &FramePlan,
+        recycled: Vec<u8>,
+        (shapes, tests): &mut (Vec<GpuShape>, FrameTests),
+    ) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
-        let shapes = self.table.gpu_shapes(camera.position);
         let b = self.buffers.as_ref().expect("prepare_views allocates the buffers");
         if plan.is_empty() {
             return None;
         }
+        self.table.gpu_shapes_into(camera.position, shapes);
 
         let aspect = w as f32 / h.max(1) as f32;
         let clip_from_rel = camera.clip_from_relative(aspect);
@@ -442,14 +455,14 @@ impl ReflectionRenderer {
                 _pad: 0,
             })
             .collect();
-        let tests = frame_tests(&self.table, plan, camera.position);
+        tests.fill(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
-                (UploadTarget::Shapes, bytemuck::cast_slice(&shapes)),
+                (UploadTarget::Shapes, bytemuck::cast_slice(shapes)),
                 (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
                 (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),

@@ -17,12 +17,15 @@
 use glam::{DVec3, DVec4};
 
 use crate::gpu_types::GpuShapeTest;
-use crate::parallel_trees::{TREE_TEST_FLAG, tree_words_start};
+use crate::parallel_trees::{TREE_TEST_FLAG, TreeScratch, tree_words_start};
 use crate::plan::{FramePlan, TestedEntry};
-use crate::plane_groups::{GROUP_TEST_FLAG, GpuPlaneGroup, plane_group_words_offset};
+use crate::plane_groups::{GROUP_TEST_FLAG, plane_group_words_offset};
 use crate::shapes::{ShapeSource, ShapeTable};
 
-/// What one frame's projection reads of its tests.
+/// What one frame's projection reads of its tests. [`FrameTests::fill`] refills it frame
+/// after frame in the same memory (at thousands of shapes, fresh vectors of megabytes a
+/// frame cost more in page faults than their contents).
+#[derive(Default)]
 pub struct FrameTests {
     /// One test per entry of `plan.tested` (a merged plane group's is its bounding
     /// rectangle's, its `shape` the group's slot among the headers, flagged
@@ -35,51 +38,65 @@ pub struct FrameTests {
     /// The start of the plane-group buffer: the merged groups' headers in slot order, then
     /// (when the frame has trees) zeros up to the trees' room and the trees' words.
     pub group_words: Vec<u32>,
+    /// The trees' members' tests and words while the entries are built.
+    member_tests: Vec<GpuShapeTest>,
+    tree_words: Vec<u32>,
+    trees: TreeScratch,
 }
 
 /// A frame's projection tests for a camera at `eye`.
 pub fn frame_tests(table: &ShapeTable, plan: &FramePlan, eye: DVec3) -> FrameTests {
-    let base = plane_group_words_offset(table);
-    let mut headers: Vec<GpuPlaneGroup> = Vec::new();
-    let looped = plan.tested.len() + plan.layers.len();
-    let tree_base = tree_words_start(table);
-    let mut tree_words = Vec::new();
-    let mut member_tests = Vec::new();
-    let mut tests: Vec<GpuShapeTest> = plan
-        .tested
-        .iter()
-        .map(|e| match *e {
-            TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
-            TestedEntry::PlaneGroup(g) => {
-                let group = &table.plane_groups.groups[g as usize];
-                let slot = GROUP_TEST_FLAG | headers.len() as u32;
-                headers.push(group.gpu_header(eye, base));
-                shape_test(&group.bounding_shape(), slot, eye)
-            }
-            TestedEntry::ParallelTree(t) => {
-                let tree = &plan.trees[t as usize];
-                let start = (looped + member_tests.len()) as u32;
-                let header = tree.append_words(table, eye, tree_base, start, &mut tree_words);
-                member_tests
-                    .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
-                let mut test =
-                    shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
-                // Lowered by a margin, so that no member reflects a point the entry's plane
-                // does not (their normals may differ in the last bits).
-                test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;
-                (test.across_u, test.across_v, test.extent) = GpuShapeTest::NO_SIDES;
-                test
-            }
-        })
-        .collect();
-    tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
-    tests.extend(member_tests);
-    let mut group_words: Vec<u32> = bytemuck::cast_slice(&headers).to_vec();
-    if !tree_words.is_empty() {
-        group_words.resize(tree_base as usize, 0);
-        group_words.extend(tree_words);
+    let mut tests = FrameTests::default();
+    tests.fill(table, plan, eye);
+    tests
+}
+
+impl FrameTests {
+    /// Refills these with a frame's projection tests for a camera at `eye` ([`frame_tests`]).
+    pub fn fill(&mut self, table: &ShapeTable, plan: &FramePlan, eye: DVec3) {
+        let base = plane_group_words_offset(table);
+        self.looped = plan.tested.len() + plan.layers.len();
+        let tree_base = tree_words_start(table);
+        let Self { tests, group_words, member_tests, tree_words, trees, looped } = self;
+        tests.clear();
+        group_words.clear();
+        member_tests.clear();
+        tree_words.clear();
+        let mut slots = 0u32;
+        for e in &plan.tested {
+            let test = match *e {
+                TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
+                TestedEntry::PlaneGroup(g) => {
+                    let group = &table.plane_groups.groups[g as usize];
+                    let slot = GROUP_TEST_FLAG | slots;
+                    slots += 1;
+                    group_words.extend_from_slice(bytemuck::cast_slice(&[group.gpu_header(eye, base)]));
+                    shape_test(&group.bounding_shape(), slot, eye)
+                }
+                TestedEntry::ParallelTree(t) => {
+                    let tree = &plan.trees[t as usize];
+                    let start = (*looped + member_tests.len()) as u32;
+                    let header = tree.append_words(table, eye, tree_base, start, tree_words, trees);
+                    member_tests
+                        .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                    let mut test =
+                        shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
+                    // Lowered by a margin, so that no member reflects a point the entry's plane
+                    // does not (their normals may differ in the last bits).
+                    test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;
+                    (test.across_u, test.across_v, test.extent) = GpuShapeTest::NO_SIDES;
+                    test
+                }
+            };
+            tests.push(test);
+        }
+        tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
+        tests.extend_from_slice(member_tests);
+        if !tree_words.is_empty() {
+            group_words.resize(tree_base as usize, 0);
+            group_words.extend_from_slice(tree_words);
+        }
     }
-    FrameTests { tests, looped, group_words }
 }
 
 /// The test of one shape (index `index` in its table).

@@ -102,29 +102,33 @@ impl ShapeTable {
 
     /// All shapes relative to a camera at `eye`, as the GPU reads them.
     pub fn gpu_shapes(&self, eye: DVec3) -> Vec<GpuShape> {
-        self.shapes
-            .iter()
-            .zip(&self.occluder_ranges)
-            .map(|(s, range)| {
-                let rel = s.center - eye;
-                GpuShape {
-                    center: rel.as_vec3().to_array(),
-                    half_u: s.half_extents[0],
-                    axis_u: s.axis_u.to_array(),
-                    half_v: s.half_extents[1],
-                    axis_v: s.axis_v.to_array(),
-                    plane_dist: s.plane_dist_from(eye) as f32,
-                    normal: s.normal.to_array(),
-                    flags: if s.enabled && blocks_main_buffer(s.kind) { SHAPE_OCCLUDES } else { 0 },
-                    occluder_start: range.start,
-                    occluder_count: range.end - range.start,
-                    parallel_group: s.parallel_group,
-                    center_u: rel.dot(s.axis_u.as_dvec3()) as f32,
-                    center_v: rel.dot(s.axis_v.as_dvec3()) as f32,
-                    _pad: [0; 3],
-                }
-            })
-            .collect()
+        let mut out = Vec::new();
+        self.gpu_shapes_into(eye, &mut out);
+        out
+    }
+
+    /// [`Self::gpu_shapes`] into `out` (emptied first, its memory reused).
+    pub fn gpu_shapes_into(&self, eye: DVec3, out: &mut Vec<GpuShape>) {
+        out.clear();
+        out.extend(self.shapes.iter().zip(&self.occluder_ranges).map(|(s, range)| {
+            let rel = s.center - eye;
+            GpuShape {
+                center: rel.as_vec3().to_array(),
+                half_u: s.half_extents[0],
+                axis_u: s.axis_u.to_array(),
+                half_v: s.half_extents[1],
+                axis_v: s.axis_v.to_array(),
+                plane_dist: s.plane_dist_from(eye) as f32,
+                normal: s.normal.to_array(),
+                flags: if s.enabled && blocks_main_buffer(s.kind) { SHAPE_OCCLUDES } else { 0 },
+                occluder_start: range.start,
+                occluder_count: range.end - range.start,
+                parallel_group: s.parallel_group,
+                center_u: rel.dot(s.axis_u.as_dvec3()) as f32,
+                center_v: rel.dot(s.axis_v.as_dvec3()) as f32,
+                _pad: [0; 3],
+            }
+        }));
     }
 }
 
