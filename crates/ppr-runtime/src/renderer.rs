@@ -9,9 +9,9 @@ use ppr_format::ValidatedSet;
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
-use crate::frame_upload::{FrameUpload, UploadTarget};
+use crate::frame_upload::{FrameUpload, UploadMemory, UploadTarget};
 use crate::glossy::glossy_shapes;
-use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, GpuShape, kind_code};
+use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
@@ -28,7 +28,6 @@ use crate::passes::{
 use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
-use crate::shape_tests::FrameTests;
 use crate::shapes::ShapeTable;
 use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
 use crate::upload_ring::UploadRing;
@@ -201,9 +200,6 @@ pub struct ReflectionRenderer {
     buffers: Option<FrameBuffers>,
     /// What the last `prepare` (one view) or `prepare_stereo` (two) planned and uploads.
     pub(crate) views: Vec<PreparedView>,
-    /// The shapes and tests `prepare` packs into each view's upload, refilled frame after
-    /// frame in the same memory.
-    scratch: (Vec<GpuShape>, FrameTests),
     timer: Option<PassTimer>,
     pub(crate) dispatches: Cell<u32>,
     /// Where `encode` writes each view's upload for its copies: staging buffers that come
@@ -237,7 +233,6 @@ impl ReflectionRenderer {
             table_dirty: true,
             buffers: None,
             views: Vec::new(),
-            scratch: Default::default(),
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             upload_ring: RefCell::new(UploadRing::new(device)),
@@ -332,22 +327,20 @@ impl ReflectionRenderer {
         }
         // The last frame's upload memory, reused (a fresh allocation of megabytes a frame
         // costs page faults on every frame with thousands of shapes).
-        let mut recycled: Vec<Vec<u8>> = std::mem::take(&mut self.views)
+        let mut recycled: Vec<UploadMemory> = std::mem::take(&mut self.views)
             .into_iter()
-            .filter_map(|v| v.upload.map(FrameUpload::into_bytes))
+            .filter_map(|v| v.upload.map(FrameUpload::into_memory))
             .collect();
-        let mut scratch = std::mem::take(&mut self.scratch);
         self.views = cameras
             .iter()
             .zip(&plans)
             .map(|(camera, plan)| PreparedView {
                 plan: Arc::clone(plan),
-                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default(), &mut scratch),
+                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default()),
                 full_viewport: viewport,
                 reduced_active,
             })
             .collect();
-        self.scratch = scratch;
         plans
     }
 
@@ -401,21 +394,14 @@ impl ReflectionRenderer {
     }
 
     /// What `encode` copies into the frame buffers for this view (`None` for an empty plan:
-    /// nothing is encoded).
-    /// `scratch`: the shapes' and tests' memory, refilled.
-    fn upload(
-        &self,
-        camera: &Camera,
-        plan: &FramePlan,
-        recycled: Vec<u8>,
-        (shapes, tests): &mut (Vec<GpuShape>, FrameTests),
-    ) -> Option<FrameUpload> {
+    /// nothing is encoded), in `memory` (the last frame's, refilled).
+    fn upload(&self, camera: &Camera, plan: &FramePlan, mut memory: UploadMemory) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
         let b = self.buffers.as_ref().expect("prepare_views allocates the buffers");
         if plan.is_empty() {
             return None;
         }
-        self.table.gpu_shapes_into(camera.position, shapes);
+        self.table.gpu_shapes_into(camera.position, &mut memory.shapes);
 
         let aspect = w as f32 / h.max(1) as f32;
         let clip_from_rel = camera.clip_from_relative(aspect);
@@ -455,30 +441,24 @@ impl ReflectionRenderer {
                 _pad: 0,
             })
             .collect();
-        tests.fill(&self.table, plan, camera.position);
+        memory.tests.fill(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
-                (UploadTarget::Shapes, bytemuck::cast_slice(shapes)),
                 (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
                 (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
-                (UploadTarget::Tests, bytemuck::cast_slice(&tests.tests)),
-                (
-                    UploadTarget::UniformTests,
-                    if plan.uniform_tests { bytemuck::cast_slice(&tests.tests[..tests.looped]) } else { &[] },
-                ),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
-                (UploadTarget::PlaneGroups, bytemuck::cast_slice(&tests.group_words)),
                 (
                     UploadTarget::Glossy,
                     if plan.glossy.is_empty() { &[] } else { bytemuck::bytes_of(&glossy) },
                 ),
             ],
-            recycled,
+            memory,
+            plan.uniform_tests,
         ))
     }
 

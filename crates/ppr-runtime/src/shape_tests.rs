@@ -38,9 +38,7 @@ pub struct FrameTests {
     /// The start of the plane-group buffer: the merged groups' headers in slot order, then
     /// (when the frame has trees) zeros up to the trees' room and the trees' words.
     pub group_words: Vec<u32>,
-    /// The trees' members' tests and words while the entries are built.
-    member_tests: Vec<GpuShapeTest>,
-    tree_words: Vec<u32>,
+    /// The trees' working memory.
     trees: TreeScratch,
 }
 
@@ -55,30 +53,41 @@ impl FrameTests {
     /// Refills these with a frame's projection tests for a camera at `eye` ([`frame_tests`]).
     pub fn fill(&mut self, table: &ShapeTable, plan: &FramePlan, eye: DVec3) {
         let base = plane_group_words_offset(table);
-        self.looped = plan.tested.len() + plan.layers.len();
-        let tree_base = tree_words_start(table);
-        let Self { tests, group_words, member_tests, tree_words, trees, looped } = self;
+        let entries = plan.tested.len();
+        self.looped = entries + plan.layers.len();
+        let tree_base = tree_words_start(table) as usize;
+        let Self { tests, group_words, trees, looped } = self;
+        // The entries' and layers' tests by index, the members' pushed after them; the
+        // groups' headers at their slots, the trees' words from `tree_base` on: each part
+        // written once where it goes.
         tests.clear();
+        tests.resize(*looped, GpuShapeTest::default());
         group_words.clear();
-        member_tests.clear();
-        tree_words.clear();
-        let mut slots = 0u32;
-        for e in &plan.tested {
-            let test = match *e {
+        if !plan.trees.is_empty() {
+            group_words.resize(tree_base, 0);
+        }
+        let mut slots = 0usize;
+        for (k, e) in plan.tested.iter().enumerate() {
+            tests[k] = match *e {
                 TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
                 TestedEntry::PlaneGroup(g) => {
                     let group = &table.plane_groups.groups[g as usize];
-                    let slot = GROUP_TEST_FLAG | slots;
+                    let slot = GROUP_TEST_FLAG | slots as u32;
+                    let header = [group.gpu_header(eye, base)];
+                    let words: &[u32] = bytemuck::cast_slice(&header);
+                    if plan.trees.is_empty() {
+                        group_words.extend_from_slice(words);
+                    } else {
+                        group_words[slots * words.len()..(slots + 1) * words.len()].copy_from_slice(words);
+                    }
                     slots += 1;
-                    group_words.extend_from_slice(bytemuck::cast_slice(&[group.gpu_header(eye, base)]));
                     shape_test(&group.bounding_shape(), slot, eye)
                 }
                 TestedEntry::ParallelTree(t) => {
                     let tree = &plan.trees[t as usize];
-                    let start = (*looped + member_tests.len()) as u32;
-                    let header = tree.append_words(table, eye, tree_base, start, tree_words, trees);
-                    member_tests
-                        .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                    let start = tests.len() as u32;
+                    let header = tree.append_words(table, eye, 0, start, group_words, trees);
+                    tests.extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
                     let mut test =
                         shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
                     // Lowered by a margin, so that no member reflects a point the entry's plane
@@ -88,13 +97,9 @@ impl FrameTests {
                     test
                 }
             };
-            tests.push(test);
         }
-        tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
-        tests.extend_from_slice(member_tests);
-        if !tree_words.is_empty() {
-            group_words.resize(tree_base as usize, 0);
-            group_words.extend_from_slice(tree_words);
+        for (k, l) in plan.layers.iter().enumerate() {
+            tests[entries + k] = shape_test(&table.shapes[l.shape as usize], l.shape, eye);
         }
     }
 }
@@ -149,6 +154,8 @@ mod tests {
     use glam::Vec3;
     use ppr_format::ReflectorKind;
 
+    use crate::camera::{Camera, Projection};
+
     use super::*;
 
     fn mirror() -> ShapeSource {
@@ -180,6 +187,104 @@ mod tests {
         let hit = m * (d / m.dot(n)) - rel_center;
         hit.dot(shape.axis_u.as_dvec3()).abs() <= f64::from(shape.half_extents[0])
             && hit.dot(shape.axis_v.as_dvec3()).abs() <= f64::from(shape.half_extents[1])
+    }
+
+    /// The tests and plane-group words of a frame with merged plane groups and a parallel
+    /// tree, written in place, are what building each part apart and joining them gives:
+    /// the entries' tests, the layers', then the members'; the groups' headers in slot
+    /// order, zeros up to the trees' room, the trees' words. And a refill in the same
+    /// memory gives the same again.
+    #[test]
+    fn a_frame_s_tests_and_words_are_the_parts_joined() {
+        use crate::parallel_trees::{ParallelFamilies, TreeScratch};
+        use crate::plan::{Choice, PlanParams};
+        use crate::plane_groups::PlaneGroups;
+        use crate::shapes::floor_mirror;
+
+        let mut shapes = Vec::new();
+        // Two floors of four tiles each (two plane groups), then a flight of 40 treads.
+        for (floor, y) in [(0u32, 0.0), (1, -2.0)] {
+            for k in 0..4 {
+                let c = DVec3::new(f64::from(k % 2) * 2.5 - 1.25, y, f64::from(k / 2) * 2.5 - 1.25);
+                shapes.push(floor_mirror(shapes.len() as u32, c, [1.0, 1.0], 10 + floor));
+            }
+        }
+        for k in 0..40 {
+            let c = DVec3::new(6.0, 1.0 + 0.17 * f64::from(k), -0.28 * f64::from(k));
+            shapes.push(floor_mirror(shapes.len() as u32, c, [1.0, 0.14], 1));
+        }
+        let mut table =
+            ShapeTable { occluder_ranges: vec![0..0; shapes.len()], shapes, ..ShapeTable::default() };
+        table.plane_groups = PlaneGroups::build(&table.shapes);
+        table.parallel_families = ParallelFamilies::build(&table.shapes);
+        let camera = Camera::look_at(
+            DVec3::new(2.0, 30.0, 12.0),
+            DVec3::new(2.0, 0.0, -4.0),
+            Vec3::Y,
+            Projection::default(),
+        );
+        let params =
+            PlanParams { plane_groups: Choice::On, parallel_trees: Choice::On, ..PlanParams::default() };
+        let plan = FramePlan::build(&table, &camera, [320, 180], &params);
+        let groups = plan.tested.iter().filter(|e| matches!(e, TestedEntry::PlaneGroup(_))).count();
+        assert_eq!((groups, plan.trees.len()), (2, 1), "{:?}", plan.tested);
+        let eye = camera.position;
+
+        // Each part apart, joined.
+        let base = plane_group_words_offset(&table);
+        let looped = plan.tested.len() + plan.layers.len();
+        let (mut headers, mut tree_words, mut members) = (Vec::new(), Vec::new(), Vec::new());
+        let mut tests: Vec<GpuShapeTest> = Vec::new();
+        for e in &plan.tested {
+            tests.push(match *e {
+                TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
+                TestedEntry::PlaneGroup(g) => {
+                    let group = &table.plane_groups.groups[g as usize];
+                    headers.push(group.gpu_header(eye, base));
+                    shape_test(&group.bounding_shape(), GROUP_TEST_FLAG | (headers.len() as u32 - 1), eye)
+                }
+                TestedEntry::ParallelTree(t) => {
+                    let tree = &plan.trees[t as usize];
+                    let start = (looped + members.len()) as u32;
+                    let tree_base = tree_words_start(&table);
+                    let header = tree.append_words(
+                        &table,
+                        eye,
+                        tree_base,
+                        start,
+                        &mut tree_words,
+                        &mut TreeScratch::default(),
+                    );
+                    members
+                        .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                    let mut test =
+                        shape_test(&table.shapes[tree.lowest(&table) as usize], TREE_TEST_FLAG | header, eye);
+                    test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;
+                    (test.across_u, test.across_v, test.extent) = GpuShapeTest::NO_SIDES;
+                    test
+                }
+            });
+        }
+        tests.extend(plan.layers.iter().map(|l| shape_test(&table.shapes[l.shape as usize], l.shape, eye)));
+        tests.extend(members);
+        let mut words: Vec<u32> = bytemuck::cast_slice(&headers).to_vec();
+        words.resize(tree_words_start(&table) as usize, 0);
+        words.extend(tree_words);
+
+        let mut got = frame_tests(&table, &plan, eye);
+        assert_eq!(got.looped, looped);
+        assert_eq!(got.tests, tests);
+        assert_eq!(got.group_words, words);
+        // Refilled for another camera, then for the first again: the same words.
+        let other = Camera::look_at(
+            DVec3::new(-3.0, 25.0, 8.0),
+            DVec3::new(3.0, 0.0, -6.0),
+            Vec3::Y,
+            Projection::default(),
+        );
+        got.fill(&table, &FramePlan::build(&table, &other, [320, 180], &params), other.position);
+        got.fill(&table, &plan, eye);
+        assert_eq!((got.tests, got.group_words), (tests, words));
     }
 
     #[test]

@@ -33,16 +33,17 @@ impl UploadRing {
         self.created
     }
 
-    /// A staging buffer holding `bytes` (a non-empty whole number of 4-byte words) at
-    /// offset 0, for copies recorded in `encoder`; it comes back to the ring once
-    /// `encoder`'s commands are submitted and done (one never submitted is dropped).
-    pub fn stage(&mut self, encoder: &wgpu::CommandEncoder, bytes: &[u8]) -> wgpu::Buffer {
+    /// A staging buffer holding `parts` one after the other from offset 0 (non-empty in
+    /// all, each a whole number of 4-byte words), for copies recorded in `encoder`; it
+    /// comes back to the ring once `encoder`'s commands are submitted and done (one never
+    /// submitted is dropped).
+    pub fn stage(&mut self, encoder: &wgpu::CommandEncoder, parts: &[&[u8]]) -> wgpu::Buffer {
         self.free.extend(self.returned.try_iter());
         if self.free.len() > MAX_FREE {
             self.free.sort_by_key(|b| std::cmp::Reverse(b.size()));
             self.free.truncate(MAX_FREE);
         }
-        let size = bytes.len() as u64;
+        let size: u64 = parts.iter().map(|p| p.len() as u64).sum();
         let buffer = match self.free.iter().position(|b| b.size() >= size) {
             Some(i) => self.free.swap_remove(i),
             None => {
@@ -55,7 +56,16 @@ impl UploadRing {
                 })
             }
         };
-        buffer.slice(..size).get_mapped_range_mut().into_view_mut().copy_from_slice(bytes);
+        {
+            // One mapped range (a range's offset must be a multiple of 8); each part
+            // written through its own slice of it.
+            let mut view = buffer.slice(..size).get_mapped_range_mut().into_view_mut();
+            let mut offset = 0;
+            for part in parts {
+                view.slice(offset..offset + part.len()).copy_from_slice(part);
+                offset += part.len();
+            }
+        }
         buffer.unmap();
         let (sender, back) = (self.sender.clone(), buffer.clone());
         encoder.map_buffer_on_submit(&buffer, wgpu::MapMode::Write, .., move |mapped| {
