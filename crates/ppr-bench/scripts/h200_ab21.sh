@@ -11,9 +11,12 @@
 #   ppr-bench-deriv.gz  f80e63d  + the derivative tolerance and the glossy bench options
 #   ppr-bench-zinit.gz  cfc650e  + no workgroup zeroing
 #   ppr-bench-nobar.gz  3f1096a  + one barrier less in workgroup_box
-#   ppr-bench.gz        the head (+ the encoding without integer divisions)
+#   ppr-bench.gz        the head (+ the encoding without integer divisions; the
+#                       twenty-second session's CPU side, which does not touch the shaders)
 # Missing binaries are skipped. BUDGET (s, default 290) bounds the call; base and head run
-# twice, alternating, then the glossy bench options on the head, then the attribution.
+# twice, alternating, then the glossy bench options on the head, then the attribution,
+# then the head's CPU side at 10 000 shapes on the host (cpu_ms). Tables:
+# `python3 crates/ppr-bench/scripts/ab_table.py results projection,frame,cpu`.
 for f in .gpu/*.gz; do gunzip -c "$f" > "${f%.gz}"; chmod +x "${f%.gz}"; done
 source crates/ppr-bench/scripts/h200_env.sh
 T0=$(date +%s)
@@ -28,5 +31,7 @@ run_bin base r1 && run_bin head r1 && run_bin head r2 && run_bin base r2 && {
   l=$(left); [ $l -gt 20 ] && step glossy $(( l < 45 ? l : 45 )) .gpu/ppr-bench runtime $C --projection-profile \
     --profile-row "glossy: batched taps" --profile-row "glossy: early depth" --profile-row "glossy: batched taps, early depth" \
     --frames 10 --resolution 4k --out $R/glossy; true; } \
-  && run_bin zinit r1 && run_bin deriv r1 && run_bin nobar r1 && run_bin forms r1
+  && run_bin zinit r1 && run_bin deriv r1 && run_bin nobar r1 && run_bin forms r1 && {
+  l=$(left); [ $l -gt 20 ] && step cpu10k $(( l < 45 ? l : 45 )) .gpu/ppr-bench runtime $C \
+    --scene stairway-10000 --scene rooms-10000 --frames 10 --resolution 1080p --out $R/cpu10k; true; }
 echo "total $(( $(date +%s) - T0 )) s"
