@@ -202,10 +202,10 @@ impl FrameTree {
         }));
         // Every node's moments, in heap order, merged from its children's: the slopes
         // without a pass over the members per node (one pass is left, for the ranges).
-        moments.clear();
+        // (Every entry is written below: no clearing of the last frame's.)
         moments.resize(2 * leaves, Moments::default());
-        for (leaf, m) in moments[leaves..].iter_mut().zip(geometry.iter()) {
-            *leaf = Moments::of(m);
+        for (k, leaf) in moments[leaves..2 * leaves].iter_mut().enumerate() {
+            *leaf = geometry.get(k).map_or(Moments::default(), Moments::of);
         }
         for k in (1..leaves).rev() {
             moments[k] = moments[2 * k].merge(&moments[2 * k + 1]);
