@@ -102,6 +102,9 @@ impl SourceBoxes {
         if (0..2).all(|a| lo[a] >= 0.0 && hi[a] <= screen[a]) {
             return Some(self.widened(lo, hi, MARGIN_PX));
         }
+        if known.is_some_and(|k| self.clipped_points_inside(&points, k)) {
+            return None;
+        }
         match clipped_box(&convex_hull(points), screen) {
             Some(Some(b)) if inside(b) => None,
             Some(Some((lo, hi))) => Some(self.widened(lo, hi, MARGIN_PX)),
@@ -133,6 +136,66 @@ impl SourceBoxes {
                 && v.y >= y[0] * v.w
                 && v.y <= y[1] * v.w
         })
+    }
+
+    /// Whether the hull of `points` (in pixels), clipped to the screen, lies at least
+    /// `MARGIN_PX + 1` pixels inside each side of `k` that is not the screen's edge, found
+    /// without the hull: the points are clipped by the screen's edges that `k` shares (a
+    /// convex hull cut by a line is the hull of its points on the inner side and of the
+    /// crossings of the segments from those to the others), then tested against the other
+    /// sides. A tread seen from above has its edge directions far above the screen: only
+    /// the top edge brings its hull back within the union's width.
+    fn clipped_points_inside(&self, points: &[[f64; 2]; 8], k: ScreenRect) -> bool {
+        // At most 8 points, then 4 + 4·4 after one edge; beyond 32 the hull is cheaper.
+        const CAPACITY: usize = 32;
+        let size = self.size.map(f64::from);
+        let edges = [
+            (0, k.min[0] == 0, 0.0, 1.0),
+            (0, k.max[0] >= self.size[0], size[0], -1.0),
+            (1, k.min[1] == 0, 0.0, 1.0),
+            (1, k.max[1] >= self.size[1], size[1], -1.0),
+        ];
+        if !edges.iter().any(|e| e.1) {
+            // Nothing to clip: `points_inside` has decided.
+            return false;
+        }
+        let mut bufs = [[[0.0f64; 2]; CAPACITY]; 2];
+        bufs[0][..8].copy_from_slice(points);
+        let (mut len, mut cur) = (8, 0);
+        for (axis, shared, edge, sign) in edges {
+            if !shared {
+                continue;
+            }
+            let (src, dst) = match &mut bufs {
+                [a, b] if cur == 0 => (&*a, b),
+                [a, b] => (&*b, a),
+            };
+            let src = &src[..len];
+            let inside = |p: &[f64; 2]| sign * (p[axis] - edge) >= 0.0;
+            let ins = src.iter().filter(|p| inside(p)).count();
+            if ins == 0 || ins + ins * (len - ins) > CAPACITY {
+                // Nothing within the edge (the hull decides), or too many crossings.
+                return false;
+            }
+            let mut n = 0;
+            for p in src.iter().filter(|p| inside(p)) {
+                dst[n] = *p;
+                n += 1;
+                for q in src.iter().filter(|q| !inside(q)) {
+                    let other = 1 - axis;
+                    let t = (edge - p[axis]) / (q[axis] - p[axis]);
+                    let across = p[other] + (q[other] - p[other]) * t;
+                    dst[n] = if axis == 0 { [edge, across] } else { [across, edge] };
+                    n += 1;
+                }
+            }
+            (len, cur) = (n, 1 - cur);
+        }
+        let m = MARGIN_PX + 1.0;
+        let lo = |a: usize| if k.min[a] == 0 { f64::NEG_INFINITY } else { f64::from(k.min[a]) + m };
+        let hi = |a: usize| if k.max[a] >= self.size[a] { f64::INFINITY } else { f64::from(k.max[a]) - m };
+        let (x, y) = ([lo(0), hi(0)], [lo(1), hi(1)]);
+        bufs[cur][..len].iter().all(|p| p[0] >= x[0] && p[0] <= x[1] && p[1] >= y[0] && p[1] <= y[1])
     }
 
     /// The eight points in pixels, where every one lies in front of the camera (`None`
