@@ -193,30 +193,31 @@ impl FrameTree {
         words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
         words.extend([tests_start, 0, 0, 0]);
         let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
-        let TreeScratch { spans: geometry, moments } = scratch;
+        let TreeScratch { spans: geometry, stats } = scratch;
         geometry.clear();
         geometry.extend(self.members.iter().map(|&m| {
             let s = &table.shapes[m as usize];
             let corners = s.corners().map(|c| [(c - eye).dot(au), (c - eye).dot(av)]);
             MemberSpan::new(s.plane_dist_from(eye), (s.center - eye).dot(av), corners)
         }));
-        // Every node's moments, in heap order, merged from its children's: the slopes
-        // without a pass over the members per node (one pass is left, for the ranges).
+        // Every node's statistics, in heap order, merged from its children's: the slopes
+        // and the offset and u ranges without a pass over the members per node (one pass
+        // is left, for the range of v − α·offset).
         // (Every entry is written below: no clearing of the last frame's.)
-        moments.resize(2 * leaves, Moments::default());
-        for (k, leaf) in moments[leaves..2 * leaves].iter_mut().enumerate() {
-            *leaf = geometry.get(k).map_or(Moments::default(), Moments::of);
+        stats.resize(2 * leaves, NodeStats::EMPTY);
+        for (k, leaf) in stats[leaves..2 * leaves].iter_mut().enumerate() {
+            *leaf = geometry.get(k).map_or(NodeStats::EMPTY, NodeStats::of);
         }
         for k in (1..leaves).rev() {
-            moments[k] = moments[2 * k].merge(&moments[2 * k + 1]);
+            stats[k] = stats[2 * k].merge(&stats[2 * k + 1]);
         }
         let depth = leaves.trailing_zeros();
-        for (k, m) in moments.iter().enumerate().skip(1) {
+        for (k, m) in stats.iter().enumerate().skip(1) {
             let level = usize::BITS - 1 - k.leading_zeros();
             let span = 1 << (depth - level);
             let first = (k - (1 << level)) * span;
             let range = first.min(geometry.len())..(first + span).min(geometry.len());
-            words.extend(node_words(&geometry[range], m.slope()));
+            words.extend(node_words(&geometry[range], m));
         }
         debug_assert_eq!(words.len() as u32 + base - header, tree_words(self.members.len()) as u32);
         header
@@ -227,7 +228,7 @@ impl FrameTree {
 #[derive(Clone, Debug, Default)]
 pub struct TreeScratch {
     spans: Vec<MemberSpan>,
-    moments: Vec<Moments>,
+    stats: Vec<NodeStats>,
 }
 
 /// What a node needs of a member: its plane offset, its centre's v, and its corners' u
@@ -252,21 +253,35 @@ impl MemberSpan {
     }
 }
 
-/// The least-squares moments of a node's members' centres in (offset, v): their count,
-/// means and centred sums, a node's merged from its children's (Chan, Golub and LeVeque's
-/// pairwise update).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-struct Moments {
+/// What a node's words need of its members but the range of `v − α·offset`, merged from
+/// its children's: the least-squares moments of their centres in (offset, v) (count,
+/// means and centred sums; Chan, Golub and LeVeque's pairwise update), and the ranges of
+/// their offsets and of their corners' u.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct NodeStats {
     n: f64,
     mean_d: f64,
     mean_v: f64,
     sdd: f64,
     sdv: f64,
+    d: [f64; 2],
+    u: [f64; 2],
 }
 
-impl Moments {
+impl NodeStats {
+    /// No members.
+    const EMPTY: Self = Self {
+        n: 0.0,
+        mean_d: 0.0,
+        mean_v: 0.0,
+        sdd: 0.0,
+        sdv: 0.0,
+        d: [f64::MAX, f64::MIN],
+        u: [f64::MAX, f64::MIN],
+    };
+
     fn of(m: &MemberSpan) -> Self {
-        Self { n: 1.0, mean_d: m.offset, mean_v: m.centre_v, sdd: 0.0, sdv: 0.0 }
+        Self { n: 1.0, mean_d: m.offset, mean_v: m.centre_v, sdd: 0.0, sdv: 0.0, d: [m.offset; 2], u: m.u }
     }
 
     fn merge(&self, other: &Self) -> Self {
@@ -285,6 +300,8 @@ impl Moments {
             mean_v: self.mean_v + dv * (other.n / n),
             sdd: self.sdd + other.sdd + dd * dd * w,
             sdv: self.sdv + other.sdv + dd * dv * w,
+            d: [self.d[0].min(other.d[0]), self.d[1].max(other.d[1])],
+            u: [self.u[0].min(other.u[0]), self.u[1].max(other.u[1])],
         }
     }
 
@@ -295,24 +312,24 @@ impl Moments {
 }
 
 /// A node's words: the range of its members' plane offsets, the u range of their corners,
-/// the slope `α` of their centres' v against the offset (`slope`, their least squares
-/// slope: a stairway's treads climb along v) and the range of `v − α·offset` over their
-/// corners, all rounded outwards to f32, and `1/α` (0 for α = 0). No members: a lowest
-/// offset of f32::MAX, which no pixel lies above.
-fn node_words(members: &[MemberSpan], slope: f64) -> [u32; TREE_NODE_WORDS] {
+/// the slope `α` of their centres' v against the offset (their least-squares slope: a
+/// stairway's treads climb along v) and the range of `v − α·offset` over their corners,
+/// all rounded outwards to f32, and `1/α` (0 for α = 0); `stats` are the members' (the
+/// offset and u ranges and the slope from there, the last range from the members). No
+/// members: a lowest offset of f32::MAX, which no pixel lies above.
+fn node_words(members: &[MemberSpan], stats: &NodeStats) -> [u32; TREE_NODE_WORDS] {
     if members.is_empty() {
         return [f32::MAX, f32::MAX, f32::MAX, f32::MIN, f32::MAX, f32::MIN, 0.0, 0.0].map(f32::to_bits);
     }
     // The slope the GPU multiplies by, so that the slab is computed with it.
-    let alpha = slope as f32;
+    let alpha = stats.slope() as f32;
     let a = f64::from(alpha);
-    let (mut d, mut u, mut w) = ([f64::MAX, f64::MIN], [f64::MAX, f64::MIN], [f64::MAX, f64::MIN]);
+    let mut w = [f64::MAX, f64::MIN];
     for m in members {
-        d = [d[0].min(m.offset), d[1].max(m.offset)];
-        u = [u[0].min(m.u[0]), u[1].max(m.u[1])];
         let shift = a * m.offset;
         w = [w[0].min(m.v[0] - shift), w[1].max(m.v[1] - shift)];
     }
+    let (d, u) = (stats.d, stats.u);
     let inv_alpha = if alpha == 0.0 { 0.0 } else { 1.0 / alpha };
     [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, inv_alpha].map(f32::to_bits)
 }
@@ -461,9 +478,10 @@ mod tests {
     }
 
     proptest::proptest! {
-        /// A node's words from its members' u and v ranges are the words from all their
-        /// corners, bit for bit; and the slope merged from two halves' moments is the
-        /// two-pass slope of all of them within rounding (exactly 0 where every offset agrees).
+        /// A node's words from its members' statistics merged from two halves' and their v
+        /// ranges are the words from all their corners, bit for bit; and the merged slope
+        /// is the two-pass slope of all of them within rounding (exactly 0 where every
+        /// offset agrees).
         #[test]
         fn node_words_from_member_ranges_match_the_corners(
             members in proptest::collection::vec(
@@ -482,14 +500,15 @@ mod tests {
             let spans: Vec<MemberSpan> = members.iter().map(|&(d, v, c)| MemberSpan::new(d, v, c)).collect();
             let dv: Vec<(f64, f64)> = members.iter().map(|m| (m.0, m.1)).collect();
             let reference = two_pass_slope(&dv);
-            let fold = |s: &[MemberSpan]| s.iter().fold(Moments::default(), |acc, m| acc.merge(&Moments::of(m)));
+            let fold = |s: &[MemberSpan]| s.iter().fold(NodeStats::EMPTY, |acc, m| acc.merge(&NodeStats::of(m)));
             let split = split.min(spans.len());
-            let merged = fold(&spans[..split]).merge(&fold(&spans[split..])).slope();
+            let stats = fold(&spans[..split]).merge(&fold(&spans[split..]));
+            let merged = stats.slope();
             if flat {
                 proptest::prop_assert_eq!(merged, 0.0);
             }
             proptest::prop_assert!((merged - reference).abs() <= 1e-9 * (1.0 + reference.abs()), "{} against {}", merged, reference);
-            proptest::prop_assert_eq!(node_words(&spans, merged), node_words_from_corners(&members, merged));
+            proptest::prop_assert_eq!(node_words(&spans, &stats), node_words_from_corners(&members, merged));
         }
     }
 
