@@ -82,7 +82,6 @@ fn main() -> anyhow::Result<()> {
 
 /// The median of some durations, in milliseconds.
 fn median(times: impl Iterator<Item = std::time::Duration>) -> f64 {
-    let mut ms: Vec<f64> = times.map(|t| t.as_secs_f64() * 1e3).collect();
-    ms.sort_by(f64::total_cmp);
-    ms.get(ms.len() / 2).copied().unwrap_or(f64::NAN)
+    let ms: Vec<f64> = times.map(|t| t.as_secs_f64() * 1e3).collect();
+    ppr_bench::stats::median(&ms).unwrap_or(f64::NAN)
 }

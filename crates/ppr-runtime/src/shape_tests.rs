@@ -75,11 +75,11 @@ impl FrameTests {
                     let slot = GROUP_TEST_FLAG | slots as u32;
                     let header = [group.gpu_header(eye, base)];
                     let words: &[u32] = bytemuck::cast_slice(&header);
-                    if plan.trees.is_empty() {
-                        group_words.extend_from_slice(words);
-                    } else {
-                        group_words[slots * words.len()..(slots + 1) * words.len()].copy_from_slice(words);
+                    let at = slots * words.len()..(slots + 1) * words.len();
+                    if group_words.len() < at.end {
+                        group_words.resize(at.end, 0);
                     }
+                    group_words[at].copy_from_slice(words);
                     slots += 1;
                     shape_test(&group.bounding_shape(), slot, eye)
                 }

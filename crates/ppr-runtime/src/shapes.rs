@@ -100,14 +100,8 @@ impl ShapeTable {
         })
     }
 
-    /// All shapes relative to a camera at `eye`, as the GPU reads them.
-    pub fn gpu_shapes(&self, eye: DVec3) -> Vec<GpuShape> {
-        let mut out = Vec::new();
-        self.gpu_shapes_into(eye, &mut out);
-        out
-    }
-
-    /// [`Self::gpu_shapes`] into `out` (emptied first, its memory reused).
+    /// All shapes relative to a camera at `eye`, as the GPU reads them, into `out`
+    /// (emptied first, its memory reused frame after frame).
     pub fn gpu_shapes_into(&self, eye: DVec3, out: &mut Vec<GpuShape>) {
         out.clear();
         out.extend(self.shapes.iter().zip(&self.occluder_ranges).map(|(s, range)| {

@@ -114,6 +114,18 @@ impl SourceBoxes {
         }
     }
 
+    /// Per axis, the pixel range a shape's points must keep to for its rect to lie in `k`:
+    /// `MARGIN_PX + 1` inside each side of `k`, unbounded at a side that is the screen's
+    /// edge (the rect is clipped to the screen there).
+    fn skip_ranges(&self, k: ScreenRect) -> [[f64; 2]; 2] {
+        let m = MARGIN_PX + 1.0;
+        std::array::from_fn(|a| {
+            let lo = if k.min[a] == 0 { f64::NEG_INFINITY } else { f64::from(k.min[a]) + m };
+            let hi = if k.max[a] >= self.size[a] { f64::INFINITY } else { f64::from(k.max[a]) - m };
+            [lo, hi]
+        })
+    }
+
     /// Whether every one of `points` (the pyramid's eight) lies in front of the camera and at
     /// least `MARGIN_PX + 1` pixels inside each side of `k` that is not the screen's edge,
     /// so that the rect (its hull's box clipped to the screen, `MARGIN_PX` wider) lies in
@@ -121,14 +133,12 @@ impl SourceBoxes {
     /// `w > 0` (its rounding is far below the spare pixel).
     fn points_inside(&self, points: impl IntoIterator<Item = DVec4>, k: ScreenRect) -> bool {
         let size = self.size.map(f64::from);
-        let m = MARGIN_PX + 1.0;
-        // Per axis, the NDC range the points must keep to (infinite at the screen's edge);
-        // y runs up in NDC and down in pixels.
+        // Per axis, the NDC range the points must keep to; y runs up in NDC and down in
+        // pixels.
         let ndc = |a: usize, px: f64| 2.0 * px / size[a] - 1.0;
-        let lo = |a: usize| if k.min[a] == 0 { f64::NEG_INFINITY } else { f64::from(k.min[a]) + m };
-        let hi = |a: usize| if k.max[a] >= self.size[a] { f64::INFINITY } else { f64::from(k.max[a]) - m };
-        let x = [ndc(0, lo(0)), ndc(0, hi(0))];
-        let y = [-ndc(1, hi(1)), -ndc(1, lo(1))];
+        let [px, py] = self.skip_ranges(k);
+        let x = [ndc(0, px[0]), ndc(0, px[1])];
+        let y = [-ndc(1, py[1]), -ndc(1, py[0])];
         points.into_iter().all(|v| {
             v.w > 1e-9 * v.abs().max_element()
                 && v.x >= x[0] * v.w
@@ -191,10 +201,7 @@ impl SourceBoxes {
             }
             (len, cur) = (n, 1 - cur);
         }
-        let m = MARGIN_PX + 1.0;
-        let lo = |a: usize| if k.min[a] == 0 { f64::NEG_INFINITY } else { f64::from(k.min[a]) + m };
-        let hi = |a: usize| if k.max[a] >= self.size[a] { f64::INFINITY } else { f64::from(k.max[a]) - m };
-        let (x, y) = ([lo(0), hi(0)], [lo(1), hi(1)]);
+        let [x, y] = self.skip_ranges(k);
         bufs[cur][..len].iter().all(|p| p[0] >= x[0] && p[0] <= x[1] && p[1] >= y[0] && p[1] <= y[1])
     }
 
