@@ -6,7 +6,8 @@ base. Usage, on the unpacked results folder (`tar xzf results.tar.gz`):
     python3 crates/ppr-bench/scripts/ab_table.py results [projection,frame] [base,...,head]
 
 The runs are the folders `<binary>_r<round>_<tag>/runtime.csv`; binaries missing from a
-row print as a dash. The cpu_ms column (prepare + encode on the host) is the `cpu` pass.
+row print as a dash. The cpu_ms column (prepare + encode on the host) is the `cpu` pass;
+`frame` is the sum of a run's passes for the row (the faster run's sum).
 """
 import collections
 import csv
@@ -20,6 +21,7 @@ bins = sys.argv[3].split(",") if len(sys.argv) > 3 else ["base", "forms", "deriv
 
 # (scene, camera, width) -> binary -> pass -> fastest median (ms)
 data = collections.defaultdict(lambda: collections.defaultdict(dict))
+sums = collections.defaultdict(float)  # (run, key) -> the run's passes summed
 for path in glob.glob(os.path.join(root, "*_r*_*", "runtime.csv")):
     binary = os.path.basename(os.path.dirname(path)).split("_r")[0]
     with open(path, newline="") as f:
@@ -31,6 +33,11 @@ for path in glob.glob(os.path.join(root, "*_r*_*", "runtime.csv")):
             for name, value in ((row["pass"], row["median_ms"]), ("cpu", row.get("cpu_ms", "nan"))):
                 v = float(value)
                 cell[name] = min(cell.get(name, float("inf")), v)
+            sums[(path, key)] += float(row["median_ms"])
+        for (run, key), total in sums.items():
+            if run == path:
+                cell = data[key][binary]
+                cell["frame"] = min(cell.get("frame", float("inf")), total)
 
 if not data:
     sys.exit(f"no <binary>_r<round>_<tag>/runtime.csv under {root}")
