@@ -2,7 +2,7 @@
 //! reflected rays (`scene::GLOSSY_SAMPLES` per pixel), over the floor's on-screen pixels.
 
 use glam::{DVec3, Vec3, Vec4};
-use ppr_runtime::{Camera, DebugOptions, Projection, ReflectionSettings};
+use ppr_runtime::{Camera, Projection, ReflectionSettings};
 use ppr_tests::harness::{Comparison, GpuFrame, compare, renderer, run, validated};
 use ppr_tests::masks::interior;
 use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
@@ -43,15 +43,10 @@ fn against(name: &str, frame: &Frame, out: &[Vec4], reference: &[Vec3]) -> Compa
 }
 
 fn render(s: &AnalyticScene, glossy: bool) -> (Frame, Vec<Vec4>) {
-    render_with(s, glossy, DebugOptions::default())
-}
-
-fn render_with(s: &AnalyticScene, glossy: bool, debug: DebugOptions) -> (Frame, Vec<Vec4>) {
     let cam = camera();
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let mut r = renderer();
-    r.debug = debug;
     r.settings = ReflectionSettings { glossy, ..ReflectionSettings::ALL };
     r.set_reflectors(&validated(&s.reflector_set()));
     let out = run(&mut r, &gpu, &cam);
@@ -121,27 +116,4 @@ fn near_contact_the_glossy_reflection_stays_sharp() {
     assert!(near >= 10 && far >= 100, "{near} {far}");
     assert!(near_differ * 4 <= near, "near contact stays sharp: {near_differ} of {near}");
     assert!(far_differ * 2 >= far, "far away it spreads: {far_differ} of {far}");
-}
-
-#[test]
-fn the_glossy_blur_s_bench_options_give_the_same_image_bit_for_bit() {
-    // Batched taps (four colour samples issued together, the repeats past a pixel's tap
-    // count not added) and the early depth load change when the pass waits, not what it
-    // sums: every output pixel equal, on a floor whose footprints take 4 to 12 taps.
-    let s = scene(0.35);
-    let (_, default) = render(&s, true);
-    let (_, sharp) = render(&s, false);
-    let blurred = default.iter().zip(&sharp).filter(|(a, b)| a != b).count();
-    assert!(blurred > 3000, "the blur must run: {blurred} pixels differ from the sharp image");
-    for (batched, early) in [(true, false), (false, true), (true, true)] {
-        let debug =
-            DebugOptions { glossy_batched_taps: batched, glossy_early_depth: early, ..Default::default() };
-        let (_, out) = render_with(&s, true, debug);
-        let differ = out
-            .iter()
-            .zip(&default)
-            .filter(|(a, b)| a.to_array().map(f32::to_bits) != b.to_array().map(f32::to_bits))
-            .count();
-        assert_eq!(differ, 0, "batched taps {batched}, early depth {early}: {differ} pixels differ");
-    }
 }

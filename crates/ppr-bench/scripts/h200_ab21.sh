@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The twenty-first session's A/B, not run then (no device was lent): times the head
+# The twenty-first session's A/B, run in the twenty-third on an H100 (runtime.md, "The
+# twenty-third session"; its glossy bench options' step is gone with them): times the head
 # against the binary before that session's GPU changes, and each change on its own, on the
 # default frames (runtime.md, "The twenty-first session"). Same setup as h200.sh (from the
 # repository root on the device, `.gl` and `.gpu` carried, results in
@@ -14,7 +15,7 @@
 #   ppr-bench.gz        the head (+ the encoding without integer divisions; the
 #                       twenty-second session's CPU side, which does not touch the shaders)
 # Missing binaries are skipped. BUDGET (s, default 290) bounds the call; base and head run
-# twice, alternating, then the glossy bench options on the head, then the attribution,
+# twice, alternating, then the attribution,
 # then the head's CPU side at 10 000 shapes on the host (cpu_ms). Tables:
 # `python3 crates/ppr-bench/scripts/ab_table.py results projection,frame,cpu`.
 for f in .gpu/*.gz; do gunzip -c "$f" > "${f%.gz}"; chmod +x "${f%.gz}"; done
@@ -27,10 +28,7 @@ run_bin() { local b=$1 tag=$2; local bin=.gpu/ppr-bench; [ $b != head ] && bin=.
   step ${b}_${tag}_all $(( l < 60 ? l : 60 )) $bin runtime $C --frames 10 \
     --scene demo --scene kitchen --scene mirror-room-6 --scene collision-world --scene rooms-1000 --scene stairway-1000 \
     --resolution 1080p --resolution 4k --out $R/${b}_${tag}_all; }
-run_bin base r1 && run_bin head r1 && run_bin head r2 && run_bin base r2 && {
-  l=$(left); [ $l -gt 20 ] && step glossy $(( l < 45 ? l : 45 )) .gpu/ppr-bench runtime $C --projection-profile \
-    --profile-row "glossy: batched taps" --profile-row "glossy: early depth" --profile-row "glossy: batched taps, early depth" \
-    --frames 10 --resolution 4k --out $R/glossy; true; } \
+run_bin base r1 && run_bin head r1 && run_bin head r2 && run_bin base r2 \
   && run_bin zinit r1 && run_bin deriv r1 && run_bin nobar r1 && run_bin forms r1 && {
   l=$(left); [ $l -gt 20 ] && step cpu10k $(( l < 45 ? l : 45 )) .gpu/ppr-bench runtime $C \
     --scene stairway-10000 --scene rooms-10000 --frames 10 --resolution 1080p --out $R/cpu10k; true; }

@@ -16,16 +16,6 @@
 // Needs `frame`, `color_tex`, `linear_sampler`, `depth_tex`, VIEW, and the uniform
 // `glossy: GlossyShapes` with the frame's visible glossy reflectors.
 
-// Bench options, each the same image bit for bit. GLOSSY_BATCHED_TAPS: the taps four at a
-// time, their four colour samples issued before any is added (a tap past the pixel's count
-// reads the last tap's texel again and is not added), so that a pixel waits on the colour
-// texture once per four taps, not once per tap, should the driver keep the loop rolled.
-// GLOSSY_EARLY_DEPTH: the pass loads the pixel's own depth with its intermediate values
-// (for pixels inside some glossy reflector's screen rectangle) instead of after the sharp
-// colour, one wait less before the reflected point's depth.
-override GLOSSY_BATCHED_TAPS: bool = false;
-override GLOSSY_EARLY_DEPTH: bool = false;
-
 const GLOSSY_CAPACITY: u32 = 32u;
 // Fewest taps, taps per pixel of footprint radius (the most: `glossy.max_taps`).
 const GLOSSY_MIN_TAPS: u32 = 4u;
@@ -86,39 +76,15 @@ fn ppr_glossy_roughness(p: vec3<f32>, c: vec2<f32>) -> f32 {
     return 0.0;
 }
 
-// The pixel's depth for the glossy blur, loaded early (GLOSSY_EARLY_DEPTH) where the pixel
-// may lie on a glossy reflector: its valid depth, else -1 (valid_depth_at).
-fn ppr_glossy_early_depth(vpos: vec2<i32>) -> f32 {
-    if (!GLOSSY_EARLY_DEPTH || !ppr_glossy_candidate(vec2<f32>(vpos) + 0.5)) {
-        return -1.0;
-    }
-    return valid_depth_at(vpos);
-}
-
-// The colour of glossy tap `k` of `taps` around the reflected point `src` (its offset
-// `radius * r` along the lobe's axes `along` and `cos_i * side`).
-fn ppr_glossy_tap(src: vec2<f32>, k: u32, taps: u32, radius: f32, along: vec2<f32>, side: vec2<f32>, cos_i: f32) -> vec3<f32> {
-    let xi = (f32(k) + 0.5) / f32(taps);
-    let r = sqrt(xi / (1.0 - xi));
-    let phi = f32(k) * 2.39996323;
-    let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
-    let uv = (src + offset) * frame.resolution.zw;
-    return textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb;
-}
-
 // The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
 // from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
-// is under a pixel. `early_depth`: the pixel's depth from ppr_glossy_early_depth (read
-// here without GLOSSY_EARLY_DEPTH).
-fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, early_depth: f32) -> vec4<f32> {
+// is under a pixel.
+fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     let c = vec2<f32>(vpos) + 0.5;
     if (!ppr_glossy_candidate(c)) {
         return sharp;
     }
-    var d_here = early_depth;
-    if (!GLOSSY_EARLY_DEPTH) {
-        d_here = valid_depth_at(vpos);
-    }
+    let d_here = valid_depth_at(vpos);
     if (d_here < 0.0) {
         return sharp;
     }
@@ -163,31 +129,13 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, early_depth: f3
     let side = vec2<f32>(-along.y, along.x);
     let cos_i = clamp(dot(-v, n_flat), 0.05, 1.0);
     var sum = sharp.rgb;
-    if (GLOSSY_BATCHED_TAPS) {
-        for (var k0 = 0u; k0 < taps; k0 += 4u) {
-            // Written out, not a private array indexed in a loop (which a driver may keep
-            // in local memory).
-            let k = min(vec4<u32>(k0) + vec4<u32>(0u, 1u, 2u, 3u), vec4<u32>(taps - 1u));
-            let s0 = ppr_glossy_tap(src, k.x, taps, radius, along, side, cos_i);
-            let s1 = ppr_glossy_tap(src, k.y, taps, radius, along, side, cos_i);
-            let s2 = ppr_glossy_tap(src, k.z, taps, radius, along, side, cos_i);
-            let s3 = ppr_glossy_tap(src, k.w, taps, radius, along, side, cos_i);
-            // In tap order, as the loop below adds them; a repeated tap adds nothing.
-            sum += finite_colour(s0);
-            if (k0 + 1u < taps) {
-                sum += finite_colour(s1);
-            }
-            if (k0 + 2u < taps) {
-                sum += finite_colour(s2);
-            }
-            if (k0 + 3u < taps) {
-                sum += finite_colour(s3);
-            }
-        }
-    } else {
-        for (var k = 0u; k < taps; k++) {
-            sum += finite_colour(ppr_glossy_tap(src, k, taps, radius, along, side, cos_i));
-        }
+    for (var k = 0u; k < taps; k++) {
+        let xi = (f32(k) + 0.5) / f32(taps);
+        let r = sqrt(xi / (1.0 - xi));
+        let phi = f32(k) * 2.39996323;
+        let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
+        let uv = (src + offset) * frame.resolution.zw;
+        sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
     }
     return vec4<f32>(sum / f32(taps + 1u), sharp.a);
 }

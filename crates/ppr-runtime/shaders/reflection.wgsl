@@ -114,12 +114,6 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
 // pixel's, `v[1..4]` at PPR_HOLE_OFFSETS): hole filling, the second ring where the first has
 // no data, colour, normal maps and glossy blur. What `main` and `main_quads` store.
 fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>) -> vec4<f32> {
-    return reflect_pixel_with(vpos, v, -1.0);
-}
-
-// reflect_pixel, with the pixel's depth for the glossy blur when it was loaded early
-// (ppr_glossy_early_depth, GLOSSY_EARLY_DEPTH).
-fn reflect_pixel_with(vpos: vec2<i32>, v: array<u32, 5>, glossy_depth: f32) -> vec4<f32> {
     let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
     var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     if (holes && chosen.value == PPR_CLEAR_VALUE) {
@@ -143,7 +137,7 @@ fn reflect_pixel_with(vpos: vec2<i32>, v: array<u32, 5>, glossy_depth: f32) -> v
     if (GLOSSY && colour.a > 0.0) {
         let decoded = ppr_decode(chosen.value, frame.encoding);
         let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
-        colour = ppr_glossy(vpos, src, colour, glossy_depth);
+        colour = ppr_glossy(vpos, src, colour);
     }
     return colour;
 }
@@ -178,11 +172,7 @@ fn main(
     for (var k = 0u; k < 4u; k++) {
         v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-    var glossy_depth = -1.0;
-    if (GLOSSY) {
-        glossy_depth = ppr_glossy_early_depth(vpos);
-    }
-    textureStore(output, vpos, reflect_pixel_with(vpos, v, glossy_depth));
+    textureStore(output, vpos, reflect_pixel(vpos, v));
 }
 
 // Two by two pixels per invocation, sharing their neighbourhood: the four pixels' first

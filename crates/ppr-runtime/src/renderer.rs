@@ -132,12 +132,6 @@ pub struct DebugOptions {
     /// blur's cost and accuracy are made of (0 and 1 leave the image sharp: 0 stops after
     /// the reflector lookup, 1 after the footprint, for the bench's cost profile).
     pub glossy_taps: Option<u32>,
-    /// The glossy blur's taps four at a time, their colour samples issued together (bench
-    /// only, the same image; `ReflectionVariant::glossy_batched_taps`).
-    pub glossy_batched_taps: bool,
-    /// The reflection pass loads a glossy pixel's own depth with its intermediate values
-    /// (bench only, the same image; `ReflectionVariant::glossy_early_depth`).
-    pub glossy_early_depth: bool,
     /// The block lists the projection builds flag no entry as lying wholly inside its
     /// shape's pyramid: every pixel runs the side tests (bench only, the same image;
     /// the block-list pass flags them either way).
@@ -364,8 +358,6 @@ impl ReflectionRenderer {
             holes: self.settings.holes,
             ablation: self.debug.reflection_ablation,
             quads: self.debug.reflection_quads,
-            glossy_batched_taps: self.debug.glossy_batched_taps,
-            glossy_early_depth: self.debug.glossy_early_depth,
         }
     }
 

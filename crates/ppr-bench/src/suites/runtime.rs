@@ -56,8 +56,7 @@ pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 /// `reflection: …` rows ablate the reflection pass instead, the `reflection: mirrors …`
 /// rows without the glossy blur (one pixel per invocation, or two by two with `quads`); the
 /// `layers: …` rows change the layer pass (the water edge stretch off, or walking all its
-/// steps as before the eighteenth session); the `glossy: …` rows the glossy blur's bench
-/// options (`DebugOptions::glossy_batched_taps`, `glossy_early_depth`).
+/// steps as before the eighteenth session).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -108,9 +107,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: mirrors, empty", Choice::Auto, Ablation::None),
         ("reflection: mirrors, quads", Choice::Auto, Ablation::None),
         ("reflection: mirrors, quads, empty", Choice::Auto, Ablation::None),
-        ("glossy: batched taps", Choice::Auto, Ablation::None),
-        ("glossy: early depth", Choice::Auto, Ablation::None),
-        ("glossy: batched taps, early depth", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -326,8 +322,6 @@ pub fn run_runtime(
                     list_prefetch: name.ends_with("prefetch"),
                     reflection_ablation,
                     reflection_quads,
-                    glossy_batched_taps: name.starts_with("glossy: batched taps"),
-                    glossy_early_depth: name.ends_with("early depth"),
                     ..tuning
                 };
                 variants.push((format!(" [{name}]"), params, scene.reflectors.clone(), debug, settings));

@@ -42,12 +42,6 @@ pub struct ReflectionVariant {
     /// dispatch, glossy, normal maps and frames without hole filling always take one pixel
     /// per invocation.
     pub quads: bool,
-    /// The glossy blur's taps four at a time, their colour samples issued together
-    /// (override `GLOSSY_BATCHED_TAPS`; bench only, the same image).
-    pub glossy_batched_taps: bool,
-    /// The pixel's depth for the glossy blur loaded with its intermediate values (override
-    /// `GLOSSY_EARLY_DEPTH`; bench only, the same image).
-    pub glossy_early_depth: bool,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -85,8 +79,7 @@ impl ReflectionVariant {
 
     /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
-        let glossy_tuning = u8::from(self.glossy_batched_taps) | u8::from(self.glossy_early_depth) << 1;
-        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation, glossy_tuning))
+        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation))
     }
 
     /// Whether the pass runs `main_quads` (the `quads` field asked for, mirrors with hole
@@ -100,9 +93,9 @@ impl ReflectionVariant {
     }
 }
 
-/// Pipelines by indirect, [`ReflectionVariant::index`], one pixel per invocation, ablation
-/// and the glossy blur's bench options as bits ([`ReflectionVariant::key`]).
-type PipelineKey = (bool, usize, (bool, ReflectionAblation, u8));
+/// Pipelines by indirect, [`ReflectionVariant::index`], one pixel per invocation and
+/// ablation ([`ReflectionVariant::key`]).
+type PipelineKey = (bool, usize, (bool, ReflectionAblation));
 
 /// Pixels per workgroup side of `main_quads` (16 x 16 invocations of 2 x 2 pixels).
 const QUAD_BLOCK: u32 = 32;
@@ -180,20 +173,18 @@ impl ReflectionPass {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         module: &wgpu::ShaderModule,
-        (indirect, index, (pixel_per_thread, ablation, glossy_tuning)): PipelineKey,
+        (indirect, index, (pixel_per_thread, ablation)): PipelineKey,
     ) -> wgpu::ComputePipeline {
         let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
         let label = format!(
             "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} \
-             pixel_per_thread={pixel_per_thread} ablation={ablation:?} glossy_tuning={glossy_tuning}"
+             pixel_per_thread={pixel_per_thread} ablation={ablation:?}"
         );
         let constants = [
             ("INDIRECT", flag(indirect)),
             ("NORMAL_MAPS", flag(normal_maps)),
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
-            ("GLOSSY_BATCHED_TAPS", flag(glossy_tuning & 1 != 0)),
-            ("GLOSSY_EARLY_DEPTH", flag(glossy_tuning & 2 != 0)),
         ];
         let entry = if pixel_per_thread { "main" } else { "main_quads" };
         compute_pipeline(device, &label, layout, module, entry, &constants)
