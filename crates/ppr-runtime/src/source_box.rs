@@ -224,25 +224,32 @@ impl SourceBoxes {
     }
 
     /// [`Self::rect`] by clipping the pyramid's five faces against the view's side planes
-    /// in homogeneous coordinates (Sutherland–Hodgman), then projecting what is left.
+    /// in homogeneous coordinates (Sutherland–Hodgman), then projecting what is left. The
+    /// side planes and the projection read x, y and w only, so the faces are clipped in
+    /// those three; a plane that no point of a face lies outside of leaves the face as it
+    /// is, and one that all four lie outside of leaves nothing (each point's planes found
+    /// once, for every face it bounds).
     fn rect_by_clipping(&self, c: [DVec4; 4], d: [DVec4; 4]) -> ScreenRect {
-        let faces = [
-            c,
-            [c[0], c[1], d[1], d[0]],
-            [c[1], c[2], d[2], d[1]],
-            [c[2], c[3], d[3], d[2]],
-            [c[3], c[0], d[0], d[3]],
-        ];
+        let points: [DVec3; 8] = std::array::from_fn(|i| xyw(if i < 4 { c[i] } else { d[i - 4] }));
+        let outside = points.map(outside_planes);
+        // The corners 0..4, the directions 4..8 (`pyramid`'s order).
+        const FACES: [[usize; 4]; 5] = [[0, 1, 2, 3], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]];
         let [w, h] = self.size;
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
-        for face in faces {
-            for &v in clip_to_view(face).vertices() {
+        let mut bufs = [[DVec3::ZERO; CLIP_CAPACITY]; 2];
+        for face in FACES {
+            let codes = face.map(|i| outside[i]);
+            if codes[0] & codes[1] & codes[2] & codes[3] != 0 {
+                continue;
+            }
+            let cut = codes[0] | codes[1] | codes[2] | codes[3];
+            for &v in clip_to_view(face.map(|i| points[i]), cut, &mut bufs) {
                 let scale = v.abs().max_element();
                 // Only the zero vector survives the side planes with w = 0 (and NaN is skipped).
-                if v.w.partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
+                if v.z.partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
                     continue;
                 }
-                let px = [(v.x / v.w * 0.5 + 0.5) * f64::from(w), (0.5 - v.y / v.w * 0.5) * f64::from(h)];
+                let px = [(v.x / v.z * 0.5 + 0.5) * f64::from(w), (0.5 - v.y / v.z * 0.5) * f64::from(h)];
                 for a in 0..2 {
                     lo[a] = lo[a].min(px[a]);
                     hi[a] = hi[a].max(px[a]);
@@ -428,76 +435,67 @@ fn eye_over_rectangle(shape: &ShapeSource, eye: DVec3) -> bool {
     height > 0.0 && inside(shape.axis_u, shape.half_extents[0]) && inside(shape.axis_v, shape.half_extents[1])
 }
 
-/// A polygon of homogeneous clip-space vectors, on the stack.
-#[derive(Clone, Copy)]
-struct ClipPolygon {
-    v: [DVec4; CLIP_CAPACITY],
-    len: usize,
-}
-
 /// Most vertices of a quadrilateral clipped by four planes: a polygon of n vertices leaves a
 /// plane with at most 1.5 n (half of them kept, a crossing on every edge), 4 → 6 → 9 → 13 →
 /// 19, whatever the input (a convex face gains at most one a plane).
 const CLIP_CAPACITY: usize = 19;
 
-impl ClipPolygon {
-    const EMPTY: Self = Self { v: [DVec4::ZERO; CLIP_CAPACITY], len: 0 };
-
-    fn vertices(&self) -> &[DVec4] {
-        &self.v[..self.len]
-    }
-
-    fn push(&mut self, v: DVec4) {
-        self.v[self.len] = v;
-        self.len += 1;
-    }
+/// A clip-space vector's x, y and w (as x, y, z): what the side planes and the projection
+/// to the screen read.
+fn xyw(v: DVec4) -> DVec3 {
+    DVec3::new(v.x, v.y, v.w)
 }
 
-/// The value of the frustum's side plane `plane` (0..4: left, right, bottom, top) at `v`,
-/// `>= 0` inside.
-fn side_value(plane: usize, v: DVec4) -> f64 {
+/// The value of the frustum's side plane `plane` (0..4: left, right, bottom, top) at `v`
+/// (x, y, w), `>= 0` inside.
+fn side_value(plane: usize, v: DVec3) -> f64 {
     match plane {
-        0 => v.w + v.x,
-        1 => v.w - v.x,
-        2 => v.w + v.y,
-        _ => v.w - v.y,
+        0 => v.z + v.x,
+        1 => v.z - v.x,
+        2 => v.z + v.y,
+        _ => v.z - v.y,
     }
 }
 
-/// Clips a quadrilateral of homogeneous clip-space vectors (its positive hull) against the
-/// frustum's four side planes (Sutherland–Hodgman). Without allocation, and a quadrilateral
-/// inside every plane comes back as it is (what the clipping would return): the plan clips
-/// five faces for every tested shape and every parallel tree's member each frame.
-fn clip_to_view(quad: [DVec4; 4]) -> ClipPolygon {
-    let mut bufs = [ClipPolygon::EMPTY; 2];
-    for v in quad {
-        bufs[0].push(v);
-    }
-    if quad.iter().all(|&v| (0..4).all(|plane| side_value(plane, v) >= 0.0)) {
-        return bufs[0];
-    }
-    let mut cur = 0;
+/// The side planes `v` (x, y, w) lies outside of, a bit each (bit `p` where `side_value(p)`
+/// is not `>= 0`, NaN included: the clipping drops what is not).
+fn outside_planes(v: DVec3) -> u8 {
+    (0..4).fold(0, |m, p| m | u8::from(side_value(p, v).partial_cmp(&0.0).is_none_or(|o| o.is_lt())) << p)
+}
+
+/// Clips a quadrilateral of homogeneous vectors (x, y, w; its positive hull) against the
+/// frustum's side planes whose bits are set in `cut` (Sutherland–Hodgman, in plane order),
+/// in `bufs`, without allocation: the plan clips five faces for every tested shape whose
+/// pyramid reaches behind the camera, every frame. Planes left out of `cut` are those no
+/// vertex lies outside of, which would keep every vertex.
+fn clip_to_view(quad: [DVec3; 4], cut: u8, bufs: &mut [[DVec3; CLIP_CAPACITY]; 2]) -> &[DVec3] {
+    bufs[0][..4].copy_from_slice(&quad);
+    let (mut cur, mut len) = (0, 4);
     for plane in 0..4 {
-        if bufs[cur].len == 0 {
+        if cut & (1 << plane) == 0 {
+            continue;
+        }
+        if len == 0 {
             break;
         }
-        let (first, second) = bufs.split_at_mut(1);
-        let (src, dst) = if cur == 0 { (&first[0], &mut second[0]) } else { (&second[0], &mut first[0]) };
-        dst.len = 0;
-        let n = src.len;
-        for i in 0..n {
-            let (a, b) = (src.v[i], src.v[if i + 1 == n { 0 } else { i + 1 }]);
+        let [first, second] = bufs;
+        let (src, dst) = if cur == 0 { (&*first, second) } else { (&*second, first) };
+        let mut out = 0;
+        for i in 0..len {
+            let (a, b) = (src[i], src[if i + 1 == len { 0 } else { i + 1 }]);
             let (fa, fb) = (side_value(plane, a), side_value(plane, b));
             if fa >= 0.0 {
-                dst.push(a);
+                dst[out] = a;
+                out += 1;
             }
             if (fa >= 0.0) != (fb >= 0.0) {
-                dst.push(a + (b - a) * (fa / (fa - fb)));
+                dst[out] = a + (b - a) * (fa / (fa - fb));
+                out += 1;
             }
         }
-        cur = 1 - cur;
+        (cur, len) = (1 - cur, out);
     }
-    bufs[cur]
+    &bufs[cur][..len]
 }
 
 #[cfg(test)]
@@ -635,10 +633,53 @@ mod tests {
         poly
     }
 
+    /// `SourceBoxes::rect_by_clipping` as first written: the five faces clipped in four
+    /// dimensions against every side plane, with vectors.
+    fn rect_of_faces_clipped_with_vecs(boxes: &SourceBoxes, c: [DVec4; 4], d: [DVec4; 4]) -> ScreenRect {
+        let faces = [
+            c,
+            [c[0], c[1], d[1], d[0]],
+            [c[1], c[2], d[2], d[1]],
+            [c[2], c[3], d[3], d[2]],
+            [c[3], c[0], d[0], d[3]],
+        ];
+        let [w, h] = boxes.size.map(f64::from);
+        let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+        for face in faces {
+            for v in clip_to_view_with_vecs(face.to_vec()) {
+                if v.w.partial_cmp(&(1e-12 * xyw(v).abs().max_element())) != Some(std::cmp::Ordering::Greater)
+                {
+                    continue;
+                }
+                let px = [(v.x / v.w * 0.5 + 0.5) * w, (0.5 - v.y / v.w * 0.5) * h];
+                for a in 0..2 {
+                    lo[a] = lo[a].min(px[a]);
+                    hi[a] = hi[a].max(px[a]);
+                }
+            }
+        }
+        if lo[0] > hi[0] {
+            return ScreenRect { min: [0, 0], max: [0, 0] };
+        }
+        if !lo.iter().chain(&hi).all(|x| x.is_finite()) {
+            return boxes.full();
+        }
+        boxes.widened(lo, hi, MARGIN_PX)
+    }
+
+    /// `clip_to_view` of a quadrilateral given as clip-space vectors, with every plane that
+    /// some vertex lies outside of.
+    fn clip_quad(quad: [DVec4; 4]) -> Vec<DVec3> {
+        let quad = quad.map(xyw);
+        let cut = quad.iter().fold(0, |m, &v| m | outside_planes(v));
+        let mut bufs = [[DVec3::ZERO; CLIP_CAPACITY]; 2];
+        clip_to_view(quad, cut, &mut bufs).to_vec()
+    }
+
     proptest::proptest! {
-        /// The stack polygon and its shortcut for a quadrilateral inside every plane give
-        /// the vertices of the clipping with vectors, bit for bit (points at infinity, w =
-        /// 0, included).
+        /// The stack polygon, in x, y and w, with its shortcuts (planes no vertex lies
+        /// outside of left out) gives the x, y and w of the clipping with vectors in four
+        /// dimensions, bit for bit (points at infinity, w = 0, included).
         #[test]
         fn the_clipping_without_allocation_matches_the_clipping_with_vectors(
             coords in proptest::collection::vec(-4.0f64..4.0, 16),
@@ -649,9 +690,9 @@ mod tests {
                 let w = if at_infinity[i] { 0.0 } else { coords[4 * i + 3].abs() * scale };
                 DVec4::new(coords[4 * i], coords[4 * i + 1], coords[4 * i + 2], w)
             });
-            let fast = clip_to_view(quad);
-            let slow = clip_to_view_with_vecs(quad.to_vec());
-            proptest::prop_assert_eq!(fast.vertices(), &slow[..]);
+            let fast = clip_quad(quad);
+            let slow: Vec<DVec3> = clip_to_view_with_vecs(quad.to_vec()).into_iter().map(xyw).collect();
+            proptest::prop_assert_eq!(fast, slow);
         }
     }
 
@@ -663,13 +704,14 @@ mod tests {
             DVec4::new(0.5, 0.5, 0.3, 1.0),
             DVec4::new(-0.5, 0.5, 0.3, 1.0),
         ];
-        assert_eq!(clip_to_view(inside).vertices(), &inside[..]);
+        assert_eq!(clip_quad(inside), inside.map(xyw).to_vec());
         let outside = inside.map(|v| v + DVec4::new(3.0, 0.0, 0.0, 0.0));
-        assert!(clip_to_view(outside).vertices().is_empty());
+        assert!(clip_quad(outside).is_empty());
         let straddling = inside.map(|v| v + DVec4::new(1.0, 0.0, 0.0, 0.0));
-        let clipped = clip_to_view(straddling);
-        assert_eq!(clipped.vertices(), &clip_to_view_with_vecs(straddling.to_vec())[..]);
-        assert!(clipped.vertices().iter().all(|v| v.x <= v.w), "{:?}", clipped.vertices());
+        let clipped = clip_quad(straddling);
+        let slow: Vec<DVec3> = clip_to_view_with_vecs(straddling.to_vec()).into_iter().map(xyw).collect();
+        assert_eq!(clipped, slow);
+        assert!(clipped.iter().all(|v| v.x <= v.z), "{clipped:?}");
     }
 
     proptest::proptest! {
@@ -716,6 +758,10 @@ mod tests {
                     }
                 } else {
                     proptest::prop_assert_eq!(rect, clipped);
+                    // The faces clipped in x, y and w with the shortcuts: the box of the
+                    // faces clipped in four dimensions, every plane, as first written.
+                    let reference = rect_of_faces_clipped_with_vecs(&boxes, c, d);
+                    proptest::prop_assert_eq!(clipped, reference);
                 }
                 // The skip is sound: a box one pixel short of the rect on any side does not
                 // hold it, so the rect comes back; and tight: one a pixel wider on every side
