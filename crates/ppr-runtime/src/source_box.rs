@@ -165,9 +165,34 @@ impl SourceBoxes {
             (1, k.min[1] == 0, 0.0, 1.0),
             (1, k.max[1] >= self.size[1], size[1], -1.0),
         ];
-        if !edges.iter().any(|e| e.1) {
+        let [x, y] = self.skip_ranges(k);
+        let within = |p: &[f64; 2]| p[0] >= x[0] && p[0] <= x[1] && p[1] >= y[0] && p[1] <= y[1];
+        let crossing = |axis: usize, edge: f64, p: &[f64; 2], q: &[f64; 2]| {
+            let other = 1 - axis;
+            let t = (edge - p[axis]) / (q[axis] - p[axis]);
+            let across = p[other] + (q[other] - p[other]) * t;
+            if axis == 0 { [edge, across] } else { [across, edge] }
+        };
+        let mut shared = edges.iter().filter(|e| e.1);
+        match (shared.next(), shared.next()) {
             // Nothing to clip: `points_inside` has decided.
-            return false;
+            (None, _) => return false,
+            // One edge (a flight's treads seen from above: the top): the points within it
+            // and the crossings are tested as they come, without keeping them (eight points
+            // give at most 20, within the capacity, so the answer is the clipping's).
+            (Some(&(axis, _, edge, sign)), None) => {
+                let inside = |p: &[f64; 2]| sign * (p[axis] - edge) >= 0.0;
+                let mut any = false;
+                for p in points.iter().filter(|p| inside(p)) {
+                    any = true;
+                    if !within(p) || points.iter().any(|q| !inside(q) && !within(&crossing(axis, edge, p, q)))
+                    {
+                        return false;
+                    }
+                }
+                return any;
+            }
+            _ => {}
         }
         let mut bufs = [[[0.0f64; 2]; CAPACITY]; 2];
         bufs[0][..8].copy_from_slice(points);
@@ -192,17 +217,13 @@ impl SourceBoxes {
                 dst[n] = *p;
                 n += 1;
                 for q in src.iter().filter(|q| !inside(q)) {
-                    let other = 1 - axis;
-                    let t = (edge - p[axis]) / (q[axis] - p[axis]);
-                    let across = p[other] + (q[other] - p[other]) * t;
-                    dst[n] = if axis == 0 { [edge, across] } else { [across, edge] };
+                    dst[n] = crossing(axis, edge, p, q);
                     n += 1;
                 }
             }
             (len, cur) = (n, 1 - cur);
         }
-        let [x, y] = self.skip_ranges(k);
-        bufs[cur][..len].iter().all(|p| p[0] >= x[0] && p[0] <= x[1] && p[1] >= y[0] && p[1] <= y[1])
+        bufs[cur][..len].iter().all(within)
     }
 
     /// The eight points in pixels, where every one lies in front of the camera (`None`
