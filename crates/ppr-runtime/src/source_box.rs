@@ -88,7 +88,7 @@ impl SourceBoxes {
             return if known == Some(full) { None } else { Some(full) };
         }
         let (c, d) = self.pyramid(shape);
-        if known.is_some_and(|k| self.points_inside(c.into_iter().chain(d), k)) {
+        if known.is_some_and(|k| self.points_inside(&c, k) && self.points_inside(&d, k)) {
             return None;
         }
         let Some(points) = self.projected(c, d) else {
@@ -126,12 +126,12 @@ impl SourceBoxes {
         })
     }
 
-    /// Whether every one of `points` (the pyramid's eight) lies in front of the camera and at
+    /// Whether every one of `points` (four of the pyramid's eight) lies in front of the camera and at
     /// least `MARGIN_PX + 1` pixels inside each side of `k` that is not the screen's edge,
     /// so that the rect (its hull's box clipped to the screen, `MARGIN_PX` wider) lies in
     /// `k`. Compared in clip space, without dividing by w: `x / w ≥ t ⇔ x ≥ t w` for
     /// `w > 0` (its rounding is far below the spare pixel).
-    fn points_inside(&self, points: impl IntoIterator<Item = DVec4>, k: ScreenRect) -> bool {
+    fn points_inside(&self, points: &[DVec4; 4], k: ScreenRect) -> bool {
         let size = self.size.map(f64::from);
         // Per axis, the NDC range the points must keep to; y runs up in NDC and down in
         // pixels.
@@ -139,7 +139,7 @@ impl SourceBoxes {
         let [px, py] = self.skip_ranges(k);
         let x = [ndc(0, px[0]), ndc(0, px[1])];
         let y = [-ndc(1, py[1]), -ndc(1, py[0])];
-        points.into_iter().all(|v| {
+        points.iter().all(|v| {
             v.w > 1e-9 * v.abs().max_element()
                 && v.x >= x[0] * v.w
                 && v.x <= x[1] * v.w
