@@ -324,11 +324,25 @@ fn node_words(members: &[MemberSpan], stats: &NodeStats) -> [u32; TREE_NODE_WORD
     // The slope the GPU multiplies by, so that the slab is computed with it.
     let alpha = stats.slope() as f32;
     let a = f64::from(alpha);
-    let mut w = [f64::MAX, f64::MIN];
-    for m in members {
-        let shift = a * m.offset;
-        w = [w[0].min(m.v[0] - shift), w[1].max(m.v[1] - shift)];
+    // The range of v − α·offset over the members, in four interleaved minimums and
+    // maximums (a chain of one each waits on the last one's latency every member; the
+    // extremes are the same whatever the order).
+    let (mut lo, mut hi) = ([f64::MAX; 4], [f64::MIN; 4]);
+    let chunks = members.chunks_exact(4);
+    let rest = chunks.remainder();
+    for chunk in chunks {
+        for (j, m) in chunk.iter().enumerate() {
+            let shift = a * m.offset;
+            lo[j] = lo[j].min(m.v[0] - shift);
+            hi[j] = hi[j].max(m.v[1] - shift);
+        }
     }
+    for (j, m) in rest.iter().enumerate() {
+        let shift = a * m.offset;
+        lo[j] = lo[j].min(m.v[0] - shift);
+        hi[j] = hi[j].max(m.v[1] - shift);
+    }
+    let w = [lo.into_iter().fold(f64::MAX, f64::min), hi.into_iter().fold(f64::MIN, f64::max)];
     let (d, u) = (stats.d, stats.u);
     let inv_alpha = if alpha == 0.0 { 0.0 } else { 1.0 / alpha };
     [down(d[0]), up(d[1]), down(u[0]), up(u[1]), down(w[0]), up(w[1]), alpha, inv_alpha].map(f32::to_bits)
