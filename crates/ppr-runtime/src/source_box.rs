@@ -88,7 +88,7 @@ impl SourceBoxes {
             return if known == Some(full) { None } else { Some(full) };
         }
         let (c, d) = self.pyramid(shape);
-        if known.is_some_and(|k| self.points_inside(&c, k) && self.points_inside(&d, k)) {
+        if known.is_some_and(|k| self.points_inside(&d, k) && self.points_inside(&c, k)) {
             return None;
         }
         let Some(points) = self.projected(c, d) else {
