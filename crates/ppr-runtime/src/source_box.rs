@@ -259,12 +259,13 @@ impl SourceBoxes {
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         let mut bufs = [[DVec3::ZERO; CLIP_CAPACITY]; 2];
         for face in FACES {
-            let codes = face.map(|i| outside[i]);
+            let codes = [outside[face[0]], outside[face[1]], outside[face[2]], outside[face[3]]];
             if codes[0] & codes[1] & codes[2] & codes[3] != 0 {
                 continue;
             }
             let cut = codes[0] | codes[1] | codes[2] | codes[3];
-            for &v in clip_to_view(face.map(|i| points[i]), cut, &mut bufs) {
+            let quad = [points[face[0]], points[face[1]], points[face[2]], points[face[3]]];
+            for &v in clip_to_view(&quad, cut, &mut bufs) {
                 let scale = v.abs().max_element();
                 // Only the zero vector survives the side planes with w = 0 (and NaN is skipped).
                 if v.z.partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
@@ -489,9 +490,11 @@ fn outside_planes(v: DVec3) -> u8 {
 /// in `bufs`, without allocation: the plan clips five faces for every tested shape whose
 /// pyramid reaches behind the camera, every frame. Planes left out of `cut` are those no
 /// vertex lies outside of, which would keep every vertex.
-fn clip_to_view(quad: [DVec3; 4], cut: u8, bufs: &mut [[DVec3; CLIP_CAPACITY]; 2]) -> &[DVec3] {
-    bufs[0][..4].copy_from_slice(&quad);
-    let (mut cur, mut len) = (0, 4);
+fn clip_to_view<'a>(quad: &'a [DVec3; 4], cut: u8, bufs: &'a mut [[DVec3; CLIP_CAPACITY]; 2]) -> &'a [DVec3] {
+    let [first, second] = bufs;
+    // Where the polygon is: the quadrilateral itself until a plane cuts it, then the
+    // buffers in turn.
+    let (mut at, mut len) = (0, 4);
     for plane in 0..4 {
         if cut & (1 << plane) == 0 {
             continue;
@@ -499,8 +502,11 @@ fn clip_to_view(quad: [DVec3; 4], cut: u8, bufs: &mut [[DVec3; CLIP_CAPACITY]; 2
         if len == 0 {
             break;
         }
-        let [first, second] = bufs;
-        let (src, dst) = if cur == 0 { (&*first, second) } else { (&*second, first) };
+        let (src, dst): (&[DVec3], &mut [DVec3; CLIP_CAPACITY]) = match at {
+            0 => (quad, &mut *first),
+            1 => (&first[..len], &mut *second),
+            _ => (&second[..len], &mut *first),
+        };
         let mut out = 0;
         for i in 0..len {
             let (a, b) = (src[i], src[if i + 1 == len { 0 } else { i + 1 }]);
@@ -514,9 +520,13 @@ fn clip_to_view(quad: [DVec3; 4], cut: u8, bufs: &mut [[DVec3; CLIP_CAPACITY]; 2
                 out += 1;
             }
         }
-        (cur, len) = (1 - cur, out);
+        (at, len) = (if at == 1 { 2 } else { 1 }, out);
     }
-    &bufs[cur][..len]
+    match at {
+        0 => quad,
+        1 => &first[..len],
+        _ => &second[..len],
+    }
 }
 
 #[cfg(test)]
@@ -694,7 +704,7 @@ mod tests {
         let quad = quad.map(xyw);
         let cut = quad.iter().fold(0, |m, &v| m | outside_planes(v));
         let mut bufs = [[DVec3::ZERO; CLIP_CAPACITY]; 2];
-        clip_to_view(quad, cut, &mut bufs).to_vec()
+        clip_to_view(&quad, cut, &mut bufs).to_vec()
     }
 
     proptest::proptest! {
