@@ -126,10 +126,10 @@ impl SourceBoxes {
         })
     }
 
-    /// Whether every one of `points` (four of the pyramid's eight) lies in front of the camera and at
-    /// least `MARGIN_PX + 1` pixels inside each side of `k` that is not the screen's edge,
-    /// so that the rect (its hull's box clipped to the screen, `MARGIN_PX` wider) lies in
-    /// `k`. Compared in clip space, without dividing by w: `x / w ≥ t ⇔ x ≥ t w` for
+    /// Whether every one of `points` (four of the pyramid's eight) lies in front of the
+    /// camera and at least `MARGIN_PX + 1` pixels inside each side of `k` that is not the
+    /// screen's edge, so that, with the other four, the rect (its hull's box clipped to the
+    /// screen, `MARGIN_PX` wider) lies in `k`. Compared in clip space, without dividing by w: `x / w ≥ t ⇔ x ≥ t w` for
     /// `w > 0` (its rounding is far below the spare pixel).
     fn points_inside(&self, points: &[DVec4; 4], k: ScreenRect) -> bool {
         let size = self.size.map(f64::from);
@@ -268,6 +268,9 @@ impl SourceBoxes {
             for &v in clip_to_view(&quad, cut, &mut bufs) {
                 let scale = v.abs().max_element();
                 // Only the zero vector survives the side planes with w = 0 (and NaN is skipped).
+                // (The scale leaves out z: a point a hair in front of the camera's plane
+                // with a large depth is kept, where the four-dimensional scale dropped it;
+                // its x and y lie within ±w, on the screen, so the box only holds more.)
                 if v.z.partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
                     continue;
                 }
@@ -678,8 +681,7 @@ mod tests {
         let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
         for face in faces {
             for v in clip_to_view_with_vecs(face.to_vec()) {
-                if v.w.partial_cmp(&(1e-12 * xyw(v).abs().max_element())) != Some(std::cmp::Ordering::Greater)
-                {
+                if v.w.partial_cmp(&(1e-12 * v.abs().max_element())) != Some(std::cmp::Ordering::Greater) {
                     continue;
                 }
                 let px = [(v.x / v.w * 0.5 + 0.5) * w, (0.5 - v.y / v.w * 0.5) * h];
