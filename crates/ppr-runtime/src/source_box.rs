@@ -182,10 +182,19 @@ impl SourceBoxes {
             // give at most 20, within the capacity, so the answer is the clipping's).
             (Some(&(axis, _, edge, sign)), None) => {
                 let inside = |p: &[f64; 2]| sign * (p[axis] - edge) >= 0.0;
+                // A crossing lies between its segment's ends across the edge: where both
+                // are within the other axis's range, so is the crossing (to its rounding,
+                // far below the spare pixel), without the division.
+                let other = 1 - axis;
+                let range = [x, y][other];
+                let within_other = |v: f64| v >= range[0] && v <= range[1];
                 let mut any = false;
                 for p in points.iter().filter(|p| inside(p)) {
                     any = true;
-                    if !within(p) || points.iter().any(|q| !inside(q) && !within(&crossing(axis, edge, p, q)))
+                    if !within(p)
+                        || points.iter().any(|q| {
+                            !inside(q) && !within_other(q[other]) && !within(&crossing(axis, edge, p, q))
+                        })
                     {
                         return false;
                     }
