@@ -240,12 +240,16 @@ impl SourceBoxes {
     fn projected(&self, c: [DVec4; 4], d: [DVec4; 4]) -> Option<[[f64; 2]; 8]> {
         let [w, h] = self.size.map(f64::from);
         let mut points = [[0.0f64; 2]; 8];
-        for (p, v) in points.iter_mut().zip(c.into_iter().chain(d)) {
+        for (i, p) in points.iter_mut().enumerate() {
+            let v = if i < 4 { c[i] } else { d[i - 4] };
             // On or behind the camera's plane, or NaN.
             if v.w.partial_cmp(&(1e-9 * v.abs().max_element())) != Some(std::cmp::Ordering::Greater) {
                 return None;
             }
-            *p = [(v.x / v.w * 0.5 + 0.5) * w, (0.5 - v.y / v.w * 0.5) * h];
+            // One division a point (x and y share it; its rounding is far below the box's
+            // margin).
+            let r = 1.0 / v.w;
+            *p = [(v.x * r * 0.5 + 0.5) * w, (0.5 - v.y * r * 0.5) * h];
             if !(p[0].is_finite() && p[1].is_finite()) {
                 return None;
             }
