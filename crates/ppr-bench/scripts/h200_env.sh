@@ -10,6 +10,8 @@ export WGPU_BACKEND=vulkan
 ICD=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 if [ -f "$ICD" ]; then export VK_DRIVER_FILES=$ICD; fi
 B=.gpu/ppr-bench
+# The binary may travel gzipped (the carry limit is 64 MiB).
+if [ -f "$B.gz" ] && [ ! -x "$B" ]; then gunzip -c "$B.gz" > "$B" && chmod +x "$B"; fi
 C="--scenes-dir .gpu/scenes"
 R=/tmp/results
 mkdir -p "$R"
