@@ -1,6 +1,7 @@
 //! Block-list pass: per 32 × 32-pixel block, the visible shapes that may reflect some pixel
 //! of it, so that the tiled projection's pixels test only those.
 
+use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
 use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
@@ -40,6 +41,7 @@ pub struct BlockListPass {
     box_only: Option<[wgpu::ComputePipeline; 2]>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl BlockListPass {
@@ -67,7 +69,7 @@ impl BlockListPass {
                 compute_pipeline(device, "ppr block lists", &layout, &module, "main", &constants)
             })
         });
-        Self { pipelines, box_only: None, module, layout }
+        Self { pipelines, box_only: None, module, layout, bind_groups: BindGroupCache::default() }
     }
 
     /// Builds the box-only pipelines (bench only; the renderer asks for them when
@@ -84,18 +86,24 @@ impl BlockListPass {
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &BlockListBindings<'_>) -> wgpu::BindGroup {
         let entry = buffer_entry;
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr block lists"),
-            layout: &self.layout,
-            entries: &[
-                entry(0, b.uniforms),
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                entry(2, b.tests),
-                entry(3, b.source_boxes),
-                entry(4, b.super_lists),
-                entry(5, b.block_lists),
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr block lists"),
+                layout: &self.layout,
+                entries: &[
+                    entry(0, b.uniforms),
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    entry(2, b.tests),
+                    entry(3, b.source_boxes),
+                    entry(4, b.super_lists),
+                    entry(5, b.block_lists),
+                ],
+            },
+        )
     }
 
     /// Records the pass over the viewport's blocks (with `box_only`, bench only, the pass

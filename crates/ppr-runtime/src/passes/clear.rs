@@ -1,6 +1,7 @@
 //! Clear pass: fills the intermediate buffer with the clear value, everywhere (four u32
 //! per thread) or only in the active tiles (indirect, one workgroup per tile).
 
+use super::bind_group_cache::BindGroupCache;
 use super::{compute_pipeline, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/clear.wgsl");
@@ -19,6 +20,7 @@ pub struct ClearPass {
     all: wgpu::ComputePipeline,
     tiles: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl ClearPass {
@@ -32,19 +34,23 @@ impl ClearPass {
             all: compute_pipeline(device, "ppr clear", &layout, &module, "clear_all", &[]),
             tiles: compute_pipeline(device, "ppr clear tiles", &layout, &module, "clear_tiles", &[]),
             layout,
+            bind_groups: BindGroupCache::default(),
         }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ClearBindings<'_>) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr clear"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: b.active_tiles.as_entire_binding() },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr clear"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.active_tiles.as_entire_binding() },
+                ],
+            },
+        )
     }
 
     /// Records the clear of the whole buffer (`vec4_count` four-value groups).

@@ -1,6 +1,7 @@
 //! Downsample pass of the reduced-resolution tiers: full-resolution depth to the reduced
 //! size the rest of the passes run at (`crates/ppr-runtime/shaders/downsample.wgsl`).
 
+use super::bind_group_cache::BindGroupCache;
 use super::{compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/downsample.wgsl");
@@ -20,6 +21,7 @@ pub struct DownsampleBindings<'a> {
 pub struct DownsamplePass {
     pipeline: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl DownsamplePass {
@@ -34,21 +36,24 @@ impl DownsamplePass {
         });
         let module = crate::shader::module_with(device, "ppr downsample", &[crate::shader::VIEW], WGSL);
         let pipeline = compute_pipeline(device, "ppr downsample", &layout, &module, "main", &[]);
-        Self { pipeline, layout }
+        Self { pipeline, layout, bind_groups: BindGroupCache::default() }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &DownsampleBindings<'_>) -> wgpu::BindGroup {
         let view =
             |binding, v| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) };
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr downsample"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                view(1, b.full_depth),
-                view(2, b.reduced_depth),
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr downsample"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    view(1, b.full_depth),
+                    view(2, b.reduced_depth),
+                ],
+            },
+        )
     }
 
     /// Records the pass over the reduced viewport.

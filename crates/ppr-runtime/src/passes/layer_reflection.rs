@@ -1,6 +1,7 @@
 //! Layer reflection pass: the reflections of glass panels and water planes, read from
 //! their atlas regions, into the layer output.
 
+use super::bind_group_cache::BindGroupCache;
 use super::{TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/layer_reflection.wgsl");
@@ -24,6 +25,7 @@ pub struct LayerReflectionPass {
     full_stretch: Option<wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
     sampler: wgpu::Sampler,
 }
 
@@ -78,7 +80,7 @@ impl LayerReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        Self { pipeline, full_stretch: None, module, layout, sampler }
+        Self { pipeline, full_stretch: None, module, layout, bind_groups: BindGroupCache::default(), sampler }
     }
 
     /// Builds the full-walk pipeline (bench only; the renderer asks for it when
@@ -93,20 +95,35 @@ impl LayerReflectionPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &LayerBindings<'_>) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr layer reflection"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: b.atlas.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: b.layers.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: b.shapes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(b.color) },
-                wgpu::BindGroupEntry { binding: 6, resource: wgpu::BindingResource::Sampler(&self.sampler) },
-                wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(b.output) },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr layer reflection"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: b.atlas.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.layers.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.shapes.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 5,
+                        resource: wgpu::BindingResource::TextureView(b.color),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 6,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 7,
+                        resource: wgpu::BindingResource::TextureView(b.output),
+                    },
+                ],
+            },
+        )
     }
 
     /// Records the pass over the layers' screen rectangle (`extent` pixels); with

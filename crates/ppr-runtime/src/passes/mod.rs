@@ -1,5 +1,6 @@
 //! The GPU passes: one struct per pass, owning its pipelines and bind-group layout.
 
+mod bind_group_cache;
 pub mod block_lists;
 pub mod clear;
 pub mod downsample;

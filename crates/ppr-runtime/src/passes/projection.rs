@@ -2,6 +2,7 @@
 //! the encoded offset into the intermediate buffer. Shader variants are pipelines built
 //! on first use from the WGSL's override constants.
 
+use super::bind_group_cache::BindGroupCache;
 use std::collections::HashMap;
 
 use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
@@ -173,6 +174,7 @@ pub struct ProjectionPass {
     /// Subgroups are at least 8 wide: [`BoxReduction::SubgroupSlots`] runs as itself.
     subgroup_slots: bool,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
     pipelines: HashMap<ProjectionVariant, wgpu::ComputePipeline>,
 }
 
@@ -201,8 +203,14 @@ impl ProjectionPass {
         });
         let subgroups = has_subgroups(device);
         let subgroup_slots = subgroups && device.adapter_info().subgroup_min_size >= 8;
-        let mut pass =
-            Self { modules: HashMap::new(), subgroups, subgroup_slots, layout, pipelines: HashMap::new() };
+        let mut pass = Self {
+            modules: HashMap::new(),
+            subgroups,
+            subgroup_slots,
+            layout,
+            bind_groups: BindGroupCache::default(),
+            pipelines: HashMap::new(),
+        };
         pass.prepare_variant(device, ProjectionVariant::default());
         pass
     }
@@ -266,27 +274,33 @@ impl ProjectionPass {
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ProjectionBindings<'_>) -> wgpu::BindGroup {
         let entry = buffer_entry;
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr projection"),
-            layout: &self.layout,
-            entries: &[
-                entry(0, b.uniforms),
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                entry(2, b.shapes),
-                entry(3, b.tests),
-                entry(4, b.occluders),
-                entry(5, b.intermediate),
-                entry(6, b.debug_writes),
-                entry(7, b.layers),
-                entry(8, b.atlas),
-                entry(9, b.super_lists),
-                entry(10, b.source_boxes),
-                entry(11, b.block_lists),
-                entry(12, b.uniform_tests),
-                entry(13, b.plane_groups),
-                entry(14, b.plane_groups),
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr projection"),
+                layout: &self.layout,
+                entries: &[
+                    entry(0, b.uniforms),
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    entry(2, b.shapes),
+                    entry(3, b.tests),
+                    entry(4, b.occluders),
+                    entry(5, b.intermediate),
+                    entry(6, b.debug_writes),
+                    entry(7, b.layers),
+                    entry(8, b.atlas),
+                    entry(9, b.super_lists),
+                    entry(10, b.source_boxes),
+                    entry(11, b.block_lists),
+                    entry(12, b.uniform_tests),
+                    entry(13, b.plane_groups),
+                    entry(14, b.plane_groups),
+                ],
+            },
+        )
     }
 
     /// Records the pass with `variant` (prepared beforehand).

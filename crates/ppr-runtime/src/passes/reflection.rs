@@ -1,5 +1,6 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
+use super::bind_group_cache::BindGroupCache;
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
 
 use std::collections::HashMap;
@@ -107,6 +108,7 @@ pub struct ReflectionPass {
     pipelines: HashMap<PipelineKey, wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
     sampler: wgpu::Sampler,
 }
 
@@ -164,7 +166,13 @@ impl ReflectionPass {
             min_filter: wgpu::FilterMode::Linear,
             ..Default::default()
         });
-        let mut pass = Self { pipelines: HashMap::new(), module, layout, sampler };
+        let mut pass = Self {
+            pipelines: HashMap::new(),
+            module,
+            layout,
+            bind_groups: BindGroupCache::default(),
+            sampler,
+        };
         pass.prepare_variant(device, ReflectionVariant::default());
         pass
     }
@@ -213,22 +221,40 @@ impl ReflectionPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr reflection"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: b.intermediate.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(b.color) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.sampler) },
-                wgpu::BindGroupEntry { binding: 4, resource: wgpu::BindingResource::TextureView(b.output) },
-                wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 7, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 8, resource: wgpu::BindingResource::TextureView(b.normals) },
-                wgpu::BindGroupEntry { binding: 9, resource: b.glossy.as_entire_binding() },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr reflection"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: b.intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(b.color),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Sampler(&self.sampler),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 4,
+                        resource: wgpu::BindingResource::TextureView(b.output),
+                    },
+                    wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 7,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 8,
+                        resource: wgpu::BindingResource::TextureView(b.normals),
+                    },
+                    wgpu::BindGroupEntry { binding: 9, resource: b.glossy.as_entire_binding() },
+                ],
+            },
+        )
     }
 
     /// Records the pass over the whole viewport.

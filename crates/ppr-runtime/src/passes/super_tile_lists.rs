@@ -1,6 +1,7 @@
 //! Super-tile list pass: per 64 × 64-pixel super-tile, the visible shapes that may reflect
 //! some pixel of it, so that the tiled projection's 16 × 16 tiles test only those.
 
+use super::bind_group_cache::BindGroupCache;
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/super_tile_lists.wgsl");
@@ -40,6 +41,7 @@ pub struct SuperTileListPass {
     /// Without and with source boxes.
     pipelines: [wgpu::ComputePipeline; 2],
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl SuperTileListPass {
@@ -64,21 +66,27 @@ impl SuperTileListPass {
             let constants = [("SOURCE_BOXES", flag(boxes))];
             compute_pipeline(device, "ppr super-tile lists", &layout, &module, "main", &constants)
         });
-        Self { pipelines, layout }
+        Self { pipelines, layout, bind_groups: BindGroupCache::default() }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &SuperTileBindings<'_>) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr super-tile lists"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 2, resource: b.tests.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: b.source_boxes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: b.super_lists.as_entire_binding() },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr super-tile lists"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.tests.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.source_boxes.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: b.super_lists.as_entire_binding() },
+                ],
+            },
+        )
     }
 
     /// Records the pass over the viewport's super-tiles.

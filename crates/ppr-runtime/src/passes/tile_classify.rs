@@ -2,6 +2,7 @@
 //! pixels in the intermediate buffer, and the indirect dispatch arguments of the reflection
 //! pass over them.
 
+use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
@@ -35,6 +36,7 @@ pub struct TileClassifyPass {
     separate_clear: Option<wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl TileClassifyPass {
@@ -60,6 +62,7 @@ impl TileClassifyPass {
             separate_clear: None,
             module,
             layout,
+            bind_groups: BindGroupCache::default(),
         }
     }
 
@@ -75,22 +78,28 @@ impl TileClassifyPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ClassifyBindings<'_>) -> wgpu::BindGroup {
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr tile classify"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(b.depth) },
-                wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr tile classify"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: wgpu::BindingResource::TextureView(b.depth),
+                    },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
+                ],
+            },
+        )
     }
 
     /// Records the classification of every tile, with `clear_tiles` the clear of the active

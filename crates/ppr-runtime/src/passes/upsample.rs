@@ -1,6 +1,7 @@
 //! Upsample pass of the reduced-resolution tiers: the reduced reflection (and layer
 //! reflection) to the full-resolution outputs, edge-aware (`crates/ppr-runtime/shaders/upsample.wgsl`).
 
+use super::bind_group_cache::BindGroupCache;
 use super::reflection::OUTPUT_FORMAT;
 use super::{
     TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry, write_texture_entry,
@@ -25,6 +26,7 @@ pub struct UpsamplePass {
     /// Pipelines by (indirect, layers).
     pipelines: [[wgpu::ComputePipeline; 2]; 2],
     layout: wgpu::BindGroupLayout,
+    bind_groups: BindGroupCache,
 }
 
 impl UpsamplePass {
@@ -48,24 +50,27 @@ impl UpsamplePass {
         };
         let pipelines =
             [[pipeline(false, false), pipeline(false, true)], [pipeline(true, false), pipeline(true, true)]];
-        Self { pipelines, layout }
+        Self { pipelines, layout, bind_groups: BindGroupCache::default() }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &UpsampleBindings<'_>) -> wgpu::BindGroup {
         let view =
             |binding, v| wgpu::BindGroupEntry { binding, resource: wgpu::BindingResource::TextureView(v) };
-        device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("ppr upsample"),
-            layout: &self.layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
-                view(1, b.full_depth),
-                view(2, b.reduced_depth),
-                view(3, b.reduced_output),
-                view(4, b.output),
-                wgpu::BindGroupEntry { binding: 5, resource: b.tile_flags.as_entire_binding() },
-            ],
-        })
+        self.bind_groups.get(
+            device,
+            &wgpu::BindGroupDescriptor {
+                label: Some("ppr upsample"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    view(1, b.full_depth),
+                    view(2, b.reduced_depth),
+                    view(3, b.reduced_output),
+                    view(4, b.output),
+                    wgpu::BindGroupEntry { binding: 5, resource: b.tile_flags.as_entire_binding() },
+                ],
+            },
+        )
     }
 
     /// Records the pass over `pixels` output pixels (the whole output, or with `layers`
