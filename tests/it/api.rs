@@ -118,7 +118,11 @@ fn fresh_output() -> wgpu::Texture {
 
 /// The scene's set, two cameras on it and their frames (a split screen's two views).
 fn two_views() -> (ppr_format::ReflectorSet, [Camera; 2], Vec<GpuFrame>) {
-    let s = scene();
+    two_views_of(&scene())
+}
+
+/// `s`'s set, two cameras on it and their frames.
+fn two_views_of(s: &AnalyticScene) -> (ppr_format::ReflectorSet, [Camera; 2], Vec<GpuFrame>) {
     let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
     let frames = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
     (s.reflector_set(), cams, frames)
@@ -390,4 +394,47 @@ fn frames_reuse_their_upload_staging_buffers() {
     drop(dropped);
     let after = run(&mut r, &frames[1], &cams[1]).pixels;
     assert!(bits(&after) == bits(&first[1]), "the frame after a dropped encoder");
+}
+
+#[test]
+fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
+    // Direct dispatch: a frame's reflection pass clears the intermediate buffer and atlas
+    // that the next encode takes (two slots, by turns), so that only the first frame has a
+    // clear pass. Two views in the order A B A B B A A B put each view into both slots, so
+    // that a slot left uncleared would hold the other view's values; every frame must match
+    // a renderer that clears in the pass every frame, bit for bit (output, layer output and
+    // intermediate buffer), a water layer included.
+    let mut s = scene();
+    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
+    let set = ppr_tests::harness::validated(&s.reflector_set());
+    let (_, cams, frames) = two_views_of(&s);
+    let mut turns = renderer();
+    let mut every_frame = renderer();
+    every_frame.debug.clear_pass_every_frame = true;
+    for r in [&mut turns, &mut every_frame] {
+        r.plan_params.indirect = Choice::Off;
+        r.set_reflectors(&set);
+    }
+    const CLEAR: usize = 1;
+    // The first two frames may clear in the pass (the second where its layer needs a
+    // larger atlas than the first's: new buffers); from the third on, none.
+    for (k, v) in [0, 1, 0, 1, 1, 0, 0, 1].into_iter().enumerate() {
+        let a = run(&mut turns, &frames[v], &cams[v]);
+        let cleared_in_pass = turns.passes_recorded()[CLEAR];
+        let b = run(&mut every_frame, &frames[v], &cams[v]);
+        assert!(!a.plan.visible.is_empty() && !a.plan.layers.is_empty() && !a.plan.indirect, "{}", a.plan);
+        assert!(a.pixels.iter().filter(|p| p.w > 0.0).count() > 500, "frame {k}: reflections found");
+        assert!(a.layer_pixels.iter().any(|p| p.w > 0.0), "frame {k}: the water layer reflects");
+        if k != 1 {
+            assert_eq!(cleared_in_pass, k == 0, "frame {k}: only the first frames clear in the pass");
+        }
+        assert!(every_frame.passes_recorded()[CLEAR]);
+        assert!(a.intermediate == b.intermediate, "frame {k} (view {v}): intermediate buffer");
+        assert!(bits(&a.pixels) == bits(&b.pixels), "frame {k} (view {v}): output");
+        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "frame {k} (view {v}): layer output");
+    }
+    // After `forget_cleared` (an encoder dropped unsubmitted) the next frame clears again.
+    turns.forget_cleared();
+    run(&mut turns, &frames[0], &cams[0]);
+    assert!(turns.passes_recorded()[CLEAR], "a forgotten clear is done in the pass");
 }

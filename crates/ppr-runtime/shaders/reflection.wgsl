@@ -5,6 +5,10 @@
 // ppr_confidence: 1 inside the screen, fading towards the borders; 0 where no reflection
 // was found). Seed: PPR_ReflectionPass.
 //
+// In direct dispatch (CLEAR_NEXT) each invocation also clears its pixels of the intermediate
+// buffer and atlas that the next encode uses (the renderer's two slots, used by turns), so
+// that the next frame needs no clear pass.
+//
 // Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
 // empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
 // project, fetch; a 4-tap march toward the reflecting pixel rejects disoccluded samples;
@@ -23,10 +27,15 @@
 @group(0) @binding(8) var normal_tex: texture_2d<f32>;
 // The frame's visible glossy reflectors (glossy.wgsl).
 @group(0) @binding(9) var<uniform> glossy: GlossyShapes;
+// The next encode's intermediate buffer and layer atlas (the other slot), cleared here with
+// CLEAR_NEXT.
+@group(0) @binding(10) var<storage, read_write> next_intermediate: array<u32>;
+@group(0) @binding(11) var<storage, read_write> next_atlas: array<u32>;
 
 override INDIRECT: bool = false;
 override NORMAL_MAPS: bool = false;
 override GLOSSY: bool = false;
+override CLEAR_NEXT: bool = false;
 // Bench only (never a correct image): 1 returns at once; 2 stores the chosen offset (no
 // colour read, no blur); 3 stores the sharp colour (no glossy blur).
 override ABLATION: u32 = 0u;
@@ -44,6 +53,18 @@ fn read_value(p: vec2<i32>) -> u32 {
         }
     }
     return intermediate[u32(p.x) + u32(p.y) * frame.size.x];
+}
+
+// Clears the pixel's value in the next encode's intermediate buffer, and the atlas values
+// whose index is the pixel's plus a multiple of the pixel count (the atlas may be larger
+// than the viewport).
+fn clear_next(pixel: vec2<u32>) {
+    let i = pixel.x + pixel.y * frame.size.x;
+    next_intermediate[i] = PPR_CLEAR_VALUE;
+    let pixels = frame.size.x * frame.size.y;
+    for (var j = i; j < arrayLength(&next_atlas); j += pixels) {
+        next_atlas[j] = PPR_CLEAR_VALUE;
+    }
 }
 
 fn valid_depth_at(p: vec2<i32>) -> f32 {
@@ -150,6 +171,9 @@ fn main(
     @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
+    if (CLEAR_NEXT && all(global_id.xy < frame.size)) {
+        clear_next(global_id.xy);
+    }
     if (ABLATION == 1u) {
         return;
     }
@@ -182,11 +206,17 @@ fn main(
 // (ReflectionVariant::runs_quads says why not by default); the same image as `main`, bit for bit.
 @compute @workgroup_size(16, 16)
 fn main_quads(@builtin(global_invocation_id) global_id: vec3<u32>) {
-    if (ABLATION == 1u) {
-        return;
-    }
     let base = global_id.xy * 2u;
     if (any(base >= frame.size)) {
+        return;
+    }
+    for (var q = 0u; CLEAR_NEXT && q < 4u; q++) {
+        let p = base + vec2<u32>(q & 1u, q >> 1u);
+        if (all(p < frame.size)) {
+            clear_next(p);
+        }
+    }
+    if (ABLATION == 1u) {
         return;
     }
     let b = vec2<i32>(base);

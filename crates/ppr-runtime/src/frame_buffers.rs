@@ -1,5 +1,7 @@
 //! The GPU buffers of a frame, sized for a viewport and a reflector set.
 
+use std::cell::Cell;
+
 use wgpu::util::DeviceExt;
 
 use crate::gpu_types::{FrameUniforms, GpuGlossyShapes, GpuLayer, GpuShape, GpuShapeTest};
@@ -26,14 +28,17 @@ pub(crate) struct FrameBuffers {
     pub occluders: wgpu::Buffer,
     /// The visible glossy reflectors (`GpuGlossyShapes`).
     pub glossy: wgpu::Buffer,
-    pub intermediate: wgpu::Buffer,
+    /// Two intermediate buffers used by turns ([`Self::take_slot`]): a direct-dispatch
+    /// reflection pass clears the one the next encode uses, which then needs no clear pass.
+    pub intermediate: [wgpu::Buffer; 2],
     pub active_tiles: wgpu::Buffer,
     pub dispatch_args: wgpu::Buffer,
     pub tile_flags: wgpu::Buffer,
     pub debug_writes: wgpu::Buffer,
     pub layers: wgpu::Buffer,
-    /// Atlas of the layer reflectors' regions (grown on demand).
-    pub atlas: wgpu::Buffer,
+    /// Atlas of the layer reflectors' regions (grown on demand), one per slot as the
+    /// intermediate buffer.
+    pub atlas: [wgpu::Buffer; 2],
     /// Super-tile counts and lists (full size only once a plan uses super-tiles).
     pub super_lists: wgpu::Buffer,
     /// Block counts and lists (full size only once a plan uses tile culling).
@@ -45,6 +50,11 @@ pub(crate) struct FrameBuffers {
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
+    /// The slot the next encode takes.
+    next_slot: Cell<usize>,
+    /// Per slot: whether its intermediate buffer and atlas hold the clear value everywhere
+    /// (a reflection pass cleared them after their last use).
+    clean: Cell<[bool; 2]>,
 }
 
 impl FrameBuffers {
@@ -100,7 +110,8 @@ impl FrameBuffers {
                 std::mem::size_of::<GpuGlossyShapes>() as u64,
                 wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
             ),
-            intermediate: buffer("ppr intermediate buffer", (pixels * 4).next_multiple_of(16), readable),
+            intermediate: ["ppr intermediate buffer 0", "ppr intermediate buffer 1"]
+                .map(|label| buffer(label, (pixels * 4).next_multiple_of(16), readable)),
             active_tiles: buffer(
                 "ppr active tiles",
                 ACTIVE_TILES_HEADER + 4 * u64::from(plan.tile_count()),
@@ -114,7 +125,8 @@ impl FrameBuffers {
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
             layers: buffer("ppr layers", (MAX_LAYERS * std::mem::size_of::<GpuLayer>()) as u64, storage),
-            atlas: buffer("ppr layer atlas", (4 * u64::from(layer_pixels)).next_multiple_of(16), readable),
+            atlas: ["ppr layer atlas 0", "ppr layer atlas 1"]
+                .map(|label| buffer(label, 4 * atlas_capacity(layer_pixels, pixels), readable)),
             super_lists: buffer(
                 "ppr super-tile lists",
                 if super_tiles { super_lists_size(plan.viewport) } else { 16 },
@@ -129,7 +141,43 @@ impl FrameBuffers {
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
+            next_slot: Cell::new(0),
+            clean: Cell::new([false; 2]),
         }
+    }
+
+    /// The slot (of [`Self::intermediate`] and [`Self::atlas`]) an encode uses, and whether
+    /// its buffers are clean; the next call returns the other slot. The slot is dirty from
+    /// here on (the encode's projection writes it).
+    ///
+    /// The slots' states follow the encodes, so the command buffers must reach the GPU in
+    /// the order they were encoded (as `ReflectionRenderer::encode` requires).
+    pub fn take_slot(&self) -> (usize, bool) {
+        let slot = self.next_slot.get();
+        self.next_slot.set(1 - slot);
+        let mut clean = self.clean.get();
+        let was_clean = clean[slot];
+        clean[slot] = false;
+        self.clean.set(clean);
+        (slot, was_clean)
+    }
+
+    /// Marks `slot`'s buffers clean: a pass recorded after the last use of them cleared
+    /// them whole.
+    pub fn mark_clean(&self, slot: usize) {
+        let mut clean = self.clean.get();
+        clean[slot] = true;
+        self.clean.set(clean);
+    }
+
+    /// Marks both slots dirty (their next encodes clear them in the clear pass).
+    pub fn forget_clean(&self) {
+        self.clean.set([false; 2]);
+    }
+
+    /// The slot the last [`Self::take_slot`] returned.
+    pub fn last_slot(&self) -> usize {
+        1 - self.next_slot.get()
     }
 
     /// Whether these buffers serve `plan` over `table`.
@@ -137,12 +185,22 @@ impl FrameBuffers {
         self.viewport == plan.viewport
             && self.shape_count == table.shapes.len()
             && self.debug == debug
-            && self.atlas.size() >= 4 * u64::from(plan.layer_pixels)
+            && self.atlas[0].size() >= 4 * u64::from(plan.layer_pixels)
             && (!plan.super_tiles || self.super_lists.size() >= super_lists_size(plan.viewport))
             && (!plan.tile_culling
                 || plan.fused_lists
                 || self.block_lists.size() >= block_lists_size(plan.viewport))
     }
+}
+
+/// Atlas values to allocate for `layer_pixels` in a viewport of `pixels`: whole eighths of
+/// the viewport (at least 1 024 values), so that a layer growing on screen frame by frame
+/// re-creates the buffers a few times, not at every frame.
+fn atlas_capacity(layer_pixels: u32, pixels: u64) -> u64 {
+    if layer_pixels == 0 {
+        return 4;
+    }
+    u64::from(layer_pixels).next_multiple_of((pixels / 8).max(1024).next_multiple_of(4))
 }
 
 /// Room for every group's header (zeros until a frame writes them), then the static words.

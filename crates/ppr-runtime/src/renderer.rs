@@ -146,6 +146,10 @@ pub struct DebugOptions {
     /// tests before the box reduction (bench only, the same lists;
     /// `ProjectionVariant::list_prefetch`).
     pub list_prefetch: bool,
+    /// Every direct-dispatch frame clears its intermediate buffer (and atlas) in the clear
+    /// pass, as before the twenty-fourth session, instead of finding them cleared by the
+    /// last encode's reflection pass (bench only, the same image).
+    pub clear_pass_every_frame: bool,
 }
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -202,6 +206,8 @@ pub struct ReflectionRenderer {
     /// Whether the frames want layers: the last `encode` that gave a layer output, or had
     /// layers without one (`None` before either).
     layer_output_given: Cell<Option<bool>>,
+    /// The timed passes the last `encode` recorded ([`Self::passes_recorded`]).
+    recorded: Cell<[bool; TIMED_PASSES as usize]>,
 }
 
 impl ReflectionRenderer {
@@ -231,6 +237,7 @@ impl ReflectionRenderer {
             dispatches: Cell::new(0),
             upload_ring: RefCell::new(UploadRing::new(device)),
             layer_output_given: Cell::new(None),
+            recorded: Cell::new([false; TIMED_PASSES as usize]),
         }
     }
 
@@ -358,6 +365,7 @@ impl ReflectionRenderer {
             holes: self.settings.holes,
             ablation: self.debug.reflection_ablation,
             quads: self.debug.reflection_quads,
+            leave_next: self.debug.clear_pass_every_frame,
         }
     }
 
@@ -458,6 +466,11 @@ impl ReflectionRenderer {
     /// empty), starting with the copies of its upload. Calling it again for the same
     /// `prepare` records the same frame again.
     ///
+    /// Encodes take the renderer's two intermediate buffers by turns, and a full-screen
+    /// reflection pass clears the one the next encode takes (no clear pass then): submit
+    /// the encoders in the order they were encoded, and drop none that holds an encode
+    /// (after one is dropped unsubmitted, call [`Self::forget_cleared`]).
+    ///
     /// # Panics
     /// If [`Self::prepare`] was not called first.
     pub fn encode(&self, encoder: &mut wgpu::CommandEncoder, inputs: &FrameInputs<'_>) {
@@ -483,10 +496,15 @@ impl ReflectionRenderer {
             (false, true) => {}
         }
         if plan.is_empty() {
+            self.recorded.set([false; TIMED_PASSES as usize]);
             return;
         }
         let device = &self.device;
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
+        // This encode's slot of the intermediate buffer and atlas, and whether the last
+        // encode's reflection pass left them cleared.
+        let (slot, clean) = b.take_slot();
+        let (intermediate, atlas) = (&b.intermediate[slot], &b.atlas[slot]);
         let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
         // A reduced tier runs the passes on its own reduced depth and outputs (normal maps
@@ -541,7 +559,7 @@ impl ReflectionRenderer {
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
                     layers: &b.layers,
-                    intermediate: &b.intermediate,
+                    intermediate,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -551,15 +569,12 @@ impl ReflectionRenderer {
             self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
             count(1);
         }
-        let clear_main = self.clears_main_in_pass(plan);
-        if self.clears_in_pass(plan) {
+        let clear_main = self.clears_main_in_pass(plan) && !(clean && !plan.indirect);
+        let clear_atlas = !plan.layers.is_empty() && !clean;
+        if clear_main || clear_atlas {
             let bg = self.clear.bind_group(
                 device,
-                &ClearBindings {
-                    intermediate: &b.intermediate,
-                    uniforms: &b.uniforms,
-                    active_tiles: &b.active_tiles,
-                },
+                &ClearBindings { intermediate, uniforms: &b.uniforms, active_tiles: &b.active_tiles },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr clear"),
@@ -571,14 +586,14 @@ impl ReflectionRenderer {
                 self.clear.encode_tiles(&mut pass, &bg, &b.dispatch_args);
                 count(1);
             } else {
-                self.clear.encode_all(&mut pass, &bg, (b.intermediate.size() / 16) as u32);
+                self.clear.encode_all(&mut pass, &bg, (intermediate.size() / 16) as u32);
                 count(1);
             }
-            if !plan.layers.is_empty() {
+            if clear_atlas {
                 let atlas_bg = self.clear.bind_group(
                     device,
                     &ClearBindings {
-                        intermediate: &b.atlas,
+                        intermediate: atlas,
                         uniforms: &b.uniforms,
                         active_tiles: &b.active_tiles,
                     },
@@ -596,10 +611,10 @@ impl ReflectionRenderer {
                     shapes: &b.shapes,
                     tests: &b.tests,
                     occluders: &b.occluders,
-                    intermediate: &b.intermediate,
+                    intermediate,
                     debug_writes: &b.debug_writes,
                     layers: &b.layers,
-                    atlas: &b.atlas,
+                    atlas,
                     super_lists: &b.super_lists,
                     source_boxes: &b.source_rects,
                     block_lists: &b.block_lists,
@@ -658,7 +673,7 @@ impl ReflectionRenderer {
                 device,
                 &ReflectionBindings {
                     uniforms: &b.uniforms,
-                    intermediate: &b.intermediate,
+                    intermediate,
                     color,
                     output,
                     active_tiles: &b.active_tiles,
@@ -666,6 +681,8 @@ impl ReflectionRenderer {
                     depth,
                     normals: normals.unwrap_or(color),
                     glossy: &b.glossy,
+                    next_intermediate: &b.intermediate[1 - slot],
+                    next_atlas: &b.atlas[1 - slot],
                 },
             );
             let variant = self.reflection_variant(
@@ -681,6 +698,9 @@ impl ReflectionRenderer {
             } else {
                 self.reflection.encode(&mut pass, &bg, plan.viewport, variant);
             }
+            if variant.clears_next(plan.indirect) {
+                b.mark_clean(1 - slot);
+            }
             count(1);
         }
         if let (false, Some(layer_output)) = (plan.layers.is_empty(), layer_output) {
@@ -688,7 +708,7 @@ impl ReflectionRenderer {
                 device,
                 &LayerBindings {
                     uniforms: &b.uniforms,
-                    atlas: &b.atlas,
+                    atlas,
                     layers: &b.layers,
                     shapes: &b.shapes,
                     depth,
@@ -712,6 +732,17 @@ impl ReflectionRenderer {
         if let Some(t) = &self.timer {
             t.resolve(encoder);
         }
+        let layers = !plan.layers.is_empty() && layer_output.is_some();
+        let reduced = reduced.is_some();
+        self.recorded.set([
+            plan.indirect && has_main,
+            clear_main || clear_atlas,
+            true,
+            has_main,
+            layers,
+            reduced,
+            reduced && (has_main || layers),
+        ]);
     }
 
     /// The reduced tiers' last pass: the reduced reflection (and layer reflection) to the
@@ -781,32 +812,28 @@ impl ReflectionRenderer {
         !plan.visible.is_empty() && (!plan.indirect || self.debug.tile_clear_pass)
     }
 
-    /// Whether the frame has a clear pass: for the intermediate buffer, or for the atlas
-    /// whenever there are layers.
-    fn clears_in_pass(&self, plan: &FramePlan) -> bool {
-        self.clears_main_in_pass(plan) || !plan.layers.is_empty()
+    /// Forgets that the next encode's intermediate buffer was cleared by the last one: for
+    /// an application that dropped an encoder holding an encode without submitting it, so
+    /// that the next encode clears its buffers in the clear pass.
+    pub fn forget_cleared(&self) {
+        if let Some(b) = &self.buffers {
+            b.forget_clean();
+        }
     }
 
     /// Which timed passes (classify, clear, projection, reflection, layers, as in
     /// [`PassTimings::passes`]) the last [`Self::encode`] recorded. A pass recorded but
     /// without a time in [`Self::read_timings`] had timestamps the adapter got wrong.
     pub fn passes_recorded(&self) -> [bool; TIMED_PASSES as usize] {
-        let Some(view) = self.views.last().filter(|v| !v.plan.is_empty()) else {
-            return [false; TIMED_PASSES as usize];
-        };
-        let plan = &view.plan;
-        let has_main = !plan.visible.is_empty();
-        let layers = !plan.layers.is_empty() && self.layer_output_given.get() == Some(true);
-        let reduced = view.reduced_active;
-        let clear = self.clears_in_pass(plan);
-        [plan.indirect && has_main, clear, true, has_main, layers, reduced, reduced && (has_main || layers)]
+        self.recorded.get()
     }
 
-    /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes), for
-    /// debug views and tests. With indirect dispatch only active tiles are meaningful.
-    /// `None` before the first [`Self::prepare`].
+    /// The intermediate buffer (one u32 per pixel, row-major, padded to 16 bytes) of the
+    /// last [`Self::encode`] (encodes take two buffers by turns), for debug views and tests.
+    /// With indirect dispatch only active tiles are meaningful. `None` before the first
+    /// [`Self::prepare`].
     pub fn intermediate_buffer(&self) -> Option<&wgpu::Buffer> {
-        self.buffers.as_ref().map(|b| &b.intermediate)
+        self.buffers.as_ref().map(|b| &b.intermediate[b.last_slot()])
     }
 
     /// With [`DebugOptions::writes`], one u32 per pixel: bit `k % 32` set when the pixel was

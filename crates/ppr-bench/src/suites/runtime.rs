@@ -96,6 +96,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("subgroup culling only, no inside entries", Choice::Auto, Ablation::None),
         ("subgroup culling only, tests only", Choice::Auto, Ablation::TestsOnly),
         ("tile clear pass", Choice::Auto, Ablation::None),
+        ("clear pass every frame", Choice::Auto, Ablation::None),
         ("occlusion first", Choice::Auto, Ablation::None),
         ("occlusion last", Choice::Auto, Ablation::None),
         ("layers: no water stretch", Choice::Auto, Ablation::None),
@@ -107,6 +108,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: mirrors, empty", Choice::Auto, Ablation::None),
         ("reflection: mirrors, quads", Choice::Auto, Ablation::None),
         ("reflection: mirrors, quads, empty", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, clear pass every frame", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -309,6 +311,7 @@ pub fn run_runtime(
                     projection_ablation: ablation,
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
+                    clear_pass_every_frame: name.ends_with("clear pass every frame"),
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",

@@ -23,6 +23,10 @@ pub struct ReflectionBindings<'a> {
     pub normals: &'a wgpu::TextureView,
     /// The frame's glossy reflectors (`GpuGlossyShapes`).
     pub glossy: &'a wgpu::Buffer,
+    /// The next encode's intermediate buffer and atlas (the other slot of
+    /// `FrameBuffers`), cleared by the direct-dispatch pipelines.
+    pub next_intermediate: &'a wgpu::Buffer,
+    pub next_atlas: &'a wgpu::Buffer,
 }
 
 /// Which reflection pipeline a frame runs (beside direct or indirect dispatch).
@@ -43,6 +47,9 @@ pub struct ReflectionVariant {
     /// dispatch, glossy, normal maps and frames without hole filling always take one pixel
     /// per invocation.
     pub quads: bool,
+    /// Direct dispatch leaves the next encode's buffers as they are, for the clear pass to
+    /// clear (bench only: the layout before the twenty-fourth session, the same image).
+    pub leave_next: bool,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -80,7 +87,13 @@ impl ReflectionVariant {
 
     /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
-        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation))
+        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation), self.clears_next(indirect))
+    }
+
+    /// Whether the pass clears the next encode's buffers: in direct dispatch, which visits
+    /// every pixel, unless `leave_next`.
+    pub fn clears_next(self, indirect: bool) -> bool {
+        !indirect && !self.leave_next
     }
 
     /// Whether the pass runs `main_quads` (the `quads` field asked for, mirrors with hole
@@ -95,8 +108,8 @@ impl ReflectionVariant {
 }
 
 /// Pipelines by indirect, [`ReflectionVariant::index`], one pixel per invocation and
-/// ablation ([`ReflectionVariant::key`]).
-type PipelineKey = (bool, usize, (bool, ReflectionAblation));
+/// ablation, and whether it clears the next encode's buffers ([`ReflectionVariant::key`]).
+type PipelineKey = (bool, usize, (bool, ReflectionAblation), bool);
 
 /// Pixels per workgroup side of `main_quads` (16 x 16 invocations of 2 x 2 pixels).
 const QUAD_BLOCK: u32 = 32;
@@ -150,6 +163,8 @@ impl ReflectionPass {
                 loaded_texture_entry(7),
                 loaded_texture_entry(8),
                 uniform_entry(9),
+                storage_entry(10, false),
+                storage_entry(11, false),
             ],
         });
         let module = crate::shader::module_with(
@@ -181,18 +196,19 @@ impl ReflectionPass {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         module: &wgpu::ShaderModule,
-        (indirect, index, (pixel_per_thread, ablation)): PipelineKey,
+        (indirect, index, (pixel_per_thread, ablation), clear_next): PipelineKey,
     ) -> wgpu::ComputePipeline {
         let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
         let label = format!(
             "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} \
-             pixel_per_thread={pixel_per_thread} ablation={ablation:?}"
+             pixel_per_thread={pixel_per_thread} ablation={ablation:?} clear_next={clear_next}"
         );
         let constants = [
             ("INDIRECT", flag(indirect)),
             ("NORMAL_MAPS", flag(normal_maps)),
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
+            ("CLEAR_NEXT", flag(clear_next)),
         ];
         let entry = if pixel_per_thread { "main" } else { "main_quads" };
         compute_pipeline(device, &label, layout, module, entry, &constants)
@@ -252,6 +268,8 @@ impl ReflectionPass {
                         resource: wgpu::BindingResource::TextureView(b.normals),
                     },
                     wgpu::BindGroupEntry { binding: 9, resource: b.glossy.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 10, resource: b.next_intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 11, resource: b.next_atlas.as_entire_binding() },
                 ],
             },
         )
