@@ -1,9 +1,9 @@
 // Tile classification: finds the 16x16 tiles where some pixel lies on a visible reflector
 // (or on a layer reflector, through which one may be seen) and appends them to the active-tile list, so that the clear and the reflection passes
-// run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes whose
-// screen rectangle touches the block are first gathered in workgroup memory (one thread
-// per shape); each pixel then tests whether it lies on one of them, until its tile is
-// found active. The pixels of the active tiles are then cleared for the projection (with
+// run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes and the
+// layers whose screen rectangle touches the block are first gathered in workgroup memory
+// (one thread per shape); where some visible shape is listed, each pixel then tests whether
+// it lies on one of them, until its tile is found active. The pixels of the active tiles are then cleared for the projection (with
 // CLEAR_TILES; otherwise the clear pass does it over the active-tile list, one pass more).
 // The blocks that find active tiles also raise the indirect dispatch arguments
 // (append_active_tiles).
@@ -15,6 +15,8 @@ const TILE_SIZE: u32 = 16u;
 const BLOCK_SIZE: u32 = 32u;
 const GROUP_THREADS: u32 = 256u;
 const LIST_CAPACITY: u32 = 256u;
+// Layers listed per block (MAX_LAYERS in plan.rs).
+const LAYER_CAPACITY: u32 = 64u;
 // Largest workgroup count per dispatch dimension.
 const MAX_GROUPS_X: u32 = 65535u;
 // Pixels closer to a plane than this times their distance count as on it (generous:
@@ -49,10 +51,12 @@ struct ActiveTileCounter {
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
+var<workgroup> layer_list: array<u32, LAYER_CAPACITY>;
+var<workgroup> layer_list_len: atomic<u32>;
 var<workgroup> shows_reflector: array<atomic<u32>, 4>;
 
-fn lies_on(p: vec3<f32>, s: Shape) -> bool {
-    let reach = length(p);
+// Whether `p` (at distance `reach` from the camera) lies on `s`.
+fn lies_on(p: vec3<f32>, reach: f32, s: Shape) -> bool {
     let dist = dot(p, s.normal) - s.plane_dist;
     if (abs(dist) > ON_PLANE_EPSILON * reach) {
         return false;
@@ -63,21 +67,22 @@ fn lies_on(p: vec3<f32>, s: Shape) -> bool {
 }
 
 // Whether the pixel (its depth `depth`) shows a visible reflector of the block's list
-// (every visible shape when it overflowed) or a layer reflector.
-fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32) -> bool {
+// (every visible shape when it overflowed) or a layer reflector of the block's layer list.
+fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u32) -> bool {
     if (!ppr_is_valid_depth(depth)) {
         return false;
     }
     let p = ppr_unproject(vec2<f32>(pixel) + 0.5, depth);
+    let reach = length(p);
     let overflow = listed > LIST_CAPACITY;
     let n = select(listed, frame.visible_count, overflow);
     for (var i = 0u; i < n; i++) {
-        if (lies_on(p, shapes[select(list[i], visible[i], overflow)])) {
+        if (lies_on(p, reach, shapes[select(list[i], visible[i], overflow)])) {
             return true;
         }
     }
-    for (var l = 0u; l < frame.layer_count; l++) {
-        if (lies_on(p, shapes[layers[l].shape])) {
+    for (var l = 0u; l < layers_listed; l++) {
+        if (lies_on(p, reach, shapes[layer_list[l]])) {
             return true;
         }
     }
@@ -94,6 +99,7 @@ fn classify(
 ) {
     if (lid == 0u) {
         atomicStore(&list_len, 0u);
+        atomicStore(&layer_list_len, 0u);
     }
     if (lid < 4u) {
         atomicStore(&shows_reflector[lid], 0u);
@@ -113,8 +119,15 @@ fn classify(
             }
         }
     }
+    for (var l = lid; l < min(frame.layer_count, LAYER_CAPACITY); l += GROUP_THREADS) {
+        let layer = layers[l];
+        if (all(layer.rect_min < block_hi) && all(layer.rect_max > block_lo)) {
+            layer_list[atomicAdd(&layer_list_len, 1u)] = layer.shape;
+        }
+    }
     workgroupBarrier();
     let listed = atomicLoad(&list_len);
+    let layers_listed = atomicLoad(&layer_list_len);
     if (listed > 0u) {
         // The four depths are loaded before any test (one wait instead of four in turn).
         var depth = vec4<f32>(0.0);
@@ -128,7 +141,7 @@ fn classify(
             let d = select(select(depth.x, depth.y, q == 1u), select(depth.z, depth.w, q == 3u), q > 1u);
             // A tile another thread found active needs no more tests.
             if (all(pixel < frame.size) && atomicLoad(&shows_reflector[q]) == 0u
-                && shows_a_reflector(pixel, d, listed)) {
+                && shows_a_reflector(pixel, d, listed, layers_listed)) {
                 atomicOr(&shows_reflector[q], 1u);
             }
         }
