@@ -569,7 +569,8 @@ impl ReflectionRenderer {
             self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
             count(1);
         }
-        let clear_main = self.clears_main_in_pass(plan) && !(clean && !plan.indirect);
+        // Indirect frames clear their active tiles whatever the slot holds.
+        let clear_main = self.clears_main_in_pass(plan) && (plan.indirect || !clean);
         let clear_atlas = !plan.layers.is_empty() && !clean;
         if clear_main || clear_atlas {
             let bg = self.clear.bind_group(
