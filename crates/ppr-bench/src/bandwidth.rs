@@ -144,6 +144,9 @@ pub struct FrameFacts {
     pub active_tiles: u64,
     /// Whether the clear and reflection passes ran over the active tiles only.
     pub indirect: bool,
+    /// Whether a direct-dispatch frame's buffer was cleared by the frame before's
+    /// reflection pass (no clear pass; the reflection pass clears the next frame's instead).
+    pub cleared_ahead: bool,
     /// Pixels of the intermediate buffer holding an offset after the projection pass (in
     /// active tiles).
     pub written_pixels: u64,
@@ -167,7 +170,9 @@ fn tile_pixels(f: &FrameFacts, tiles: u64) -> u64 {
 /// - classify (indirect only): depth 4 B/px read over the viewport, one tile flag written
 ///   per tile and one list entry per active tile (4 B each), and the clear of the active
 ///   tiles, 4 B/px;
-/// - clear (direct dispatch only): 4 B/px written over the whole buffer;
+/// - clear (direct dispatch only): 4 B/px written over the whole buffer, by the clear pass
+///   or, where the frame before cleared this frame's buffer (`cleared_ahead`), by the
+///   reflection pass for the next frame;
 /// - projection: depth 4 B/px read over the viewport, plus 4 B per written pixel (the
 ///   `atomicMin` result that must reach memory);
 /// - reflection: over the dispatched pixels, the intermediate value 4 B/px read (its
@@ -184,7 +189,7 @@ pub fn pass_bytes(f: &FrameFacts) -> Vec<PassBytes> {
             bytes: 4 * f.pixels + 4 * f.tiles + 4 * f.active_tiles + 4 * dispatched,
             rule: "depth 4 B/px + 4 B/tile flag + 4 B/active tile + 4 B/px cleared over active tiles",
         });
-    } else {
+    } else if !f.cleared_ahead {
         out.push(PassBytes {
             pass: "clear",
             bytes: 4 * dispatched,
@@ -196,10 +201,15 @@ pub fn pass_bytes(f: &FrameFacts) -> Vec<PassBytes> {
         bytes: 4 * f.pixels + 4 * f.written_pixels,
         rule: "depth 4 B/px + 4 B per written pixel",
     });
+    let clear_next = !f.indirect && f.cleared_ahead;
     out.push(PassBytes {
         pass: "reflection",
-        bytes: (4 + 8) * dispatched + 8 * f.written_pixels.min(dispatched),
-        rule: "intermediate 4 B/px + output 8 B/px over dispatched pixels + colour 8 B per pixel with data",
+        bytes: (4 + 8 + if clear_next { 4 } else { 0 }) * dispatched + 8 * f.written_pixels.min(dispatched),
+        rule: if clear_next {
+            "intermediate 4 B/px + output 8 B/px + next frame's clear 4 B/px over dispatched pixels + colour 8 B per pixel with data"
+        } else {
+            "intermediate 4 B/px + output 8 B/px over dispatched pixels + colour 8 B per pixel with data"
+        },
     });
     out
 }
@@ -214,7 +224,14 @@ mod tests {
         // (clear 33 MB; projection 33 + 33 MB; reflection 33 + 66 + 66 MB).
         let pixels = 3840 * 2160;
         let f =
-            FrameFacts { pixels, tiles: 240 * 135, active_tiles: 0, indirect: false, written_pixels: pixels };
+            FrameFacts {
+            pixels,
+            tiles: 240 * 135,
+            active_tiles: 0,
+            indirect: false,
+            cleared_ahead: false,
+            written_pixels: pixels,
+        };
         let b = pass_bytes(&f);
         let get = |name: &str| b.iter().find(|p| p.pass == name).expect(name).bytes;
         assert_eq!(get("clear"), 4 * pixels);
@@ -227,12 +244,25 @@ mod tests {
             CopyBandwidth { bytes: (2 * 512) << 20, median_ms: ((2 * 512u64) << 20) as f64 / 2.45e12 * 1e3 };
         let floor: f64 = b.iter().map(|p| bw.floor_ms(p.bytes)).sum();
         assert!((floor - 0.1083).abs() < 1e-3, "{floor}");
+        // Cleared by the frame before: the same bytes, the clear's moved to the reflection.
+        let ahead = pass_bytes(&FrameFacts { cleared_ahead: true, ..f });
+        assert!(ahead.iter().all(|p| p.pass != "clear"));
+        let reflection = ahead.iter().find(|p| p.pass == "reflection").expect("reflection").bytes;
+        assert_eq!(reflection, 24 * pixels);
+        assert_eq!(ahead.iter().map(|p| p.bytes).sum::<u64>(), total);
     }
 
     #[test]
     fn indirect_frames_count_only_active_tiles() {
         let f =
-            FrameFacts { pixels: 64 * 32, tiles: 8, active_tiles: 2, indirect: true, written_pixels: 100 };
+            FrameFacts {
+            pixels: 64 * 32,
+            tiles: 8,
+            active_tiles: 2,
+            indirect: true,
+            cleared_ahead: false,
+            written_pixels: 100,
+        };
         let b = pass_bytes(&f);
         let get = |name: &str| b.iter().find(|p| p.pass == name).expect(name).bytes;
         assert_eq!(get("classify"), 4 * 2048 + 4 * 8 + 4 * 2 + 4 * 512);

@@ -144,7 +144,8 @@ pub fn write_runtime_report(
          Bytes per pass, given the frame's plan and a read-back of its buffers: classify \
          (indirect frames only) reads depth 4 B/px, writes 4 B per tile flag and per active \
          tile and clears the active tiles, 4 B/px; clear (direct frames) writes 4 B/px over the \
-         whole buffer; \
+         whole buffer, in the clear pass or (where the frame before cleared this frame's \
+         buffer) in the reflection pass, for the next frame; \
          projection reads depth 4 B/px and writes 4 B per written pixel; reflection reads the \
          intermediate 4 B/px (neighbours from cache) and writes the output 8 B/px over the \
          dispatched pixels, and reads colour 8 B per pixel with data. Floor = bytes / copy \

@@ -411,6 +411,9 @@ fn frame_facts(
         tiles,
         active_tiles: tiles,
         indirect: plan.indirect,
+        // The clear pass (index 1) did not run on a direct frame: its buffer was cleared by
+        // the frame before's reflection pass.
+        cleared_ahead: !plan.indirect && !renderer.passes_recorded()[1],
         written_pixels: 0,
     };
     if plan.is_empty() {
