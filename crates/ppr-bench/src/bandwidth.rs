@@ -223,8 +223,7 @@ mod tests {
         // 4K, no indirect dispatch, every pixel written: the floor of shared/gpu/README.md
         // (clear 33 MB; projection 33 + 33 MB; reflection 33 + 66 + 66 MB).
         let pixels = 3840 * 2160;
-        let f =
-            FrameFacts {
+        let f = FrameFacts {
             pixels,
             tiles: 240 * 135,
             active_tiles: 0,
@@ -254,8 +253,7 @@ mod tests {
 
     #[test]
     fn indirect_frames_count_only_active_tiles() {
-        let f =
-            FrameFacts {
+        let f = FrameFacts {
             pixels: 64 * 32,
             tiles: 8,
             active_tiles: 2,
