@@ -109,6 +109,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: mirrors, quads", Choice::Auto, Ablation::None),
         ("reflection: mirrors, quads, empty", Choice::Auto, Ablation::None),
         ("reflection: mirrors, clear pass every frame", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, indirect off", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, indirect on", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -268,9 +270,9 @@ pub fn run_runtime(
                     params.occlusion_first = Choice::Off;
                 } else if name == "storage tests" {
                     params.uniform_tests = Choice::Off;
-                } else if name == "indirect off" {
+                } else if name.ends_with("indirect off") {
                     params.indirect = Choice::Off;
-                } else if name == "indirect on" {
+                } else if name.ends_with("indirect on") {
                     params.indirect = Choice::On;
                 }
                 // The box-only list pass is the separate pass's.
