@@ -438,3 +438,32 @@ fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
     run(&mut turns, &frames[0], &cams[0]);
     assert!(turns.passes_recorded()[CLEAR], "a forgotten clear is done in the pass");
 }
+
+#[test]
+fn indirect_frames_clear_in_the_classification_alone() {
+    // Indirect dispatch: the classification clears the active tiles and the layers' atlas,
+    // so that no frame has a clear pass, the first included; every frame matches a renderer
+    // whose clear pass does both (`tile_clear_pass`), output and layer output bit for bit.
+    let mut s = scene();
+    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
+    let set = ppr_tests::harness::validated(&s.reflector_set());
+    let (_, cams, frames) = two_views_of(&s);
+    let mut classified = renderer();
+    let mut separate = renderer();
+    separate.debug.tile_clear_pass = true;
+    for r in [&mut classified, &mut separate] {
+        r.plan_params.indirect = Choice::On;
+        r.set_reflectors(&set);
+    }
+    const CLEAR: usize = 1;
+    for (k, v) in [0, 1, 1, 0].into_iter().enumerate() {
+        let a = run(&mut classified, &frames[v], &cams[v]);
+        assert!(!classified.passes_recorded()[CLEAR], "frame {k}: no clear pass");
+        let b = run(&mut separate, &frames[v], &cams[v]);
+        assert!(separate.passes_recorded()[CLEAR]);
+        assert!(!a.plan.layers.is_empty() && a.plan.indirect, "{}", a.plan);
+        assert!(a.layer_pixels.iter().any(|p| p.w > 0.0), "frame {k}: the water layer reflects");
+        assert!(bits(&a.pixels) == bits(&b.pixels), "frame {k} (view {v}): output");
+        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "frame {k} (view {v}): layer output");
+    }
+}

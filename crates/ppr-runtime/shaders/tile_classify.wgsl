@@ -3,8 +3,10 @@
 // run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes and the
 // layers whose screen rectangle touches the block are first gathered in workgroup memory
 // (one thread per shape); where some visible shape is listed, each pixel then tests whether
-// it lies on one of them, until its tile is found active. The pixels of the active tiles are then cleared for the projection (with
-// CLEAR_TILES; otherwise the clear pass does it over the active-tile list, one pass more).
+// it lies on one of them, until its tile is found active. The pixels of the active tiles
+// are then cleared for the projection, and the layers' atlas whole (with CLEAR_TILES;
+// otherwise the clear pass does both, over the active-tile list and the atlas, one pass
+// more).
 // The blocks that find active tiles also raise the indirect dispatch arguments
 // (append_active_tiles).
 
@@ -48,6 +50,8 @@ struct ActiveTileCounter {
 @group(0) @binding(8) var<storage, read> layers: array<Layer>;
 // The intermediate buffer, cleared over the active tiles with CLEAR_TILES.
 @group(0) @binding(9) var<storage, read_write> intermediate: array<u32>;
+// The layers' atlas, cleared up to the last layer's region with CLEAR_TILES.
+@group(0) @binding(10) var<storage, read_write> atlas: array<u32>;
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
@@ -91,12 +95,31 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
 
 // One workgroup per 32 x 32-pixel block: its 2 x 2 tiles share one list of the shapes
 // whose rectangle touches the block, and each thread takes one pixel of each tile.
+// Clears the layers' regions of the atlas (they follow each other from offset 0), each
+// thread of the dispatch a value in turn.
+fn clear_atlas(lid: u32, wid: vec2<u32>, groups: vec2<u32>) {
+    if (frame.layer_count == 0u) {
+        return;
+    }
+    let last = layers[frame.layer_count - 1u];
+    let extent = last.rect_max - last.rect_min;
+    let total = last.offset + extent.x * extent.y;
+    let threads = groups.x * groups.y * GROUP_THREADS;
+    for (var i = (wid.x + wid.y * groups.x) * GROUP_THREADS + lid; i < total; i += threads) {
+        atlas[i] = PPR_CLEAR_VALUE;
+    }
+}
+
 @compute @workgroup_size(16, 16)
 fn classify(
     @builtin(local_invocation_id) local: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
 ) {
+    if (CLEAR_TILES) {
+        clear_atlas(lid, wid.xy, groups.xy);
+    }
     if (lid == 0u) {
         atomicStore(&list_len, 0u);
         atomicStore(&layer_list_len, 0u);

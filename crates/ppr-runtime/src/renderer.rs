@@ -560,6 +560,7 @@ impl ReflectionRenderer {
                     tile_flags: &b.tile_flags,
                     layers: &b.layers,
                     intermediate,
+                    atlas,
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -571,7 +572,10 @@ impl ReflectionRenderer {
         }
         // Indirect frames clear their active tiles whatever the slot holds.
         let clear_main = self.clears_main_in_pass(plan) && (plan.indirect || !clean);
-        let clear_atlas = !plan.layers.is_empty() && !clean;
+        // The classification clears the atlas where it runs (unless the bench moves its
+        // clears to the clear pass).
+        let classified = plan.indirect && has_main && !self.debug.tile_clear_pass;
+        let clear_atlas = !plan.layers.is_empty() && !clean && !classified;
         if clear_main || clear_atlas {
             let bg = self.clear.bind_group(
                 device,

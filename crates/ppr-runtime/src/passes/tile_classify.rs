@@ -1,6 +1,6 @@
 //! Tile classification: the list of tiles that show a visible reflector, the clear of their
-//! pixels in the intermediate buffer, and the indirect dispatch arguments of the reflection
-//! pass over them.
+//! pixels in the intermediate buffer (and of the layers' atlas), and the indirect dispatch
+//! arguments of the reflection pass over them.
 
 use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
@@ -25,6 +25,9 @@ pub struct ClassifyBindings<'a> {
     pub layers: &'a wgpu::Buffer,
     /// Cleared over the active tiles (unless the clear pass does it, [`TileClassifyPass::encode`]).
     pub intermediate: &'a wgpu::Buffer,
+    /// The layers' atlas, cleared over the frame's layer regions (unless the clear pass
+    /// does it).
+    pub atlas: &'a wgpu::Buffer,
 }
 
 /// The tile classification pass (one dispatch: its blocks append their active tiles and
@@ -54,6 +57,7 @@ impl TileClassifyPass {
                 storage_entry(7, false),
                 storage_entry(8, true),
                 storage_entry(9, false),
+                storage_entry(10, false),
             ],
         });
         let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
@@ -97,6 +101,7 @@ impl TileClassifyPass {
                     wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 10, resource: b.atlas.as_entire_binding() },
                 ],
             },
         )
