@@ -529,3 +529,34 @@ fn blocks_wholly_inside_a_pyramid_skip_its_sides_without_changing_a_write() {
     }
     assert!(written > 1000, "the scenes reflect something: {written} values");
 }
+
+#[test]
+fn the_tile_loop_gives_the_indirect_dispatch_s_reflection() {
+    // Two workgroups walk the whole active-tile list (many tiles each): the same output as
+    // one workgroup per tile by indirect dispatch, bit for bit, glossy and mirror.
+    let mut rng = Rng(0x5eed_0005);
+    let scene = random_scene(&mut rng, true);
+    let camera = random_camera(&mut rng);
+    let frame = scene.render(&camera, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let set = grouped_set(&scene);
+    for glossy in [true, false] {
+        let mut outputs = Vec::new();
+        for tile_loop in [None, Some(2)] {
+            let mut r = renderer();
+            r.plan_params.indirect = Choice::On;
+            r.settings.glossy = glossy;
+            r.debug.reflection_tile_loop = tile_loop;
+            r.set_reflectors(&ppr_tests::harness::validated(&set));
+            let out = run(&mut r, &gpu, &camera);
+            assert!(out.plan.indirect);
+            let list: Vec<u32> =
+                bytemuck::pod_collect_to_vec(&read_buffer(r.active_tiles_buffer().expect("buffers")));
+            assert!(list[0] > 4, "several tiles per workgroup: {} active", list[0]);
+            assert!(out.pixels.iter().filter(|p| p.w > 0.0).count() > 100);
+            outputs.push(out.pixels);
+        }
+        let differing = (0..outputs[0].len()).filter(|&i| outputs[0][i] != outputs[1][i]).count();
+        assert_eq!(differing, 0, "glossy {glossy}: the tile loop changed {differing} pixels");
+    }
+}

@@ -36,6 +36,11 @@ override INDIRECT: bool = false;
 override NORMAL_MAPS: bool = false;
 override GLOSSY: bool = false;
 override CLEAR_NEXT: bool = false;
+// With INDIRECT: a fixed number of workgroups (a direct dispatch) walk the active-tile list,
+// instead of one workgroup per active tile by indirect dispatch (which wgpu, unless the
+// instance turns VALIDATION_INDIRECT_CALL off, precedes with a dispatch and barriers of its
+// own that check the arguments).
+override TILE_LOOP: bool = false;
 // Bench only (never a correct image): 1 returns at once; 2 stores the chosen offset (no
 // colour read, no blur); 3 stores the sharp colour (no glossy blur).
 override ABLATION: u32 = 0u;
@@ -170,6 +175,7 @@ fn main(
     @builtin(global_invocation_id) global_id: vec3<u32>,
     @builtin(local_invocation_id) lid: vec3<u32>,
     @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
 ) {
     if (CLEAR_NEXT && all(global_id.xy < frame.size)) {
         clear_next(global_id.xy);
@@ -177,16 +183,30 @@ fn main(
     if (ABLATION == 1u) {
         return;
     }
-    var gid = global_id.xy;
-    if (INDIRECT) {
-        let slot = ppr_active_slot(wid);
-        if (slot >= active_tiles.count) {
-            return;
-        }
-        let tiles_x = (frame.size.x + 15u) / 16u;
-        let tile = active_tiles.tiles[slot];
-        gid = vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy;
+    if (!INDIRECT) {
+        shade(global_id.xy);
+        return;
     }
+    let tiles_x = (frame.size.x + 15u) / 16u;
+    if (TILE_LOOP) {
+        // The same slot for every invocation of the workgroup: a uniform loop.
+        let stride = groups.x * groups.y;
+        for (var slot = wid.x + wid.y * groups.x; slot < active_tiles.count; slot += stride) {
+            let tile = active_tiles.tiles[slot];
+            shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy);
+        }
+        return;
+    }
+    let slot = ppr_active_slot(wid);
+    if (slot >= active_tiles.count) {
+        return;
+    }
+    let tile = active_tiles.tiles[slot];
+    shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy);
+}
+
+// The reflection at pixel `gid` (none outside the viewport).
+fn shade(gid: vec2<u32>) {
     if (any(gid >= frame.size)) {
         return;
     }

@@ -54,6 +54,6 @@ pub use encoding::{CLEAR_VALUE, EncodingLayout};
 pub use passes::projection::{Ablation, BoxReduction};
 pub use passes::reflection::{OUTPUT_FORMAT, ReflectionAblation};
 pub use plan::{Choice, FramePlan, PlanParams, ScreenRect, TestedEntry};
-pub use renderer::{DebugOptions, FrameInputs, ReflectionRenderer, RendererDesc};
+pub use renderer::{DebugOptions, FrameInputs, ReflectionRenderer, RendererDesc, TILE_LOOP_GROUPS};
 pub use settings::{ReflectionSettings, ResolutionTier, WriteMode};
 pub use timestamps::PassTimings;

@@ -150,7 +150,16 @@ pub struct DebugOptions {
     /// pass, as before the twenty-fourth session, instead of finding them cleared by the
     /// last encode's reflection pass (bench only, the same image).
     pub clear_pass_every_frame: bool,
+    /// Indirect frames' reflection pass walks the active-tile list with at most this many
+    /// workgroups instead of an indirect dispatch (`ReflectionVariant::tile_loop`; bench
+    /// only until timed, the same image; [`TILE_LOOP_GROUPS`] a large GPU's room).
+    pub reflection_tile_loop: Option<u32>,
 }
+
+/// Workgroups of the reflection pass's tile loop ([`DebugOptions::reflection_tile_loop`])
+/// on a large GPU: 256 invocations each, eight to a multiprocessor of 2 048, for about 130
+/// multiprocessors (an H100's or H200's 132).
+pub const TILE_LOOP_GROUPS: u32 = 1024;
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
 /// may share one renderer and one submit).
@@ -366,6 +375,7 @@ impl ReflectionRenderer {
             ablation: self.debug.reflection_ablation,
             quads: self.debug.reflection_quads,
             leave_next: self.debug.clear_pass_every_frame,
+            tile_loop: self.debug.reflection_tile_loop,
         }
     }
 
@@ -699,7 +709,7 @@ impl ReflectionRenderer {
                 timestamp_writes: timestamps(3),
             });
             if plan.indirect {
-                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, variant);
+                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, plan.tile_count(), variant);
             } else {
                 self.reflection.encode(&mut pass, &bg, plan.viewport, variant);
             }

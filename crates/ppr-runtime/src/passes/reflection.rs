@@ -50,6 +50,10 @@ pub struct ReflectionVariant {
     /// Direct dispatch leaves the next encode's buffers as they are, for the clear pass to
     /// clear (bench only: the layout before the twenty-fourth session, the same image).
     pub leave_next: bool,
+    /// Indirect frames run at most this many workgroups, which walk the active-tile list
+    /// (a direct dispatch), instead of one workgroup per active tile by indirect dispatch
+    /// (bench only until timed, the same image; override `TILE_LOOP`).
+    pub tile_loop: Option<u32>,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -87,7 +91,8 @@ impl ReflectionVariant {
 
     /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
-        (indirect, self.index(), (!self.runs_quads(indirect), self.ablation), self.clears_next(indirect))
+        let dispatch = (indirect, indirect && self.tile_loop.is_some());
+        (dispatch, self.index(), (!self.runs_quads(indirect), self.ablation), self.clears_next(indirect))
     }
 
     /// Whether the pass clears the next encode's buffers: in direct dispatch, which visits
@@ -107,9 +112,10 @@ impl ReflectionVariant {
     }
 }
 
-/// Pipelines by indirect, [`ReflectionVariant::index`], one pixel per invocation and
-/// ablation, and whether it clears the next encode's buffers ([`ReflectionVariant::key`]).
-type PipelineKey = (bool, usize, (bool, ReflectionAblation), bool);
+/// Pipelines by indirect (and the tile loop), [`ReflectionVariant::index`], one pixel per
+/// invocation and ablation, and whether it clears the next encode's buffers
+/// ([`ReflectionVariant::key`]).
+type PipelineKey = ((bool, bool), usize, (bool, ReflectionAblation), bool);
 
 /// Pixels per workgroup side of `main_quads` (16 x 16 invocations of 2 x 2 pixels).
 const QUAD_BLOCK: u32 = 32;
@@ -196,15 +202,17 @@ impl ReflectionPass {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         module: &wgpu::ShaderModule,
-        (indirect, index, (pixel_per_thread, ablation), clear_next): PipelineKey,
+        ((indirect, tile_loop), index, (pixel_per_thread, ablation), clear_next): PipelineKey,
     ) -> wgpu::ComputePipeline {
         let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
         let label = format!(
-            "ppr reflection indirect={indirect} normal_maps={normal_maps} glossy={glossy} \
-             pixel_per_thread={pixel_per_thread} ablation={ablation:?} clear_next={clear_next}"
+            "ppr reflection indirect={indirect} tile_loop={tile_loop} normal_maps={normal_maps} \
+             glossy={glossy} pixel_per_thread={pixel_per_thread} ablation={ablation:?} \
+             clear_next={clear_next}"
         );
         let constants = [
             ("INDIRECT", flag(indirect)),
+            ("TILE_LOOP", flag(tile_loop)),
             ("NORMAL_MAPS", flag(normal_maps)),
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
@@ -294,16 +302,22 @@ impl ReflectionPass {
         pass.dispatch_workgroups(x, y, 1);
     }
 
-    /// Records the pass over the active tiles (indirect arguments from the classify pass).
+    /// Records the pass over the active tiles (indirect arguments from the classify pass,
+    /// or with the tile loop a direct dispatch of at most `tile_count` workgroups).
     pub fn encode_tiles(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         args: &wgpu::Buffer,
+        tile_count: u32,
         variant: ReflectionVariant,
     ) {
         pass.set_pipeline(self.pipeline_for(true, variant));
         pass.set_bind_group(0, bind_group, &[]);
-        pass.dispatch_workgroups_indirect(args, 0);
+        if let Some(groups) = variant.tile_loop {
+            pass.dispatch_workgroups(tile_count.min(groups).max(1), 1, 1);
+        } else {
+            pass.dispatch_workgroups_indirect(args, 0);
+        }
     }
 }
