@@ -17,7 +17,7 @@
 //! rectangle: a player standing on a mirror floor) sees the pyramid around itself, so
 //! every pixel may reflect into the shape and the box is the whole screen.
 
-use glam::{DMat4, DVec3, DVec4, Mat4};
+use glam::{DMat4, DVec3, DVec4, Mat4, Vec3};
 
 use crate::plan::ScreenRect;
 use crate::shapes::ShapeSource;
@@ -56,12 +56,20 @@ impl SourceBoxes {
     /// matrix is linear, so four products serve the eight: the centre and the two half axes
     /// give the corners, and a direction is its corner less the mirrored camera's image
     /// (`M (r − e', 0) = M (r, 1) − M (e', 1)`).
-    fn pyramid(&self, shape: &ShapeSource) -> ([DVec4; 4], [DVec4; 4]) {
+    ///
+    /// The half axes' products come from `axes` where the last shape it saw had the same
+    /// axes and extents (a flight's treads, a facade's windows): the same products.
+    fn pyramid(&self, shape: &ShapeSource, axes: &mut HalfAxes) -> ([DVec4; 4], [DVec4; 4]) {
         let n = shape.normal.as_dvec3();
         let mirrored_eye = 2.0 * shape.plane_dist_from(self.eye) * n;
         let centre = self.m * (shape.center - self.eye).extend(1.0);
-        let u = self.m * (shape.axis_u.as_dvec3() * f64::from(shape.half_extents[0])).extend(0.0);
-        let v = self.m * (shape.axis_v.as_dvec3() * f64::from(shape.half_extents[1])).extend(0.0);
+        let key = (shape.axis_u, shape.axis_v, shape.half_extents);
+        if axes.key != Some(key) {
+            axes.u = self.m * (shape.axis_u.as_dvec3() * f64::from(shape.half_extents[0])).extend(0.0);
+            axes.v = self.m * (shape.axis_v.as_dvec3() * f64::from(shape.half_extents[1])).extend(0.0);
+            axes.key = Some(key);
+        }
+        let (u, v) = (axes.u, axes.v);
         // The corners in `ShapeSource::corners`' order.
         let c = [centre - u - v, centre + u - v, centre + u + v, centre - u + v];
         let e = self.m * mirrored_eye.extend(1.0);
@@ -75,19 +83,24 @@ impl SourceBoxes {
     /// otherwise its five faces are clipped in homogeneous coordinates (points at infinity
     /// and behind the camera included).
     pub fn rect(&self, shape: &ShapeSource) -> ScreenRect {
-        self.rect_unless_inside(shape, None).expect("no box to be inside")
+        self.rect_unless_inside(shape, None, &mut HalfAxes::default()).expect("no box to be inside")
     }
 
     /// [`Self::rect`], or `None` where a bound on it, a pixel wider, lies inside `known`
     /// (then the rect does too). The bounds, cheapest first: the pyramid's eight points
     /// ([`Self::points_inside`]: their box holds the box of their hull clipped to the
     /// screen), then the box of the hull clipped to the screen, which the rect widens.
-    fn rect_unless_inside(&self, shape: &ShapeSource, known: Option<ScreenRect>) -> Option<ScreenRect> {
+    fn rect_unless_inside(
+        &self,
+        shape: &ShapeSource,
+        known: Option<ScreenRect>,
+        axes: &mut HalfAxes,
+    ) -> Option<ScreenRect> {
         if eye_over_rectangle(shape, self.eye) {
             let full = self.full();
             return if known == Some(full) { None } else { Some(full) };
         }
-        let (c, d) = self.pyramid(shape);
+        let (c, d) = self.pyramid(shape, axes);
         if known.is_some_and(|k| self.points_inside(&d, k) && self.points_inside(&c, k)) {
             return None;
         }
@@ -333,17 +346,28 @@ impl SourceBoxes {
         // which holds it (an empty box is never kept over a later one). The union of boxes
         // does not depend on their order (an empty one adds nothing).
         let mut known = union_rect(ends[0], ends[1]);
+        let mut axes = HalfAxes::default();
         for k in 1..count.saturating_sub(1) {
             if known == full {
                 break;
             }
-            if let Some(r) = self.rect_unless_inside(shape(k), (known.area() > 0).then_some(known)) {
+            if let Some(r) = self.rect_unless_inside(shape(k), (known.area() > 0).then_some(known), &mut axes)
+            {
                 computed += 1;
                 known = union_rect(known, r);
             }
         }
         (known, computed)
     }
+}
+
+/// The clip-space half axes of the last pyramid built ([`SourceBoxes::pyramid`]), by the
+/// shape's axes and extents.
+#[derive(Default)]
+struct HalfAxes {
+    key: Option<(Vec3, Vec3, [f32; 2])>,
+    u: DVec4,
+    v: DVec4,
 }
 
 /// The box of two boxes; an empty one (no area) adds nothing.
@@ -787,7 +811,7 @@ mod tests {
                 let clip = camera.clip_from_relative(size[0] as f32 / size[1] as f32);
                 let boxes = SourceBoxes::new(camera.position, &clip, size);
                 proptest::prop_assume!(!eye_over_rectangle(&shape, boxes.eye));
-                let (c, d) = boxes.pyramid(&shape);
+                let (c, d) = boxes.pyramid(&shape, &mut HalfAxes::default());
                 let clipped = boxes.rect_by_clipping(c, d);
                 let rect = boxes.rect(&shape);
                 if boxes.projected(c, d).is_some() {
@@ -821,7 +845,7 @@ mod tests {
                         } else {
                             short.min[a] += 1;
                         }
-                        let got = boxes.rect_unless_inside(&shape, Some(short));
+                        let got = boxes.rect_unless_inside(&shape, Some(short), &mut HalfAxes::default());
                         proptest::prop_assert_eq!(got, Some(rect), "inside {:?}", short);
                     }
                     let wider = ScreenRect {
@@ -829,7 +853,7 @@ mod tests {
                         max: [(rect.max[0] + 1).min(size[0]), (rect.max[1] + 1).min(size[1])],
                     };
                     if boxes.projected(c, d).is_some() && !eye_over_rectangle(&shape, boxes.eye) {
-                        proptest::prop_assert_eq!(boxes.rect_unless_inside(&shape, Some(wider)), None);
+                        proptest::prop_assert_eq!(boxes.rect_unless_inside(&shape, Some(wider), &mut HalfAxes::default()), None);
                     }
                 }
             }
