@@ -532,8 +532,9 @@ fn blocks_wholly_inside_a_pyramid_skip_its_sides_without_changing_a_write() {
 
 #[test]
 fn the_tile_loop_gives_the_indirect_dispatch_s_reflection() {
-    // Two workgroups walk the whole active-tile list (many tiles each): the same output as
-    // one workgroup per tile by indirect dispatch, bit for bit, glossy and mirror.
+    // The default tile loop, and two workgroups walking the whole active-tile list (many
+    // tiles each): the same output as one workgroup per tile by indirect dispatch, bit for
+    // bit, glossy and mirror.
     let mut rng = Rng(0x5eed_0005);
     let scene = random_scene(&mut rng, true);
     let camera = random_camera(&mut rng);
@@ -542,10 +543,11 @@ fn the_tile_loop_gives_the_indirect_dispatch_s_reflection() {
     let set = grouped_set(&scene);
     for glossy in [true, false] {
         let mut outputs = Vec::new();
-        for tile_loop in [None, Some(2)] {
+        for (indirect_dispatch, tile_loop) in [(true, None), (false, None), (false, Some(2))] {
             let mut r = renderer();
             r.plan_params.indirect = Choice::On;
             r.settings.glossy = glossy;
+            r.debug.reflection_indirect_dispatch = indirect_dispatch;
             r.debug.reflection_tile_loop = tile_loop;
             r.set_reflectors(&ppr_tests::harness::validated(&set));
             let out = run(&mut r, &gpu, &camera);
@@ -556,7 +558,9 @@ fn the_tile_loop_gives_the_indirect_dispatch_s_reflection() {
             assert!(out.pixels.iter().filter(|p| p.w > 0.0).count() > 100);
             outputs.push(out.pixels);
         }
-        let differing = (0..outputs[0].len()).filter(|&i| outputs[0][i] != outputs[1][i]).count();
-        assert_eq!(differing, 0, "glossy {glossy}: the tile loop changed {differing} pixels");
+        for k in 1..3 {
+            let differing = (0..outputs[0].len()).filter(|&i| outputs[0][i] != outputs[k][i]).count();
+            assert_eq!(differing, 0, "glossy {glossy}: tile loop {k} changed {differing} pixels");
+        }
     }
 }

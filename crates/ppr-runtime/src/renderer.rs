@@ -151,14 +151,22 @@ pub struct DebugOptions {
     /// last encode's reflection pass (bench only, the same image).
     pub clear_pass_every_frame: bool,
     /// Indirect frames' reflection pass walks the active-tile list with at most this many
-    /// workgroups instead of an indirect dispatch (`ReflectionVariant::tile_loop`; bench
-    /// only until timed, the same image; [`TILE_LOOP_GROUPS`] a large GPU's room).
+    /// workgroups instead of [`TILE_LOOP_GROUPS`] (`ReflectionVariant::tile_loop`; bench
+    /// only, the same image).
     pub reflection_tile_loop: Option<u32>,
+    /// Indirect frames' reflection pass runs one workgroup per active tile by indirect
+    /// dispatch instead of the tile loop (the layout before the twenty-fourth session;
+    /// bench only, the same image).
+    pub reflection_indirect_dispatch: bool,
 }
 
-/// Workgroups of the reflection pass's tile loop ([`DebugOptions::reflection_tile_loop`])
-/// on a large GPU: 256 invocations each, eight to a multiprocessor of 2 048, for about 130
-/// multiprocessors (an H100's or H200's 132).
+/// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
+/// `TILE_LOOP`): 256 invocations each, eight to a multiprocessor of 2 048, for about 130
+/// multiprocessors (an H100's or H200's 132). A direct dispatch of at most this many
+/// workgroups walking the active-tile list replaced the indirect dispatch, which wgpu
+/// precedes with a validation dispatch and barriers of its own: 0.006-0.009 ms less for
+/// the 4K overviews' mirror reflection on the H100, the glossy within 0.001 or 0.008 less
+/// (docs/perf/runtime.md, twenty-fourth session).
 pub const TILE_LOOP_GROUPS: u32 = 1024;
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -375,7 +383,8 @@ impl ReflectionRenderer {
             ablation: self.debug.reflection_ablation,
             quads: self.debug.reflection_quads,
             leave_next: self.debug.clear_pass_every_frame,
-            tile_loop: self.debug.reflection_tile_loop,
+            tile_loop: (!self.debug.reflection_indirect_dispatch)
+                .then(|| self.debug.reflection_tile_loop.unwrap_or(TILE_LOOP_GROUPS)),
         }
     }
 

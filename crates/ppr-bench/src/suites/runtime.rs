@@ -111,8 +111,12 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: mirrors, clear pass every frame", Choice::Auto, Ablation::None),
         ("reflection: mirrors, indirect off", Choice::Auto, Ablation::None),
         ("reflection: mirrors, indirect on", Choice::Auto, Ablation::None),
-        ("reflection: tile loop", Choice::Auto, Ablation::None),
-        ("reflection: mirrors, tile loop", Choice::Auto, Ablation::None),
+        ("reflection: indirect dispatch", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, indirect dispatch", Choice::Auto, Ablation::None),
+        ("reflection: tile loop 4096", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, tile loop 4096", Choice::Auto, Ablation::None),
+        ("reflection: tile loop 256", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, tile loop 256", Choice::Auto, Ablation::None),
     ]
 }
 
@@ -316,9 +320,8 @@ pub fn run_runtime(
                     spread_quads,
                     tile_clear_pass: name == "tile clear pass",
                     clear_pass_every_frame: name.ends_with("clear pass every frame"),
-                    reflection_tile_loop: name
-                        .ends_with("tile loop")
-                        .then_some(ppr_runtime::TILE_LOOP_GROUPS),
+                    reflection_tile_loop: name.rsplit_once("tile loop ").and_then(|(_, n)| n.parse().ok()),
+                    reflection_indirect_dispatch: name.ends_with("indirect dispatch"),
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",

@@ -51,8 +51,9 @@ pub struct ReflectionVariant {
     /// clear (bench only: the layout before the twenty-fourth session, the same image).
     pub leave_next: bool,
     /// Indirect frames run at most this many workgroups, which walk the active-tile list
-    /// (a direct dispatch), instead of one workgroup per active tile by indirect dispatch
-    /// (bench only until timed, the same image; override `TILE_LOOP`).
+    /// (a direct dispatch; override `TILE_LOOP`), instead of one workgroup per active tile
+    /// by indirect dispatch (`None`: bench only, the same image). `ReflectionPass::new`
+    /// builds the default's pipelines with [`crate::TILE_LOOP_GROUPS`].
     pub tile_loop: Option<u32>,
 }
 
@@ -194,7 +195,10 @@ impl ReflectionPass {
             bind_groups: BindGroupCache::default(),
             sampler,
         };
-        pass.prepare_variant(device, ReflectionVariant::default());
+        pass.prepare_variant(
+            device,
+            ReflectionVariant { tile_loop: Some(crate::TILE_LOOP_GROUPS), ..ReflectionVariant::default() },
+        );
         pass
     }
 
