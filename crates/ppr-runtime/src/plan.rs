@@ -638,13 +638,13 @@ impl FramePlan {
         }
         let has_main = !self.visible.is_empty();
         let mut passes = Vec::new();
-        if has_main && self.indirect {
-            passes.push("classify");
-        }
+        // The clears: the classification's in indirect frames (the active tiles and the
+        // atlas); a clear pass in direct frames only where the frame before's reflection
+        // pass did not clear this frame's buffers (`FrameBuffers::take_slot`).
         passes.push(match (has_main, self.indirect) {
             (false, _) => "clear (atlas)",
-            (true, true) => "clear (tiles)",
-            (true, false) => "clear",
+            (true, true) => "classify + clear",
+            (true, false) => "clear (unless done ahead)",
         });
         if self.tile_culling && !self.fused_lists {
             // The block lists' own pass (with fused lists the projection builds them).
