@@ -93,8 +93,6 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
     return false;
 }
 
-// One workgroup per 32 x 32-pixel block: its 2 x 2 tiles share one list of the shapes
-// whose rectangle touches the block, and each thread takes one pixel of each tile.
 // Clears the layers' regions of the atlas (they follow each other from offset 0), each
 // thread of the dispatch a value in turn.
 fn clear_atlas(lid: u32, wid: vec2<u32>, groups: vec2<u32>) {
@@ -110,6 +108,9 @@ fn clear_atlas(lid: u32, wid: vec2<u32>, groups: vec2<u32>) {
     }
 }
 
+// One workgroup per 32 x 32-pixel block: its 2 x 2 tiles share one list of the shapes
+// (and one of the layers) whose rectangle touches the block, and each thread takes one
+// pixel of each tile.
 @compute @workgroup_size(16, 16)
 fn classify(
     @builtin(local_invocation_id) local: vec3<u32>,
