@@ -396,6 +396,18 @@ fn frames_reuse_their_upload_staging_buffers() {
     assert!(bits(&after) == bits(&first[1]), "the frame after a dropped encoder");
 }
 
+/// The clear pass's index in `ReflectionRenderer::passes_recorded`.
+const CLEAR: usize = 1;
+
+/// The scene with a water layer beside its floor mirror: its validated set, two cameras
+/// and their frames.
+fn pond_views() -> (ppr_format::ValidatedSet, [Camera; 2], Vec<GpuFrame>) {
+    let mut s = scene();
+    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
+    let (set, cams, frames) = two_views_of(&s);
+    (ppr_tests::harness::validated(&set), cams, frames)
+}
+
 #[test]
 fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
     // Direct dispatch: a frame's reflection pass clears the intermediate buffer and atlas
@@ -404,10 +416,7 @@ fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
     // that a slot left uncleared would hold the other view's values; every frame must match
     // a renderer that clears in the pass every frame, bit for bit (output, layer output and
     // intermediate buffer), a water layer included.
-    let mut s = scene();
-    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
-    let set = ppr_tests::harness::validated(&s.reflector_set());
-    let (_, cams, frames) = two_views_of(&s);
+    let (set, cams, frames) = pond_views();
     let mut turns = renderer();
     let mut every_frame = renderer();
     every_frame.debug.clear_pass_every_frame = true;
@@ -415,7 +424,6 @@ fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
         r.plan_params.indirect = Choice::Off;
         r.set_reflectors(&set);
     }
-    const CLEAR: usize = 1;
     // The first two frames may clear in the pass (the second where its layer needs a
     // larger atlas than the first's: new buffers); from the third on, none.
     for (k, v) in [0, 1, 0, 1, 1, 0, 0, 1].into_iter().enumerate() {
@@ -444,10 +452,7 @@ fn indirect_frames_clear_in_the_classification_alone() {
     // Indirect dispatch: the classification clears the active tiles and the layers' atlas,
     // so that no frame has a clear pass, the first included; every frame matches a renderer
     // whose clear pass does both (`tile_clear_pass`), output and layer output bit for bit.
-    let mut s = scene();
-    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
-    let set = ppr_tests::harness::validated(&s.reflector_set());
-    let (_, cams, frames) = two_views_of(&s);
+    let (set, cams, frames) = pond_views();
     let mut classified = renderer();
     let mut separate = renderer();
     separate.debug.tile_clear_pass = true;
@@ -455,7 +460,6 @@ fn indirect_frames_clear_in_the_classification_alone() {
         r.plan_params.indirect = Choice::On;
         r.set_reflectors(&set);
     }
-    const CLEAR: usize = 1;
     for (k, v) in [0, 1, 1, 0].into_iter().enumerate() {
         let a = run(&mut classified, &frames[v], &cams[v]);
         assert!(!classified.passes_recorded()[CLEAR], "frame {k}: no clear pass");
