@@ -161,13 +161,14 @@ pub struct DebugOptions {
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
-/// `TILE_LOOP`): 256 invocations each, eight to a multiprocessor of 2 048, for about 130
-/// multiprocessors (an H100's or H200's 132). A direct dispatch of at most this many
-/// workgroups walking the active-tile list replaced the indirect dispatch, which wgpu
-/// precedes with a validation dispatch and barriers of its own: 0.006-0.009 ms less for
-/// the 4K overviews' mirror reflection on the H100, the glossy within 0.001 or 0.008 less
-/// (docs/perf/runtime.md, twenty-fourth session).
-pub const TILE_LOOP_GROUPS: u32 = 1024;
+/// `TILE_LOOP`): 256 invocations each. A direct dispatch of at most this many workgroups
+/// walking the active-tile list replaced the indirect dispatch, which wgpu precedes with a
+/// validation dispatch and barriers of its own: 0.006-0.009 ms less for the 4K overviews'
+/// mirror reflection on the H100 with 1 024 workgroups (docs/perf/runtime.md, twenty-fourth
+/// session). On the H200, 4 096 take the demo's 4K overview (6 703 active tiles, its glossy
+/// tiles uneven) 0.0740 -> 0.0636 ms (indirect dispatch 0.0712), as mirrors 0.0334 ->
+/// 0.0300, and cost the kitchen's (260 tiles) 0.0008 and 0.0003 ms (twenty-fifth session).
+pub const TILE_LOOP_GROUPS: u32 = 4096;
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
 /// may share one renderer and one submit).
@@ -463,12 +464,14 @@ impl ReflectionRenderer {
         memory.tests.fill(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
+        let block_ranges: Vec<u32> =
+            plan.screen_rects.iter().map(crate::passes::tile_classify::block_range).collect();
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
                 (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
-                (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
+                (UploadTarget::BlockRanges, bytemuck::cast_slice(&block_ranges)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
                 (
@@ -573,7 +576,7 @@ impl ReflectionRenderer {
                     depth,
                     shapes: &b.shapes,
                     visible: &b.visible,
-                    screen_rects: &b.screen_rects,
+                    block_ranges: &b.block_ranges,
                     active_tiles: &b.active_tiles,
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,

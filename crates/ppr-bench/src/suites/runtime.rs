@@ -113,10 +113,12 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("reflection: mirrors, indirect on", Choice::Auto, Ablation::None),
         ("reflection: indirect dispatch", Choice::Auto, Ablation::None),
         ("reflection: mirrors, indirect dispatch", Choice::Auto, Ablation::None),
-        ("reflection: tile loop 4096", Choice::Auto, Ablation::None),
-        ("reflection: mirrors, tile loop 4096", Choice::Auto, Ablation::None),
-        ("reflection: tile loop 256", Choice::Auto, Ablation::None),
-        ("reflection: mirrors, tile loop 256", Choice::Auto, Ablation::None),
+        ("reflection: tile loop 1024", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, tile loop 1024", Choice::Auto, Ablation::None),
+        ("reflection: tile loop 2048", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, tile loop 2048", Choice::Auto, Ablation::None),
+        ("reflection: tile loop 8192", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, tile loop 8192", Choice::Auto, Ablation::None),
     ]
 }
 
