@@ -9,12 +9,14 @@ use ppr_testbed::GpuContext;
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
 use crate::report::compare_report::write_compare_report;
+use crate::report::pipeline_stats_report::write_pipeline_stats_report;
 use crate::report::runtime_report::write_runtime_report;
 use crate::report::scaling_report::write_scaling_report;
 use crate::report::trade_report::write_trade_report;
 use crate::scaling::level_family::LevelFamily;
 use crate::suites::compare::{CompareConfig, CompareOutcome, ReferenceKind, run_compare};
 use crate::suites::extract_trade::{TradeConfig, run_extract_trade};
+use crate::suites::pipeline_stats::{PipelineStatsConfig, run_pipeline_stats};
 use crate::suites::runtime::{RuntimeConfig, run_runtime};
 use crate::suites::scaling::{ScalingConfig, run_scaling};
 use crate::technique_spec::TechniqueSpec;
@@ -35,6 +37,10 @@ Examples:
   ppr-bench runtime --out docs/perf
   ppr-bench scaling --out docs/perf
   ppr-bench extract-trade --out docs/perf
+
+  # What the driver compiled each runtime pipeline to (registers, shared/local memory,
+  # spills, instructions), on the GPU's Vulkan driver
+  WGPU_BACKEND=vulkan ppr-bench pipeline-stats --out docs/perf
 
 Scenes: demo (assets/demo_room.glb), kitchen, small, collision-world, pool, mine (from
 --scenes-dir), the generated closed mirror rooms mirror-room, mirror-room-<boxes> and
@@ -69,6 +75,43 @@ pub enum Suite {
     /// Extraction settings per scene: rectangles against coverage and their GPU cost
     /// (extract_trade.md, extract_trade.csv, one plot per scene).
     ExtractTrade(TradeArgs),
+    /// What the GPU driver compiled each runtime compute pipeline to: registers per thread,
+    /// shared and local memory, spills, instruction counts, as the driver names them
+    /// (pipeline_stats.md, pipeline_stats.csv). Use it to read the occupancy of the hot
+    /// kernels (projection, reflection) and to check what a shader change did to them.
+    ///
+    /// Renders one frame of each camera of each scene with the runtime's default settings,
+    /// its pipeline log on; converts every distinct pipeline's WGSL to SPIR-V as wgpu's Vulkan
+    /// backend does, and compiles it on a Vulkan device of its own with
+    /// VK_KHR_pipeline_executable_properties (the first that has it, a GPU before a CPU
+    /// implementation). Needs the Vulkan loader and a driver with that extension (NVIDIA's,
+    /// AMD's, Intel's, Mesa's RADV and ANV; not Mesa 22's lavapipe); run with
+    /// WGPU_BACKEND=vulkan so that the frames choose the variants (subgroups) the GPU's wgpu
+    /// device gets.
+    PipelineStats(PipelineStatsArgs),
+}
+
+/// Options of `pipeline-stats`.
+#[derive(Args, Debug, Clone)]
+pub struct PipelineStatsArgs {
+    /// Folder for the reports (created if missing).
+    #[arg(long, default_value = "target/bench")]
+    pub out: PathBuf,
+    /// Repository root (holds assets/demo_room.glb).
+    #[arg(long, default_value = ".")]
+    pub repo_root: PathBuf,
+    /// Folder of the shared scenes.
+    #[arg(long, default_value = "../shared/scenes")]
+    pub scenes_dir: PathBuf,
+    /// Scene to render (repeat; default: demo and kitchen, as `runtime`).
+    #[arg(long = "scene")]
+    pub scenes: Vec<String>,
+    /// Render size of the frames (the plan, and so the variants, may depend on it).
+    #[arg(long, default_value = "3840x2160")]
+    pub resolution: Resolution,
+    /// Most cameras per scene.
+    #[arg(long, default_value_t = 3)]
+    pub max_cameras: usize,
 }
 
 /// Options of `runtime`.
@@ -407,6 +450,17 @@ where
             };
             let (rows, notes) = run_extract_trade(&gpu, &cfg, &tc)?;
             write_trade_report(&cfg.out_dir, &rows, &notes, &gpu.describe(), tc.resolution, &command_line)
+        }
+        Suite::PipelineStats(a) => {
+            let mut cfg = BenchConfig::full(a.out.clone(), a.repo_root.clone(), a.scenes_dir.clone());
+            cfg.command_line = command_line.clone();
+            let pc = PipelineStatsConfig {
+                scenes: pick(&a.scenes, false, &["demo"], &["demo", "kitchen"]),
+                resolution: a.resolution,
+                max_cameras: a.max_cameras,
+            };
+            let outcome = run_pipeline_stats(&gpu, &cfg, &pc)?;
+            write_pipeline_stats_report(&cfg.out_dir, &outcome, &command_line)
         }
     }
 }

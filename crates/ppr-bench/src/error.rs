@@ -26,6 +26,9 @@ pub enum BenchError {
     /// The GPU did something the bench cannot work with.
     #[error("GPU: {0}")]
     Gpu(String),
+    /// `pipeline-stats`: no Vulkan device with pipeline statistics, or a Vulkan call failed.
+    #[error(transparent)]
+    PipelineStats(#[from] crate::pipeline_stats::PipelineStatsError),
 }
 
 impl BenchError {

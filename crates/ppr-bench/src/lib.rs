@@ -22,6 +22,7 @@ pub mod error_causes;
 pub mod exact_reference;
 pub mod frame_loop;
 pub mod mirror_room;
+pub mod pipeline_stats;
 pub mod ppr_runner;
 pub mod quality;
 pub mod quality_pool;

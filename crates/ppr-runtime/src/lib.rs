@@ -25,6 +25,9 @@ pub mod gpu_types;
 pub mod parallel_trees;
 #[doc(hidden)]
 pub mod passes;
+#[cfg(feature = "pipeline-log")]
+#[doc(hidden)]
+pub mod pipeline_log;
 #[doc(hidden)]
 pub mod plan;
 #[doc(hidden)]

@@ -99,12 +99,19 @@ fn runtime_checks_for(env: Option<&str>) -> wgpu::ShaderRuntimeChecks {
 /// Creates a module of our own WGSL `source` with [`runtime_checks`] (what every pass of
 /// this crate and the baselines use).
 pub fn create_module(device: &wgpu::Device, label: &str, source: String) -> wgpu::ShaderModule {
+    #[cfg(feature = "pipeline-log")]
+    let logged = crate::pipeline_log::is_on().then(|| source.clone());
     let desc =
         wgpu::ShaderModuleDescriptor { label: Some(label), source: wgpu::ShaderSource::Wgsl(source.into()) };
     // SAFETY: the checks left out are the two `runtime_checks` names; the shaders are this
     // crate's and the baselines', whose loops all end and whose integer divisors are all
     // positive (see `runtime_checks`).
-    unsafe { device.create_shader_module_trusted(desc, runtime_checks()) }
+    let module = unsafe { device.create_shader_module_trusted(desc, runtime_checks()) };
+    #[cfg(feature = "pipeline-log")]
+    if let Some(source) = logged {
+        crate::pipeline_log::remember_module(&module, source);
+    }
+    module
 }
 
 /// Creates the shader module of a pass (or a test kernel) with only the shared modules.

@@ -5,6 +5,7 @@ pub mod compare_report;
 pub mod csv_file;
 pub mod image_sheet;
 pub mod markdown;
+pub mod pipeline_stats_report;
 pub mod plot;
 pub mod runtime_report;
 pub mod scaling_report;

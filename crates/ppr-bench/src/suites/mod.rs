@@ -2,5 +2,6 @@
 
 pub mod compare;
 pub mod extract_trade;
+pub mod pipeline_stats;
 pub mod runtime;
 pub mod scaling;

@@ -5,6 +5,7 @@ mod bounces;
 mod error_causes;
 mod glossy_compare;
 mod mirror_rooms;
+mod pipeline_stats;
 mod quick_compare;
 mod quick_scaling;
 mod resolution_tiers;

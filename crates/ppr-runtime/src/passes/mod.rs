@@ -88,6 +88,8 @@ pub(crate) fn compute_pipeline(
     entry: &str,
     constants: &[(&str, f64)],
 ) -> wgpu::ComputePipeline {
+    #[cfg(feature = "pipeline-log")]
+    crate::pipeline_log::record_pipeline(label, module, entry, constants);
     let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
         label: Some(label),
         bind_group_layouts: &[Some(layout)],
