@@ -564,3 +564,25 @@ fn the_tile_loop_gives_the_indirect_dispatch_s_reflection() {
         }
     }
 }
+
+#[test]
+fn the_occupancy_pad_leaves_the_projection_s_buffer_as_it_is() {
+    // The bench's occupancy pad (workgroup memory no frame uses) only changes how many
+    // workgroups fit on a multiprocessor: the same intermediate buffer, with fused lists.
+    let mut rng = Rng(0x5eed_0025);
+    let scene = random_scene(&mut rng, true);
+    let camera = random_camera(&mut rng);
+    let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
+    let set = grouped_set(&scene);
+    let buffer = |pad_kib: u32| {
+        let mut r = configured(Culling::FusedTiles, Choice::On);
+        r.debug.occupancy_pad_kib = pad_kib;
+        r.set_reflectors(&ppr_tests::harness::validated(&set));
+        let out = run(&mut r, &gpu, &camera);
+        assert!(out.plan.fused_lists, "{}", out.plan);
+        out.intermediate
+    };
+    let plain = buffer(0);
+    assert!(plain.iter().any(|&v| v != ppr_runtime::CLEAR_VALUE), "the scene reflects something");
+    assert_eq!(plain, buffer(8), "the occupancy pad changed the buffer");
+}

@@ -717,6 +717,7 @@ fn main(
     @builtin(local_invocation_index) lid: u32,
     @builtin(workgroup_id) wid: vec3<u32>,
 ) {
+    touch_occupancy_pad(lid);
     let fused = TILE_CULLING && FUSED_LISTS;
     // The ablations stop after the lists where the projection builds them.
     if (ABLATION == 1u && !fused) {

@@ -158,6 +158,10 @@ pub struct DebugOptions {
     /// dispatch instead of the tile loop (the layout before the twenty-fourth session;
     /// bench only, the same image).
     pub reflection_indirect_dispatch: bool,
+    /// KiB of workgroup memory added to the projection that no frame uses, so that fewer
+    /// of its workgroups run at once (`ProjectionVariant::occupancy_pad_kib`; bench only,
+    /// the same image).
+    pub occupancy_pad_kib: u32,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -409,6 +413,7 @@ impl ReflectionRenderer {
             no_inside_entries: self.debug.no_inside_entries,
             box_reduction: self.debug.box_reduction,
             list_prefetch: self.debug.list_prefetch,
+            occupancy_pad_kib: self.debug.occupancy_pad_kib,
             ablation: self.debug.projection_ablation,
         }
     }

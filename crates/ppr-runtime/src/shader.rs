@@ -30,6 +30,10 @@ pub const FUSED_LISTS: &str = include_str!("../shaders/fused_lists.wgsl");
 /// call them: no workgroup memory.
 pub const FUSED_LISTS_STUB: &str = include_str!("../shaders/fused_lists_stub.wgsl");
 
+/// The projection's occupancy pad (bench only: workgroup memory no frame uses; needs
+/// `OCCUPANCY_PAD_WORDS`, `frame` and the projection's `intermediate`).
+pub const OCCUPANCY_PAD: &str = include_str!("../shaders/occupancy_pad.wgsl");
+
 /// Hole filling, sampling, anti-bleeding (needs `frame`, `color_tex`, `linear_sampler`
 /// and [`VIEW`]).
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
@@ -122,6 +126,8 @@ pub fn module(device: &wgpu::Device, label: &str, pass: &str) -> wgpu::ShaderMod
 /// Every pass's WGSL with the modules it is built with (for validation).
 pub fn all_passes() -> Vec<(&'static str, String)> {
     use crate::passes::*;
+    let no_pad = projection::occupancy_pad_source(0);
+    let pad = projection::occupancy_pad_source(256);
     vec![
         ("clear", source(clear::WGSL)),
         ("tile classify", source_with(&[VIEW], tile_classify::WGSL)),
@@ -129,19 +135,26 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("block lists", source_with(&[VIEW, TILE_TEST], block_lists::WGSL)),
         (
             "projection",
-            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS_STUB], projection::WGSL),
+            source_with(
+                &[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS_STUB, &no_pad],
+                projection::WGSL,
+            ),
         ),
         (
             "projection (subgroups)",
-            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS_STUB], projection::WGSL),
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS_STUB, &no_pad], projection::WGSL),
         ),
         (
             "projection (fused lists)",
-            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS], projection::WGSL),
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS, &no_pad], projection::WGSL),
+        ),
+        (
+            "projection (fused lists, occupancy pad)",
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL_FALLBACK, FUSED_LISTS, &pad], projection::WGSL),
         ),
         (
             "projection (subgroups, fused lists)",
-            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS], projection::WGSL),
+            source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS, &no_pad], projection::WGSL),
         ),
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
@@ -228,7 +241,13 @@ mod tests {
         use ppr_format::ReflectorKind;
 
         let source = super::source_with(
-            &[super::VIEW, super::TILE_TEST, super::SUBGROUP_CULL_FALLBACK, super::FUSED_LISTS_STUB],
+            &[
+                super::VIEW,
+                super::TILE_TEST,
+                super::SUBGROUP_CULL_FALLBACK,
+                super::FUSED_LISTS_STUB,
+                &crate::passes::projection::occupancy_pad_source(0),
+            ],
             crate::passes::projection::WGSL,
         );
         let module =

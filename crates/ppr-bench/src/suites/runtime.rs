@@ -96,6 +96,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("subgroup culling only, no inside entries", Choice::Auto, Ablation::None),
         ("subgroup culling only, tests only", Choice::Auto, Ablation::TestsOnly),
         ("tile clear pass", Choice::Auto, Ablation::None),
+        ("occupancy pad 16 KiB", Choice::Auto, Ablation::None),
+        ("occupancy pad 32 KiB", Choice::Auto, Ablation::None),
+        ("occupancy pad 38 KiB", Choice::Auto, Ablation::None),
         ("clear pass every frame", Choice::Auto, Ablation::None),
         ("occlusion first", Choice::Auto, Ablation::None),
         ("occlusion last", Choice::Auto, Ablation::None),
@@ -335,6 +338,10 @@ pub fn run_runtime(
                         BoxReduction::Atomics
                     },
                     list_prefetch: name.ends_with("prefetch"),
+                    occupancy_pad_kib: name
+                        .strip_prefix("occupancy pad ")
+                        .and_then(|k| k.strip_suffix(" KiB")?.parse().ok())
+                        .unwrap_or(0),
                     reflection_ablation,
                     reflection_quads,
                     ..tuning

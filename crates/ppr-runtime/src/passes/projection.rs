@@ -73,6 +73,11 @@ pub struct ProjectionVariant {
     /// Bench only (the same lists): the fused lists load their first chunk's candidates
     /// and shape tests before the box reduction's barriers (`LIST_PREFETCH`).
     pub list_prefetch: bool,
+    /// Bench only (the same image): KiB of workgroup memory no frame uses, added so that
+    /// fewer workgroups fit on a multiprocessor at once: what the pass's time owes to its
+    /// occupancy (`occupancy_pad.wgsl`). Clamped to what the device allows beside the
+    /// pass's own.
+    pub occupancy_pad_kib: u32,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -164,12 +169,31 @@ pub struct ProjectionBindings<'a> {
     pub plane_groups: &'a wgpu::Buffer,
 }
 
+/// Workgroup memory the projection's own variables may take (the fused lists' list and
+/// box, `tile_test.wgsl`'s slots, what the driver adds), kept free beside the occupancy pad.
+const OWN_WORKGROUP_BYTES: u32 = 10 * 1024;
+
+/// Words of the occupancy pad for `kib` KiB, within a device's `limit` bytes of workgroup
+/// memory beside [`OWN_WORKGROUP_BYTES`].
+fn occupancy_pad_words(kib: u32, limit: u32) -> u32 {
+    (kib * 1024).min(limit.saturating_sub(OWN_WORKGROUP_BYTES)) / 4
+}
+
+/// `occupancy_pad.wgsl` with an array of `words` words, or its no-op without (`words` 0).
+pub fn occupancy_pad_source(words: u32) -> String {
+    if words == 0 {
+        return "fn touch_occupancy_pad(lid: u32) {}\n".to_owned();
+    }
+    format!("const OCCUPANCY_PAD_WORDS: u32 = {words}u;\n{}", crate::shader::OCCUPANCY_PAD)
+}
+
 /// The projection pass.
 pub struct ProjectionPass {
     /// The shader modules by (subgroup operations, fused lists), built on first use: the
     /// subgroup ones only on devices with [`wgpu::Features::SUBGROUP`], and the fused
     /// lists' workgroup memory only in the variants that use it.
-    modules: HashMap<(bool, bool), wgpu::ShaderModule>,
+    /// With the occupancy pad's words (0: none) as the key's third part.
+    modules: HashMap<(bool, bool, u32), wgpu::ShaderModule>,
     subgroups: bool,
     /// Subgroups are at least 8 wide: [`BoxReduction::SubgroupSlots`] runs as itself.
     subgroup_slots: bool,
@@ -243,7 +267,7 @@ impl ProjectionPass {
         ];
         let label = format!("ppr projection {v:?}");
         let subgroup_ops = (v.subgroup_cull || v.box_reduction != BoxReduction::Atomics) && self.subgroups;
-        let module = self.module(device, subgroup_ops, v.tile_culling && v.fused_lists);
+        let module = self.module(device, subgroup_ops, v.tile_culling && v.fused_lists, v.occupancy_pad_kib);
         let pipeline = compute_pipeline(device, &label, &self.layout, &module, "main", &constants);
         self.pipelines.insert(v, pipeline);
     }
@@ -257,17 +281,27 @@ impl ProjectionPass {
         }
     }
 
-    /// The module with (or without) subgroup operations and the fused lists' code.
-    fn module(&mut self, device: &wgpu::Device, subgroups: bool, fused: bool) -> wgpu::ShaderModule {
+    /// The module with (or without) subgroup operations and the fused lists' code, and
+    /// `pad_kib` KiB of [`ProjectionVariant::occupancy_pad_kib`].
+    fn module(
+        &mut self,
+        device: &wgpu::Device,
+        subgroups: bool,
+        fused: bool,
+        pad_kib: u32,
+    ) -> wgpu::ShaderModule {
         use crate::shader::{
             FUSED_LISTS, FUSED_LISTS_STUB, SUBGROUP_CULL, SUBGROUP_CULL_FALLBACK, TILE_TEST, VIEW,
             module_with,
         };
-        let module = self.modules.entry((subgroups, fused)).or_insert_with(|| {
+        let pad_words = occupancy_pad_words(pad_kib, device.limits().max_compute_workgroup_storage_size);
+        let module = self.modules.entry((subgroups, fused, pad_words)).or_insert_with(|| {
             let cull = if subgroups { SUBGROUP_CULL } else { SUBGROUP_CULL_FALLBACK };
             let lists = if fused { FUSED_LISTS } else { FUSED_LISTS_STUB };
-            let label = format!("ppr projection (subgroups {subgroups}, fused lists {fused})");
-            module_with(device, &label, &[VIEW, TILE_TEST, cull, lists], WGSL)
+            let pad = occupancy_pad_source(pad_words);
+            let label =
+                format!("ppr projection (subgroups {subgroups}, fused lists {fused}, pad {pad_words} words)");
+            module_with(device, &label, &[VIEW, TILE_TEST, cull, lists, &pad], WGSL)
         });
         module.clone()
     }
