@@ -21,8 +21,6 @@ const LIST_CAPACITY: u32 = 256u;
 const LAYER_CAPACITY: u32 = 64u;
 // Largest workgroup count per dispatch dimension.
 const MAX_GROUPS_X: u32 = 65535u;
-// Largest block coordinate of a block range (MAX_BLOCK_COORD in tile_classify.rs).
-const MAX_BLOCK_COORD: u32 = 255u;
 // Pixels closer to a plane than this times their distance count as on it (generous:
 // marking a tile active that shows no reflector only costs time).
 const ON_PLANE_EPSILON: f32 = 2e-3;
@@ -40,11 +38,8 @@ struct ActiveTileCounter {
 @group(0) @binding(1) var depth_tex: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read> shapes: array<Shape>;
 @group(0) @binding(3) var<storage, read> visible: array<u32>;
-// Per visible shape: the blocks its screen rectangle touches, inclusive, 8 bits each from
-// the low byte up: first x, first y, last x, last y (tile_classify.rs's block_range; block
-// coordinates past MAX_BLOCK_COORD are clamped to it). A word, not the rectangle's four:
-// every workgroup reads every visible shape's.
-@group(0) @binding(4) var<storage, read> block_ranges: array<u32>;
+// Per visible shape: its screen rectangle in pixels (min x, min y, max x, max y), exclusive max.
+@group(0) @binding(4) var<storage, read> screen_rects: array<vec4<u32>>;
 @group(0) @binding(5) var<storage, read_write> active_tiles: ActiveTileCounter;
 @group(0) @binding(6) var<storage, read_write> dispatch_args: array<atomic<u32>, 3>;
 // Per tile: 1 when active, 0 when not (so that reads across a tile border can tell
@@ -136,14 +131,11 @@ fn classify(
     workgroupBarrier();
     let block_lo = wid.xy * BLOCK_SIZE;
     let block_hi = block_lo + BLOCK_SIZE;
-    let b = min(wid.xy, vec2<u32>(MAX_BLOCK_COORD));
     for (var base = 0u; base < frame.visible_count; base += GROUP_THREADS) {
         let k = base + lid;
         if (k < frame.visible_count) {
-            let r = block_ranges[k];
-            let first = vec2<u32>(r & 0xffu, (r >> 8u) & 0xffu);
-            let last = vec2<u32>((r >> 16u) & 0xffu, r >> 24u);
-            if (all(b >= first) && all(b <= last)) {
+            let r = screen_rects[k];
+            if (r.x < block_hi.x && r.z > block_lo.x && r.y < block_hi.y && r.w > block_lo.y) {
                 let slot = atomicAdd(&list_len, 1u);
                 if (slot < LIST_CAPACITY) {
                     list[slot] = visible[k];

@@ -18,8 +18,7 @@ pub(crate) struct FrameBuffers {
     pub uniforms: wgpu::Buffer,
     pub shapes: wgpu::Buffer,
     pub visible: wgpu::Buffer,
-    /// Per visible shape, the blocks its screen rectangle touches (the classification's).
-    pub block_ranges: wgpu::Buffer,
+    pub screen_rects: wgpu::Buffer,
     /// Per visible shape, the screen box of the pixels that may reflect into it.
     pub source_rects: wgpu::Buffer,
     /// Per projection test and layer, then per parallel tree member, its test planes.
@@ -91,7 +90,7 @@ impl FrameBuffers {
             ),
             shapes: buffer("ppr shapes", n * std::mem::size_of::<GpuShape>() as u64, storage),
             visible: buffer("ppr visible shapes", 4 * n, storage),
-            block_ranges: buffer("ppr block ranges", 4 * n, storage),
+            screen_rects: buffer("ppr screen rects", 16 * n, storage),
             source_rects: buffer("ppr source rects", 16 * n, storage),
             // The loop's tests (entries and layers), then the parallel trees' members: each
             // shape at most once, plus one entry per tree.

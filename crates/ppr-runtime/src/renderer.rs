@@ -171,7 +171,9 @@ pub struct DebugOptions {
 /// mirror reflection on the H100 with 1 024 workgroups (docs/perf/runtime.md, twenty-fourth
 /// session). On the H200, 4 096 take the demo's 4K overview (6 703 active tiles, its glossy
 /// tiles uneven) 0.0740 -> 0.0636 ms (indirect dispatch 0.0712), as mirrors 0.0334 ->
-/// 0.0300, and cost the kitchen's (260 tiles) 0.0008 and 0.0003 ms (twenty-fifth session).
+/// 0.0300, and cost the kitchen's (260 tiles) 0.0008 and 0.0003 ms; on the H100 the demo's
+/// 0.0739 (1 024) / 0.0699 (2 048) / 0.0639 (4 096) / 0.0657 (8 192), the kitchen's within
+/// 0.0008 of each other (twenty-fifth session).
 pub const TILE_LOOP_GROUPS: u32 = 4096;
 
 /// Renders pixel-projected reflections: `prepare` then `encode`, once per view (several views
@@ -469,14 +471,12 @@ impl ReflectionRenderer {
         memory.tests.fill(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
         let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
-        let block_ranges: Vec<u32> =
-            plan.screen_rects.iter().map(crate::passes::tile_classify::block_range).collect();
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &[
                 (UploadTarget::Uniforms, bytemuck::bytes_of(&uniforms)),
                 (UploadTarget::Visible, bytemuck::cast_slice(&plan.visible)),
-                (UploadTarget::BlockRanges, bytemuck::cast_slice(&block_ranges)),
+                (UploadTarget::ScreenRects, bytemuck::cast_slice(&plan.screen_rects)),
                 (UploadTarget::Layers, bytemuck::cast_slice(&layers)),
                 (UploadTarget::SourceRects, bytemuck::cast_slice(&plan.source_rects)),
                 (
@@ -581,7 +581,7 @@ impl ReflectionRenderer {
                     depth,
                     shapes: &b.shapes,
                     visible: &b.visible,
-                    block_ranges: &b.block_ranges,
+                    screen_rects: &b.screen_rects,
                     active_tiles: &b.active_tiles,
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,

@@ -3,33 +3,10 @@
 //! arguments of the reflection pass over them.
 
 use super::bind_group_cache::BindGroupCache;
-use super::projection::{BLOCK, block_groups};
+use super::projection::block_groups;
 use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
-use crate::plan::ScreenRect;
 
 pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
-
-/// Largest block coordinate a [`block_range`] holds (8 bits each); blocks beyond it (past
-/// 8 160 pixels) share it.
-const MAX_BLOCK_COORD: u32 = 255;
-
-/// The 32 x 32-pixel blocks that `rect` (exclusive max) touches, packed into one word as
-/// the classification reads it: the first block's x and y, then the last block's x and y,
-/// 8 bits each from the low byte up. A coordinate past [`MAX_BLOCK_COORD`] is clamped to
-/// it, and so is the block's in the shader: the range then holds more blocks, never fewer
-/// (clamping keeps the order). An empty rectangle holds none (its first block after its
-/// last). A quarter of the screen rectangle's 16 bytes: every workgroup of the
-/// classification reads every visible shape's range, which at 10 000 visible shapes is
-/// most of its time.
-pub fn block_range(rect: &ScreenRect) -> u32 {
-    if rect.area() == 0 {
-        return MAX_BLOCK_COORD;
-    }
-    let coord = |v: u32| (v / BLOCK).min(MAX_BLOCK_COORD);
-    let [x0, y0] = rect.min.map(coord);
-    let [x1, y1] = rect.max.map(|v| coord(v - 1));
-    x0 | y0 << 8 | x1 << 16 | y1 << 24
-}
 
 /// Bytes before the tile indices in the active-tile buffer (count + padding).
 pub const ACTIVE_TILES_HEADER: u64 = 16;
@@ -40,8 +17,7 @@ pub struct ClassifyBindings<'a> {
     pub depth: &'a wgpu::TextureView,
     pub shapes: &'a wgpu::Buffer,
     pub visible: &'a wgpu::Buffer,
-    /// Per visible shape: the blocks its screen rectangle touches ([`block_range`]).
-    pub block_ranges: &'a wgpu::Buffer,
+    pub screen_rects: &'a wgpu::Buffer,
     pub active_tiles: &'a wgpu::Buffer,
     pub dispatch_args: &'a wgpu::Buffer,
     pub tile_flags: &'a wgpu::Buffer,
@@ -119,7 +95,7 @@ impl TileClassifyPass {
                     },
                     wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: b.block_ranges.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
@@ -153,51 +129,5 @@ impl TileClassifyPass {
         };
         pass.set_pipeline(classify);
         pass.dispatch_workgroups(x, y, 1);
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use proptest::prelude::*;
-
-    /// Whether the packed range holds block `b`, as `tile_classify.wgsl` tests it.
-    fn holds(range: u32, b: [u32; 2]) -> bool {
-        let b = b.map(|v| v.min(MAX_BLOCK_COORD));
-        let byte = |i: u32| (range >> (8 * i)) & 0xff;
-        b[0] >= byte(0) && b[1] >= byte(1) && b[0] <= byte(2) && b[1] <= byte(3)
-    }
-
-    /// Whether the rectangle overlaps block `b`'s pixels (the test before the ranges).
-    fn overlaps(r: &ScreenRect, b: [u32; 2]) -> bool {
-        let lo = b.map(|v| v * BLOCK);
-        r.min[0] < lo[0] + BLOCK && r.max[0] > lo[0] && r.min[1] < lo[1] + BLOCK && r.max[1] > lo[1]
-    }
-
-    proptest! {
-        /// Below the clamp the range holds exactly the blocks the rectangle overlaps; past
-        /// it, at least those.
-        #[test]
-        fn a_block_range_holds_the_blocks_its_rectangle_overlaps(
-            x in 0u32..9000, y in 0u32..9000, w in 0u32..600, h in 0u32..600,
-            bx in 0u32..290, by in 0u32..290,
-        ) {
-            let r = ScreenRect { min: [x, y], max: [x + w, y + h] };
-            let range = block_range(&r);
-            let b = [bx, by];
-            if bx < MAX_BLOCK_COORD && by < MAX_BLOCK_COORD {
-                prop_assert_eq!(holds(range, b), overlaps(&r, b), "{:?} block {:?}", r, b);
-            } else if overlaps(&r, b) {
-                prop_assert!(holds(range, b), "{:?} block {:?}", r, b);
-            }
-        }
-    }
-
-    #[test]
-    fn an_empty_rectangle_holds_no_block() {
-        for r in [ScreenRect { min: [40, 40], max: [40, 90] }, ScreenRect { min: [0, 0], max: [0, 0] }] {
-            let range = block_range(&r);
-            assert!((0..8).all(|x| (0..8).all(|y| !holds(range, [x, y]))), "{r:?}");
-        }
     }
 }
