@@ -112,6 +112,11 @@ pub struct PipelineStatsArgs {
     /// Most cameras per scene.
     #[arg(long, default_value_t = 3)]
     pub max_cameras: usize,
+    /// Also compile the projection's ablations and options one at a time (the default
+    /// frame's variant with each part left out or turned off): which part takes the
+    /// registers and the shared memory.
+    #[arg(long)]
+    pub projection_variants: bool,
 }
 
 /// Options of `runtime`.
@@ -458,6 +463,7 @@ where
                 scenes: pick(&a.scenes, false, &["demo"], &["demo", "kitchen"]),
                 resolution: a.resolution,
                 max_cameras: a.max_cameras,
+                projection_variants: a.projection_variants,
             };
             let outcome = run_pipeline_stats(&gpu, &cfg, &pc)?;
             write_pipeline_stats_report(&cfg.out_dir, &outcome, &command_line)

@@ -6,6 +6,7 @@
 
 use std::collections::HashSet;
 
+use ppr_runtime::passes::{Ablation, ProjectionPass, ProjectionVariant};
 use ppr_runtime::pipeline_log::{self, PipelineSource};
 use ppr_runtime::{PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
@@ -27,6 +28,48 @@ pub struct PipelineStatsConfig {
     pub scenes: Vec<String>,
     pub resolution: Resolution,
     pub max_cameras: usize,
+    /// Also compile the projection's variants of [`projection_variants`] (its ablations and
+    /// options): which part of the pass takes the registers and the shared memory.
+    pub projection_variants: bool,
+}
+
+/// The projection's default frame variant on the demo level (fused block lists, layers,
+/// source boxes, uniform tests, depth occlusion first), each ablation of it, and it with
+/// one option turned off at a time; then the same for a frame without tile culling (the
+/// kitchen's close views), and the first with the block-list pass's lists.
+pub fn projection_variants() -> Vec<ProjectionVariant> {
+    let fused = ProjectionVariant {
+        tile_culling: true,
+        fused_lists: true,
+        depth_occlusion: true,
+        layers: true,
+        source_boxes: true,
+        uniform_tests: true,
+        occlusion_first: true,
+        ..ProjectionVariant::default()
+    };
+    let plain = ProjectionVariant { tile_culling: false, fused_lists: false, layers: false, ..fused };
+    let mut out = Vec::new();
+    for base in [fused, plain] {
+        out.push(base);
+        for ablation in [
+            Ablation::Empty,
+            Ablation::PositionOnly,
+            Ablation::TestsOnly,
+            Ablation::NoEncode,
+            Ablation::NoWrite,
+        ] {
+            out.push(ProjectionVariant { ablation, ..base });
+        }
+        out.push(ProjectionVariant { depth_occlusion: false, occlusion_first: false, ..base });
+        out.push(ProjectionVariant { uniform_tests: false, ..base });
+        out.push(ProjectionVariant { layers: false, ..base });
+        out.push(ProjectionVariant { source_boxes: false, ..base });
+        out.push(ProjectionVariant { occlusion_first: false, ..base });
+    }
+    // Tile culling with the block-list pass's lists instead of the projection's own.
+    out.push(ProjectionVariant { fused_lists: false, ..fused });
+    out
 }
 
 /// The distinct pipelines the frames created.
@@ -149,6 +192,13 @@ pub fn log_pipelines(
             queue.submit([encoder.finish()]);
             gpu.wait_idle()?;
             out.frames += 1;
+        }
+        logged.extend(pipeline_log::take());
+    }
+    if pc.projection_variants {
+        let mut pass = ProjectionPass::new(device);
+        for v in projection_variants() {
+            pass.prepare_variant(device, v);
         }
         logged.extend(pipeline_log::take());
     }

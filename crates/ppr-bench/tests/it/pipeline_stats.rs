@@ -26,6 +26,7 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
         scenes: vec!["demo".into()],
         resolution: Resolution { width: 64, height: 36 },
         max_cameras: 1,
+        projection_variants: true,
     };
     let logged = log_pipelines(&gpu, &cfg, &pc).expect("one frame of the demo level");
     assert_eq!(logged.frames, 1, "{:?}", logged.notes);
@@ -37,6 +38,13 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
         logged.pipelines.iter().filter(|p| p.label.starts_with(prefix)).collect()
     };
     let projection = with_prefix("ppr projection");
+    // The frame's own variant, and every one of `projection_variants` besides.
+    let variants = ppr_bench::suites::pipeline_stats::projection_variants();
+    assert!(projection.len() > variants.len(), "{} projection pipelines", projection.len());
+    for v in &variants {
+        let label = format!("ppr projection {v:?}");
+        assert!(projection.iter().any(|p| p.label == label), "{label} not logged");
+    }
     let reflection = with_prefix("ppr reflection");
     assert!(!projection.is_empty() && !reflection.is_empty(), "{labels:?}");
     for p in projection.iter().chain(&reflection) {
@@ -45,8 +53,9 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
     }
     for p in &projection {
         assert_eq!(p.entry_point, "main");
-        assert!(constant(p, "TILE_CULLING").is_some() && constant(p, "ABLATION") == Some(0.0), "{p:?}");
+        assert!(constant(p, "TILE_CULLING").is_some() && constant(p, "ABLATION").is_some(), "{}", p.label);
     }
+    assert!(projection.iter().any(|p| constant(p, "ABLATION") == Some(0.0)), "the frame's own variant");
     for p in &reflection {
         assert!(["main", "main_quads"].contains(&p.entry_point.as_str()), "{}", p.entry_point);
         assert!(constant(p, "GLOSSY").is_some() && constant(p, "INDIRECT").is_some(), "{:?}", p.constants);
