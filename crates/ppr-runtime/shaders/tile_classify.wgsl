@@ -11,6 +11,9 @@
 // (append_active_tiles).
 
 override CLEAR_TILES: bool = true;
+// The frame has layer reflectors (false: the layer list, its tests and the atlas clear
+// compiled out; their registers slowed the scan of 10 000 visible shapes).
+override LAYERS: bool = true;
 
 const TILE_SIZE: u32 = 16u;
 // Edge of a workgroup's block: 2 x 2 tiles.
@@ -85,7 +88,7 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
             return true;
         }
     }
-    for (var l = 0u; l < layers_listed; l++) {
+    for (var l = 0u; LAYERS && l < layers_listed; l++) {
         if (lies_on(p, reach, shapes[layer_list[l]])) {
             return true;
         }
@@ -96,7 +99,7 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
 // Clears the layers' regions of the atlas (they follow each other from offset 0), each
 // thread of the dispatch a value in turn.
 fn clear_atlas(lid: u32, wid: vec2<u32>, groups: vec2<u32>) {
-    if (frame.layer_count == 0u) {
+    if (!LAYERS || frame.layer_count == 0u) {
         return;
     }
     let last = layers[frame.layer_count - 1u];
@@ -123,7 +126,9 @@ fn classify(
     }
     if (lid == 0u) {
         atomicStore(&list_len, 0u);
-        atomicStore(&layer_list_len, 0u);
+        if (LAYERS) {
+            atomicStore(&layer_list_len, 0u);
+        }
     }
     if (lid < 4u) {
         atomicStore(&shows_reflector[lid], 0u);
@@ -143,7 +148,7 @@ fn classify(
             }
         }
     }
-    for (var l = lid; l < min(frame.layer_count, LAYER_CAPACITY); l += GROUP_THREADS) {
+    for (var l = lid; LAYERS && l < min(frame.layer_count, LAYER_CAPACITY); l += GROUP_THREADS) {
         let layer = layers[l];
         if (all(layer.rect_min < block_hi) && all(layer.rect_max > block_lo)) {
             layer_list[atomicAdd(&layer_list_len, 1u)] = layer.shape;
@@ -151,7 +156,7 @@ fn classify(
     }
     workgroupBarrier();
     let listed = atomicLoad(&list_len);
-    let layers_listed = atomicLoad(&layer_list_len);
+    let layers_listed = select(0u, atomicLoad(&layer_list_len), LAYERS);
     if (listed > 0u) {
         // The four depths are loaded before any test (one wait instead of four in turn).
         var depth = vec4<f32>(0.0);

@@ -331,6 +331,8 @@ impl ReflectionRenderer {
                 self.reflection.prepare_variant(&self.device, self.reflection_variant(false, false));
                 if self.debug.tile_clear_pass {
                     self.classify.prepare_separate_clear(&self.device);
+                } else if plan.indirect && plan.layers.is_empty() {
+                    self.classify.prepare_without_layers(&self.device);
                 }
                 if self.debug.block_lists_box_only {
                     self.block_lists.prepare_box_only(&self.device);
@@ -594,7 +596,13 @@ impl ReflectionRenderer {
                 label: Some("ppr tile classify"),
                 timestamp_writes: timestamps(0),
             });
-            self.classify.encode(&mut pass, &bg, plan.viewport, !self.debug.tile_clear_pass);
+            self.classify.encode(
+                &mut pass,
+                &bg,
+                plan.viewport,
+                !self.debug.tile_clear_pass,
+                !plan.layers.is_empty(),
+            );
             count(1);
         }
         // Indirect frames clear their active tiles whatever the slot holds.

@@ -6,7 +6,7 @@
 
 use std::collections::HashSet;
 
-use ppr_runtime::passes::{Ablation, ProjectionPass, ProjectionVariant};
+use ppr_runtime::passes::{Ablation, ProjectionPass, ProjectionVariant, TileClassifyPass};
 use ppr_runtime::pipeline_log::{self, PipelineSource};
 use ppr_runtime::{PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
@@ -29,7 +29,8 @@ pub struct PipelineStatsConfig {
     pub resolution: Resolution,
     pub max_cameras: usize,
     /// Also compile the projection's variants of [`projection_variants`] (its ablations and
-    /// options): which part of the pass takes the registers and the shared memory.
+    /// options: which part of the pass takes the registers and the shared memory) and the
+    /// classification without layers.
     pub projection_variants: bool,
 }
 
@@ -200,6 +201,9 @@ pub fn log_pipelines(
         for v in projection_variants() {
             pass.prepare_variant(device, v);
         }
+        // The classification of frames without layers, which the default scenes (whose
+        // indirect frames have layers) do not build.
+        TileClassifyPass::new(device).prepare_without_layers(device);
         logged.extend(pipeline_log::take());
     }
     let unknown = pipeline_log::unknown_modules();

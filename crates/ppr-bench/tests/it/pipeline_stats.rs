@@ -45,6 +45,9 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
         let label = format!("ppr projection {v:?}");
         assert!(projection.iter().any(|p| p.label == label), "{label} not logged");
     }
+    let no_layers = with_prefix("ppr tile classify (no layers)");
+    assert_eq!(no_layers.len(), 1, "{labels:?}");
+    assert_eq!(constant(no_layers[0], "LAYERS"), Some(0.0));
     let reflection = with_prefix("ppr reflection");
     assert!(!projection.is_empty() && !reflection.is_empty(), "{labels:?}");
     for p in projection.iter().chain(&reflection) {

@@ -33,9 +33,13 @@ pub struct ClassifyBindings<'a> {
 /// The tile classification pass (one dispatch: its blocks append their active tiles and
 /// raise the indirect arguments).
 pub struct TileClassifyPass {
-    /// With the clear of the active tiles.
+    /// With the clear of the active tiles, for frames with layers.
     classify: wgpu::ComputePipeline,
-    /// Bench only, built on request ([`Self::prepare_separate_clear`]): without it.
+    /// The same for frames without layers (their layer list and atlas clear compiled
+    /// out), built on request ([`Self::prepare_without_layers`]).
+    without_layers: Option<wgpu::ComputePipeline>,
+    /// Bench only, built on request ([`Self::prepare_separate_clear`]): without the clear
+    /// (layers compiled in).
     separate_clear: Option<wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
@@ -63,6 +67,7 @@ impl TileClassifyPass {
         let module = crate::shader::module_with(device, "ppr tile classify", &[crate::shader::VIEW], WGSL);
         Self {
             classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
+            without_layers: None,
             separate_clear: None,
             module,
             layout,
@@ -77,6 +82,19 @@ impl TileClassifyPass {
             let constants = [("CLEAR_TILES", flag(false))];
             let label = "ppr tile classify (separate clear)";
             self.separate_clear =
+                Some(compute_pipeline(device, label, &self.layout, &self.module, "classify", &constants));
+        }
+    }
+
+    /// Builds the classification for frames without layers (`LAYERS` off: the layer list,
+    /// its tests and the atlas clear compiled out). The layer code raised the kernel's
+    /// registers and slowed the classification of 10 000 shapes by 0.006-0.009 ms on the
+    /// H200 (docs/perf/runtime.md, twenty-fifth session).
+    pub fn prepare_without_layers(&mut self, device: &wgpu::Device) {
+        if self.without_layers.is_none() {
+            let constants = [("LAYERS", flag(false))];
+            let label = "ppr tile classify (no layers)";
+            self.without_layers =
                 Some(compute_pipeline(device, label, &self.layout, &self.module, "classify", &constants));
         }
     }
@@ -111,21 +129,26 @@ impl TileClassifyPass {
     /// tiles' pixels (else the clear pass must do it, after [`Self::prepare_separate_clear`]),
     /// and the indirect arguments (one dispatch). The active-tile count and the arguments
     /// must be zero beforehand: the renderer clears them in the encoder before every
-    /// classification (not once per `prepare`: a second encode would append).
+    /// classification (not once per `prepare`: a second encode would append). `layers`:
+    /// the frame has layers (without, after [`Self::prepare_without_layers`], the kernel
+    /// without their code runs).
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         viewport: [u32; 2],
         clear_tiles: bool,
+        layers: bool,
     ) {
         // One workgroup per 2 × 2 tiles.
         let (x, y) = block_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);
-        let classify = if clear_tiles {
+        let classify = if !clear_tiles {
+            self.separate_clear.as_ref().expect("prepare_separate_clear() before encode()")
+        } else if layers {
             &self.classify
         } else {
-            self.separate_clear.as_ref().expect("prepare_separate_clear() before encode()")
+            self.without_layers.as_ref().expect("prepare_without_layers() before encode()")
         };
         pass.set_pipeline(classify);
         pass.dispatch_workgroups(x, y, 1);
