@@ -47,6 +47,12 @@ pub struct CompiledPipeline {
     pub words: Vec<u32>,
     /// Every resource the module declares (the pass's bind-group layout declares them all).
     pub bindings: Vec<DescriptorBinding>,
+    /// Invocations per workgroup of the entry point.
+    pub workgroup_threads: u32,
+    /// Bytes of the workgroup variables the entry point refers to (overrides substituted;
+    /// a branch they turn off still counts, though a driver drops it): what the code itself
+    /// asks for, so that a driver's shared memory beyond it is its own (spills).
+    pub declared_workgroup_bytes: u32,
 }
 
 /// naga's SPIR-V options for `target` with `checks` (what [`ppr_runtime::shader::create_module`]
@@ -132,12 +138,83 @@ pub fn compile_pipeline(
         spv::PipelineOptions { shader_stage: stage, entry_point: pipeline.entry_point.clone() };
     let words = spv::write_vec(&module_with_constants, &info, &options, Some(&pipeline_options))
         .map_err(|e| fail("SPIR-V", e.to_string()))?;
-    Ok(CompiledPipeline { words, bindings })
+    let (workgroup_threads, declared_workgroup_bytes) =
+        workgroup_use(&module_with_constants, &info, &pipeline.entry_point)
+            .ok_or_else(|| fail("entry point", format!("no compute entry point {}", pipeline.entry_point)))?;
+    Ok(CompiledPipeline { words, bindings, workgroup_threads, declared_workgroup_bytes })
+}
+
+/// The entry point's invocations per workgroup and the bytes of the workgroup variables it
+/// uses (`None` without that entry point).
+fn workgroup_use(module: &naga::Module, info: &naga::valid::ModuleInfo, entry: &str) -> Option<(u32, u32)> {
+    let index = module.entry_points.iter().position(|e| e.name == entry)?;
+    let threads = module.entry_points[index].workgroup_size.iter().product();
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).ok()?;
+    let used = info.get_entry_point(index);
+    let bytes = module
+        .global_variables
+        .iter()
+        .filter(|(h, g)| g.space == naga::AddressSpace::WorkGroup && !used[*h].is_empty())
+        .map(|(_, g)| layouter[g.ty].size)
+        .sum();
+    Some((threads, bytes))
+}
+
+/// Workgroups of `threads` invocations that fit on an NVIDIA multiprocessor of compute
+/// capability 9.0 (H100, H200) by registers and threads alone: 64 Ki registers allocated
+/// per warp in steps of 8 per invocation, at most 2 048 invocations and 32 workgroups
+/// (shared memory not counted).
+pub fn nvidia_sm90_workgroups_by_registers(registers: u32, threads: u32) -> u32 {
+    let warps = threads.div_ceil(32).max(1);
+    let per_warp = registers.max(1).next_multiple_of(8) * 32;
+    let by_registers = 65_536 / (per_warp * warps);
+    by_registers.min(2_048 / (warps * 32)).min(32)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn workgroups_per_multiprocessor_by_registers() {
+        // 256 invocations: 48 registers leave 5, 40 (and 37, allocated as 40) 6, 32 8,
+        // 61 (as 64) 4; 16 registers are bound by the 2 048 invocations.
+        let cases = [(48, 5), (40, 6), (37, 6), (32, 8), (61, 4), (16, 8)];
+        for (registers, workgroups) in cases {
+            assert_eq!(nvidia_sm90_workgroups_by_registers(registers, 256), workgroups, "{registers}");
+        }
+        assert_eq!(nvidia_sm90_workgroups_by_registers(32, 64), 32, "the workgroup limit");
+    }
+
+    #[test]
+    fn declared_workgroup_memory_counts_the_entry_point_s_variables_after_overrides() {
+        let source = "
+            override BIG: bool = true;
+            var<workgroup> list: array<u32, 256>;
+            var<workgroup> unused: array<u32, 1000>;
+            var<workgroup> count: atomic<u32>;
+            @group(0) @binding(0) var<storage, read_write> out: array<u32>;
+            @compute @workgroup_size(16, 16)
+            fn main(@builtin(local_invocation_index) i: u32) {
+                if (BIG) { list[i] = i; }
+                atomicAdd(&count, 1u);
+                out[i] = atomicLoad(&count);
+            }
+            @compute @workgroup_size(64)
+            fn other(@builtin(local_invocation_index) i: u32) { unused[i] = i; }";
+        let pipeline = |entry: &str| PipelineSource {
+            label: "test".into(),
+            source: source.into(),
+            entry_point: entry.into(),
+            constants: vec![],
+        };
+        let options = spirv_options(&SpirvTarget::VULKAN_1_3_ROBUST, &ppr_runtime::shader::runtime_checks());
+        let main = compile_pipeline(&pipeline("main"), &options).expect("compiles");
+        assert_eq!((main.workgroup_threads, main.declared_workgroup_bytes), (256, 256 * 4 + 4));
+        let other = compile_pipeline(&pipeline("other"), &options).expect("compiles");
+        assert_eq!((other.workgroup_threads, other.declared_workgroup_bytes), (64, 4000));
+    }
 
     /// Every pass of the runtime, with its WGSL's default constants, turns into SPIR-V.
     #[test]

@@ -5,7 +5,11 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::BenchError;
-use crate::pipeline_stats::statistic::usefulness;
+use crate::pipeline_stats::spirv::nvidia_sm90_workgroups_by_registers;
+use crate::pipeline_stats::statistic::{StatValue, usefulness};
+
+/// The NVIDIA driver's name of the register count.
+const REGISTER_COUNT: &str = "Register Count";
 use crate::report::csv_file::CsvTable;
 use crate::report::markdown::MarkdownTable;
 use crate::suites::pipeline_stats::{PipelineStatsOutcome, constants_text};
@@ -72,6 +76,8 @@ pub fn markdown(outcome: &PipelineStatsOutcome, command: &str) -> String {
     let columns = statistic_columns(outcome);
     let mut header = vec!["pipeline".to_owned(), "entry".to_owned(), "executable".to_owned()];
     header.extend(columns.iter().map(|(n, _)| format!("#{n}")));
+    header.push("#declared workgroup B".to_owned());
+    header.push("#workgroups per SM by registers (sm_90)".to_owned());
     let header: Vec<&str> = header.iter().map(String::as_str).collect();
     let mut table = MarkdownTable::new(&header);
     for p in &outcome.pipelines {
@@ -81,6 +87,16 @@ pub fn markdown(outcome: &PipelineStatsOutcome, command: &str) -> String {
                 let value = e.statistics.iter().find(|s| s.name == *name);
                 row.push(value.map_or("–".into(), |s| s.value.to_string()));
             }
+            row.push(p.declared_workgroup_bytes.to_string());
+            let registers =
+                e.statistics.iter().find(|s| s.name == REGISTER_COUNT).and_then(|s| match s.value {
+                    StatValue::Int(v) => u32::try_from(v).ok(),
+                    StatValue::Uint(v) => u32::try_from(v).ok(),
+                    _ => None,
+                });
+            row.push(registers.map_or("–".into(), |r| {
+                nvidia_sm90_workgroups_by_registers(r, p.workgroup_threads).to_string()
+            }));
             table.push(row);
         }
     }
@@ -104,6 +120,17 @@ pub fn markdown(outcome: &PipelineStatsOutcome, command: &str) -> String {
     for (name, description) in &columns {
         let _ = writeln!(md, "- **{name}**: {description}");
     }
+    let _ = writeln!(
+        md,
+        "- **declared workgroup B**: the workgroup variables the WGSL entry point refers to; \
+         shared memory beyond it is the driver's own (NVIDIA spills registers there).\n\
+         - **workgroups per SM by registers (sm_90)**: workgroups that fit on an H100/H200 \
+         multiprocessor by the register count and 2 048 invocations alone (64 Ki registers, \
+         allocated in steps of 8 per invocation); shared memory may allow fewer, and what it \
+         takes of the 256 KiB it shares with L1 is L1 lost.\n\
+         - NVIDIA's driver reports **Local Memory Size** as 2^36 plus the size; read the low \
+         32 bits."
+    );
     if !outcome.notes.is_empty() {
         let _ = writeln!(md, "\nNotes:\n");
         for n in &outcome.notes {
@@ -149,7 +176,12 @@ mod tests {
             vulkan_device: "device".into(),
             resolution: Resolution::UHD,
             frames: 1,
-            pipelines: vec![PipelineStats { pipeline, executables: vec![executable] }],
+            pipelines: vec![PipelineStats {
+                pipeline,
+                executables: vec![executable],
+                workgroup_threads: 256,
+                declared_workgroup_bytes: 1336,
+            }],
             notes: vec!["a note".into()],
         };
         let table = csv(&outcome);
@@ -162,9 +194,14 @@ mod tests {
         let header = md.lines().find(|l| l.starts_with("| pipeline")).expect("table header");
         assert_eq!(
             header,
-            "| pipeline | entry | executable | Register Count | Instruction Count | Binary Size | Uses Barriers |"
+            "| pipeline | entry | executable | Register Count | Instruction Count | Binary Size | Uses Barriers \
+             | declared workgroup B | workgroups per SM by registers (sm_90) |"
         );
-        assert!(md.contains("| ppr projection | main | Compute Shader | 40 | 1234 | 9000 | true |"), "{md}");
+        // 40 registers a invocation of 256: six workgroups.
+        assert!(
+            md.contains("| ppr projection | main | Compute Shader | 40 | 1234 | 9000 | true | 1336 | 6 |"),
+            "{md}"
+        );
         assert!(md.contains("- **Register Count**: Register Count described") && md.contains("- a note"));
     }
 }

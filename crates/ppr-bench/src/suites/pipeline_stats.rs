@@ -89,6 +89,10 @@ pub struct LoggedPipelines {
 pub struct PipelineStats {
     pub pipeline: PipelineSource,
     pub executables: Vec<ExecutableStats>,
+    /// Invocations per workgroup.
+    pub workgroup_threads: u32,
+    /// The workgroup memory the code declares (`CompiledPipeline::declared_workgroup_bytes`).
+    pub declared_workgroup_bytes: u32,
 }
 
 /// Everything the suite found.
@@ -123,10 +127,17 @@ pub fn run_pipeline_stats(
     let mut pipelines = Vec::new();
     for p in logged.pipelines {
         eprintln!("pipeline-stats: {} ({})", p.label, p.entry_point);
-        let stats =
-            compile_pipeline(&p, &options).and_then(|compiled| device.statistics(&compiled, &p.entry_point));
+        let stats = compile_pipeline(&p, &options).and_then(|compiled| {
+            let executables = device.statistics(&compiled, &p.entry_point)?;
+            Ok((compiled, executables))
+        });
         match stats {
-            Ok(executables) => pipelines.push(PipelineStats { pipeline: p, executables }),
+            Ok((compiled, executables)) => pipelines.push(PipelineStats {
+                pipeline: p,
+                executables,
+                workgroup_threads: compiled.workgroup_threads,
+                declared_workgroup_bytes: compiled.declared_workgroup_bytes,
+            }),
             Err(e) => {
                 eprintln!("pipeline-stats: {e}");
                 notes.push(e.to_string());

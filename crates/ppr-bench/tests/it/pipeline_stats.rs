@@ -79,6 +79,24 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
         assert_eq!(entries, [p.entry_point.as_str()], "{}: the entry point alone", p.label);
     }
 
+    // The workgroup memory the code declares: the fused list (256 words) and the box slots
+    // in the projection with fused lists, none in the reflection pass; 256 invocations each.
+    for p in projection.iter().chain(&reflection) {
+        let compiled = compile_pipeline(p, &options).expect("converts");
+        assert_eq!(compiled.workgroup_threads, 256, "{}", p.label);
+        let fused = constant(p, "FUSED_LISTS") == Some(1.0) && constant(p, "TILE_CULLING") == Some(1.0);
+        if p.label.starts_with("ppr reflection") {
+            assert_eq!(compiled.declared_workgroup_bytes, 0, "{}", p.label);
+        } else if fused {
+            assert!(
+                compiled.declared_workgroup_bytes > 1024,
+                "{}: {}",
+                p.label,
+                compiled.declared_workgroup_bytes
+            );
+        }
+    }
+
     // The projection's resources, as `ProjectionPass::new` lays them out.
     use DescriptorKind::{SampledImage, StorageBuffer, UniformBuffer};
     let compiled = compile_pipeline(projection[0], &options).expect("converts");
