@@ -94,15 +94,8 @@ pub enum Suite {
 /// Options of `pipeline-stats`.
 #[derive(Args, Debug, Clone)]
 pub struct PipelineStatsArgs {
-    /// Folder for the reports (created if missing).
-    #[arg(long, default_value = "target/bench")]
-    pub out: PathBuf,
-    /// Repository root (holds assets/demo_room.glb).
-    #[arg(long, default_value = ".")]
-    pub repo_root: PathBuf,
-    /// Folder of the shared scenes.
-    #[arg(long, default_value = "../shared/scenes")]
-    pub scenes_dir: PathBuf,
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Scene to render (repeat; default: demo and kitchen, as `runtime`).
     #[arg(long = "scene")]
     pub scenes: Vec<String>,
@@ -221,9 +214,9 @@ pub struct TradeArgs {
     pub max_cameras: usize,
 }
 
-/// Options every suite takes.
+/// Where a suite reads and writes (every suite takes them).
 #[derive(Args, Debug, Clone)]
-pub struct CommonArgs {
+pub struct PathArgs {
     /// Folder for the reports (created if missing).
     #[arg(long, default_value = "target/bench")]
     pub out: PathBuf,
@@ -233,6 +226,20 @@ pub struct CommonArgs {
     /// Folder of the shared scenes.
     #[arg(long, default_value = "../shared/scenes")]
     pub scenes_dir: PathBuf,
+}
+
+impl PathArgs {
+    /// The full-size configuration of these folders.
+    fn config(&self) -> BenchConfig {
+        BenchConfig::full(self.out.clone(), self.repo_root.clone(), self.scenes_dir.clone())
+    }
+}
+
+/// Options every suite takes.
+#[derive(Args, Debug, Clone)]
+pub struct CommonArgs {
+    #[command(flatten)]
+    pub paths: PathArgs,
     /// Timed frames per run (after the warm-up).
     #[arg(long, default_value_t = 30)]
     pub frames: usize,
@@ -318,7 +325,7 @@ fn pick<T: Clone, D: Clone + Into<T>>(
 }
 
 fn bench_config(common: &CommonArgs, command_line: &str) -> BenchConfig {
-    let mut cfg = BenchConfig::full(common.out.clone(), common.repo_root.clone(), common.scenes_dir.clone());
+    let mut cfg = common.paths.config();
     cfg.frames.timed = common.frames.max(1);
     cfg.frames.warmup = common.warmup;
     cfg.frames.slow_timed = common.slow_frames.min(cfg.frames.timed);
@@ -457,7 +464,7 @@ where
             write_trade_report(&cfg.out_dir, &rows, &notes, &gpu.describe(), tc.resolution, &command_line)
         }
         Suite::PipelineStats(a) => {
-            let mut cfg = BenchConfig::full(a.out.clone(), a.repo_root.clone(), a.scenes_dir.clone());
+            let mut cfg = a.paths.config();
             cfg.command_line = command_line.clone();
             let pc = PipelineStatsConfig {
                 scenes: pick(&a.scenes, false, &["demo"], &["demo", "kitchen"]),
