@@ -3,7 +3,7 @@
 //! from the plan (no pass, no variant) when the frame has no such surface.
 
 use glam::{DVec3, Vec3, Vec4};
-use ppr_runtime::{Camera, Choice, FrameInputs, Projection, ReflectionSettings};
+use ppr_runtime::{Camera, Choice, FrameInputs, LayerPlacement, Projection, ReflectionSettings};
 use ppr_tests::harness::{GpuFrame, compare, renderer, run};
 use ppr_tests::masks::{interior, reference_edges};
 use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
@@ -190,6 +190,45 @@ fn water_planes_at_two_heights_get_a_layer_each() {
     eprintln!("two water layers {lake_and_basin:?}\n  one layer + main buffer {split:?}");
     assert!(lake_and_basin.pixels > 1500 && lake_and_basin.psnr >= 30.0, "{lake_and_basin:?}");
     assert!((split.psnr - lake_and_basin.psnr).abs() < 3.0, "{split:?} vs {lake_and_basin:?}");
+}
+
+#[test]
+fn the_layer_reflection_recorded_in_the_reflection_pass_gives_the_same_images() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    s.glass("glass top", DVec3::new(0.6, 0.7, -2.2), DVec3::X, DVec3::NEG_Z, [2.0, 1.6]);
+    s.water("basin", DVec3::new(-2.0, 0.3, -2.0), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
+    let cam = camera();
+    let frame = s.render(&cam, SIZE);
+    let gpu = GpuFrame::upload(&frame);
+    let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+    for indirect in [Choice::Off, Choice::On] {
+        let mut images = Vec::new();
+        for placement in
+            [LayerPlacement::OwnPass, LayerPlacement::AfterReflection, LayerPlacement::BeforeReflection]
+        {
+            let mut r = renderer();
+            r.plan_params.indirect = indirect;
+            r.debug.layer_placement = placement;
+            r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
+            let out = run(&mut r, &gpu, &cam);
+            assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
+            // The layers' timestamps: their own pass's, or none (the reflection's cover them).
+            let [.., reflection, layers, _, _] = r.passes_recorded();
+            assert!(reflection);
+            assert_eq!(layers, placement == LayerPlacement::OwnPass, "{placement:?}");
+            let reflected = out.layer_pixels.iter().filter(|p| p.w > 0.0).count();
+            assert!(reflected > 300, "{placement:?}: {reflected} layer pixels with a reflection");
+            images.push((placement, r.last_dispatch_count(), bits(&out.pixels), bits(&out.layer_pixels)));
+        }
+        let (_, dispatches, main, layer) = &images[0];
+        for (placement, d, m, l) in &images[1..] {
+            assert_eq!(d, dispatches, "{indirect:?} {placement:?}: dispatches");
+            assert!(m == main, "{indirect:?} {placement:?}: the main output differs");
+            assert!(l == layer, "{indirect:?} {placement:?}: the layer output differs");
+        }
+    }
 }
 
 #[test]

@@ -54,6 +54,7 @@ mod wgpu_compat;
 
 pub use camera::{Camera, CameraError, DepthMode, Projection};
 pub use encoding::{CLEAR_VALUE, EncodingLayout};
+pub use passes::layer_reflection::LayerPlacement;
 pub use passes::projection::{Ablation, BoxReduction};
 pub use passes::reflection::{OUTPUT_FORMAT, ReflectionAblation};
 pub use plan::{Choice, FramePlan, PlanParams, ScreenRect, TestedEntry};

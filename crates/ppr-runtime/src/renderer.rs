@@ -15,7 +15,7 @@ use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
-use crate::passes::layer_reflection::LayerBindings;
+use crate::passes::layer_reflection::{LayerBindings, LayerPlacement};
 use crate::passes::projection::{BoxReduction, ProjectionBindings};
 use crate::passes::reflection::{ReflectionAblation, ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
@@ -162,6 +162,10 @@ pub struct DebugOptions {
     /// of its workgroups run at once (`ProjectionVariant::occupancy_pad_kib`; bench only,
     /// the same image).
     pub occupancy_pad_kib: u32,
+    /// Where the layer reflection is recorded: in its own compute pass or in the
+    /// reflection's (then `PassTimings::layers_ms` is `None` and the reflection's time
+    /// covers both; the same image).
+    pub layer_placement: LayerPlacement,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -708,6 +712,30 @@ impl ReflectionRenderer {
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
             count(1);
         }
+        // The layer reflection's dispatch, in whichever compute pass records it.
+        let layer_job = match (plan.layers.is_empty(), layer_output) {
+            (false, Some(layer_output)) => Some(self.layer_reflection.bind_group(
+                device,
+                &LayerBindings {
+                    uniforms: &b.uniforms,
+                    atlas,
+                    layers: &b.layers,
+                    shapes: &b.shapes,
+                    depth,
+                    color,
+                    output: layer_output,
+                },
+            )),
+            _ => None,
+        };
+        let record_layers = |pass: &mut wgpu::ComputePass<'_>, bg: &wgpu::BindGroup| {
+            let r = plan.layer_rect;
+            let extent = [r.max[0] - r.min[0], r.max[1] - r.min[1]];
+            self.layer_reflection.encode(pass, bg, extent, self.debug.full_stretch_walk);
+            count(1);
+        };
+        let placement = self.debug.layer_placement;
+        let layers_with_reflection = has_main && placement != LayerPlacement::OwnPass;
         if has_main {
             let bg = self.reflection.bind_group(
                 device,
@@ -733,6 +761,9 @@ impl ReflectionRenderer {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),
             });
+            if let (LayerPlacement::BeforeReflection, Some(layer_bg)) = (placement, &layer_job) {
+                record_layers(&mut pass, layer_bg);
+            }
             if plan.indirect {
                 self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, plan.tile_count(), variant);
             } else {
@@ -742,28 +773,16 @@ impl ReflectionRenderer {
                 b.mark_clean(1 - slot);
             }
             count(1);
+            if let (LayerPlacement::AfterReflection, Some(layer_bg)) = (placement, &layer_job) {
+                record_layers(&mut pass, layer_bg);
+            }
         }
-        if let (false, Some(layer_output)) = (plan.layers.is_empty(), layer_output) {
-            let bg = self.layer_reflection.bind_group(
-                device,
-                &LayerBindings {
-                    uniforms: &b.uniforms,
-                    atlas,
-                    layers: &b.layers,
-                    shapes: &b.shapes,
-                    depth,
-                    color,
-                    output: layer_output,
-                },
-            );
+        if let (false, Some(layer_bg)) = (layers_with_reflection, &layer_job) {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr layer reflection"),
                 timestamp_writes: timestamps(4),
             });
-            let r = plan.layer_rect;
-            let extent = [r.max[0] - r.min[0], r.max[1] - r.min[1]];
-            self.layer_reflection.encode(&mut pass, &bg, extent, self.debug.full_stretch_walk);
-            count(1);
+            record_layers(&mut pass, layer_bg);
         }
         if let Some(r) = reduced {
             self.encode_upsample(encoder, view, inputs, r, timestamps(6));
@@ -772,7 +791,7 @@ impl ReflectionRenderer {
         if let Some(t) = &self.timer {
             t.resolve(encoder);
         }
-        let layers = !plan.layers.is_empty() && layer_output.is_some();
+        let layers = layer_job.is_some() && !layers_with_reflection;
         let reduced = reduced.is_some();
         self.recorded.set([
             plan.indirect && has_main,

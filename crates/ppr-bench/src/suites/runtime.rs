@@ -2,7 +2,9 @@
 //! floor (the bytes the pass must move over the copy bandwidth measured in the same run).
 
 use ppr_runtime::passes::{Ablation, BoxReduction};
-use ppr_runtime::{CLEAR_VALUE, Choice, DebugOptions, PlanParams, ReflectionAblation, ReflectionSettings};
+use ppr_runtime::{
+    CLEAR_VALUE, Choice, DebugOptions, LayerPlacement, PlanParams, ReflectionAblation, ReflectionSettings,
+};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::technique::REFLECTION_FORMAT;
 use ppr_testbed::{GpuContext, LevelRenderer, ReflectionInputs};
@@ -104,6 +106,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("occlusion last", Choice::Auto, Ablation::None),
         ("layers: no water stretch", Choice::Auto, Ablation::None),
         ("layers: full stretch walk", Choice::Auto, Ablation::None),
+        ("layers: own pass", Choice::Auto, Ablation::None),
+        ("layers: after reflection", Choice::Auto, Ablation::None),
+        ("layers: before reflection", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -330,6 +335,12 @@ pub fn run_runtime(
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",
+                    layer_placement: match name {
+                        "layers: own pass" => LayerPlacement::OwnPass,
+                        "layers: after reflection" => LayerPlacement::AfterReflection,
+                        "layers: before reflection" => LayerPlacement::BeforeReflection,
+                        _ => tuning.layer_placement,
+                    },
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {

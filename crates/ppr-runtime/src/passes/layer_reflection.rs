@@ -6,6 +6,20 @@ use super::{TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform
 
 pub const WGSL: &str = include_str!("../../shaders/layer_reflection.wgsl");
 
+/// Where the layer reflection's dispatch is recorded. It reads none of what the reflection
+/// pass writes (and writes none of what it reads), so in one compute pass the two
+/// dispatches need no barrier between them and the GPU may run them side by side.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum LayerPlacement {
+    /// Its own compute pass after the reflection's, timed on its own.
+    #[default]
+    OwnPass,
+    /// In the reflection's compute pass, after its dispatch (timed with it).
+    AfterReflection,
+    /// In the reflection's compute pass, before its dispatch (timed with it).
+    BeforeReflection,
+}
+
 /// Buffers and views the layer pass reads and writes.
 pub struct LayerBindings<'a> {
     pub uniforms: &'a wgpu::Buffer,
