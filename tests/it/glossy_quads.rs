@@ -1,4 +1,4 @@
-//! Glossy quads sharing their taps (`DebugOptions::glossy_shared_taps`): where the device
+//! Glossy quads sharing their taps (`PlanParams::glossy_shared_taps`): where the device
 //! has subgroups (the `subgroups` binary's lavapipe), 2 x 2 pixels with wide footprints each
 //! take a quarter of the taps and share the sum, as close to the glossy reference as each
 //! pixel taking all its own; where it has none (llvmpipe through GL in `it`), the option is
@@ -35,7 +35,7 @@ fn glossy_quads_sharing_their_taps_stay_as_close_to_the_glossy_reference() {
             let mut r = renderer();
             r.settings = ReflectionSettings { glossy: true, ..ReflectionSettings::ALL };
             r.plan_params.indirect = indirect;
-            r.debug.glossy_shared_taps = shared;
+            r.plan_params.glossy_shared_taps = if shared { Choice::On } else { Choice::Off };
             r.set_reflectors(&validated(&s.reflector_set()));
             let out = run(&mut r, &gpu_frame, &cam);
             assert_eq!(out.plan.indirect, indirect == Choice::On);

@@ -166,11 +166,6 @@ pub struct DebugOptions {
     /// reflection's (then `PassTimings::layers_ms` is `None` and the reflection's time
     /// covers both; the same image).
     pub layer_placement: LayerPlacement,
-    /// Glossy quads of 2 x 2 pixels with wide footprints share their blur's taps through
-    /// subgroup operations (`ReflectionVariant::glossy_shared`; devices with subgroups of
-    /// at least four invocations, ignored elsewhere; a quarter of the taps, each pixel
-    /// blurred by up to a pixel more).
-    pub glossy_shared_taps: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -403,7 +398,7 @@ impl ReflectionRenderer {
             leave_next: self.debug.clear_pass_every_frame,
             tile_loop: (!self.debug.reflection_indirect_dispatch)
                 .then(|| self.debug.reflection_tile_loop.unwrap_or(TILE_LOOP_GROUPS)),
-            glossy_shared: self.debug.glossy_shared_taps,
+            glossy_shared: self.plan_params.shares_glossy_taps(),
         }
     }
 
@@ -851,7 +846,7 @@ impl ReflectionRenderer {
     }
 
     /// Whether glossy quads can share their taps on this device
-    /// ([`DebugOptions::glossy_shared_taps`] is ignored where not).
+    /// ([`PlanParams::glossy_shared_taps`] is ignored where not).
     pub fn shares_glossy_taps(&self) -> bool {
         self.reflection.shares_glossy_taps()
     }

@@ -106,6 +106,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("occlusion last", Choice::Auto, Ablation::None),
         ("layers: no water stretch", Choice::Auto, Ablation::None),
         ("layers: full stretch walk", Choice::Auto, Ablation::None),
+        ("glossy: shared taps", Choice::Auto, Ablation::None),
+        ("glossy: own taps", Choice::Auto, Ablation::None),
         ("layers: own pass", Choice::Auto, Ablation::None),
         ("layers: after reflection", Choice::Auto, Ablation::None),
         ("layers: before reflection", Choice::Auto, Ablation::None),
@@ -294,6 +296,11 @@ pub fn run_runtime(
                 // The box-only list pass is the separate pass's.
                 if name.contains("separate lists") || name.ends_with("lists box only") {
                     params.fused_lists = Choice::Off;
+                }
+                if name == "glossy: shared taps" {
+                    params.glossy_shared_taps = Choice::On;
+                } else if name == "glossy: own taps" {
+                    params.glossy_shared_taps = Choice::Off;
                 }
                 if name.contains("no subgroup culling") {
                     params.subgroup_cull = Choice::Off;
