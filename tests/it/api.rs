@@ -257,7 +257,7 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
     r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
     let out = run(&mut r, &gpu, &away);
     assert!(out.plan.is_empty(), "{}", out.plan);
-    assert_eq!(r.passes_recorded(), [false; 7]);
+    assert_eq!(r.passes_recorded(), [false; 8]);
     assert!(r.read_timings().is_none(), "an empty plan has no pass times");
     // A frame that ran passes still reports them where the adapter has timestamps.
     let cam = camera(DVec3::new(0.3, 1.6, 2.0));
@@ -265,6 +265,21 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
     run(&mut r, &gpu, &cam);
     if r.has_timestamps() {
         assert!(r.read_timings().is_some(), "a frame with passes reports times");
+    }
+    // Timed as a whole (the bench's frame span): the span's slot alone, where the device
+    // writes timestamps between passes; nothing where it cannot.
+    r.debug.frame_span = true;
+    run(&mut r, &gpu, &cam);
+    let spans = r.has_timestamps()
+        && ppr_tests::gpu::gpu().device.features().contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+    let recorded = r.passes_recorded();
+    assert_eq!(recorded[..7], [false; 7], "no pass timed on its own");
+    assert_eq!(recorded[7], spans, "the frame's span");
+    if let Some(t) = r.read_timings() {
+        assert!(spans);
+        let own: Vec<_> =
+            t.passes().into_iter().filter(|(name, ms)| *name != "frame" && ms.is_some()).collect();
+        assert!(own.is_empty(), "{own:?}");
     }
 }
 

@@ -193,7 +193,10 @@ fn water_planes_at_two_heights_get_a_layer_each() {
 }
 
 #[test]
-fn the_layer_reflection_recorded_in_the_reflection_pass_gives_the_same_images() {
+fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
+    // The layer reflection in the reflection's compute pass (no barrier between them), the
+    // tile classification in the projection's (wgpu's barrier between them): the same
+    // images as each in its own pass, the same dispatches, and the merged passes untimed.
     let mut s = AnalyticScene::default();
     room(&mut s);
     s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
@@ -203,30 +206,49 @@ fn the_layer_reflection_recorded_in_the_reflection_pass_gives_the_same_images() 
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+    let layouts = [
+        (LayerPlacement::OwnPass, false),
+        (LayerPlacement::AfterReflection, false),
+        (LayerPlacement::BeforeReflection, false),
+        (LayerPlacement::OwnPass, true),
+        (LayerPlacement::BeforeReflection, true),
+    ];
     for indirect in [Choice::Off, Choice::On] {
         let mut images = Vec::new();
-        for placement in
-            [LayerPlacement::OwnPass, LayerPlacement::AfterReflection, LayerPlacement::BeforeReflection]
-        {
+        for (placement, classify_merged) in layouts {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
+            r.debug.classify_in_projection_pass = classify_merged;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
-            // The layers' timestamps: their own pass's, or none (the reflection's cover them).
-            let [.., reflection, layers, _, _] = r.passes_recorded();
-            assert!(reflection);
+            assert_eq!(out.plan.indirect, indirect == Choice::On);
+            // Each pass's timestamps: its own pass's, or none (the pass it joined covers it).
+            let [classify, _, projection, reflection, layers, ..] = r.passes_recorded();
+            assert!(projection && reflection);
+            assert_eq!(
+                classify,
+                indirect == Choice::On && !classify_merged,
+                "{placement:?} {classify_merged}"
+            );
             assert_eq!(layers, placement == LayerPlacement::OwnPass, "{placement:?}");
             let reflected = out.layer_pixels.iter().filter(|p| p.w > 0.0).count();
             assert!(reflected > 300, "{placement:?}: {reflected} layer pixels with a reflection");
-            images.push((placement, r.last_dispatch_count(), bits(&out.pixels), bits(&out.layer_pixels)));
+            images.push((
+                placement,
+                classify_merged,
+                r.last_dispatch_count(),
+                bits(&out.pixels),
+                bits(&out.layer_pixels),
+            ));
         }
-        let (_, dispatches, main, layer) = &images[0];
-        for (placement, d, m, l) in &images[1..] {
-            assert_eq!(d, dispatches, "{indirect:?} {placement:?}: dispatches");
-            assert!(m == main, "{indirect:?} {placement:?}: the main output differs");
-            assert!(l == layer, "{indirect:?} {placement:?}: the layer output differs");
+        let (_, _, dispatches, main, layer) = &images[0];
+        for (placement, merged, d, m, l) in &images[1..] {
+            let what = format!("{indirect:?}, layers {placement:?}, classify merged {merged}");
+            assert_eq!(d, dispatches, "{what}: dispatches");
+            assert!(m == main, "{what}: the main output differs");
+            assert!(l == layer, "{what}: the layer output differs");
         }
     }
 }

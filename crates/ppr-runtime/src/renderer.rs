@@ -29,7 +29,7 @@ use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
-use crate::timestamps::{PassTimer, PassTimings, TIMED_PASSES};
+use crate::timestamps::{FRAME_SPAN, PassTimer, PassTimings, TIMED_PASSES};
 use crate::upload_ring::UploadRing;
 
 /// Pixels within this fraction of their camera distance from a reflector's plane count as
@@ -166,6 +166,15 @@ pub struct DebugOptions {
     /// reflection's (then `PassTimings::layers_ms` is `None` and the reflection's time
     /// covers both; the same image).
     pub layer_placement: LayerPlacement,
+    /// Time the frame as a whole, from two encoder timestamps around its passes
+    /// (`PassTimings::frame_ms`), instead of a pair around each pass: what the frame costs
+    /// without the per-pass timestamps, which wait for each pass's end (bench only, on
+    /// devices with `TIMESTAMP_QUERY_INSIDE_ENCODERS`; elsewhere nothing is timed).
+    pub frame_span: bool,
+    /// Indirect frames record the tile classification in the projection's compute pass
+    /// (wgpu's barrier between the dispatches; then `PassTimings::classify_ms` is `None` and
+    /// the projection's time covers both; the same image) instead of in its own.
+    pub classify_in_projection_pass: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -539,7 +548,10 @@ impl ReflectionRenderer {
         // encode's reflection pass left them cleared.
         let (slot, clean) = b.take_slot();
         let (intermediate, atlas) = (&b.intermediate[slot], &b.atlas[slot]);
-        let timestamps = |i| self.timer.as_ref().map(|t| t.writes(i));
+        // The frame's span (bench), or each pass's own timestamps.
+        let span = self.debug.frame_span;
+        let span_timer = self.timer.as_ref().filter(|_| span && PassTimer::spans(device));
+        let timestamps = |i| self.timer.as_ref().filter(|_| !span).map(|t| t.writes(i));
         let count = |n: u32| self.dispatches.set(self.dispatches.get() + n);
         // A reduced tier runs the passes on its own reduced depth and outputs (normal maps
         // off); the reflection reads the full-size colour.
@@ -557,6 +569,9 @@ impl ReflectionRenderer {
             b,
             &mut self.upload_ring.borrow_mut(),
         );
+        if let Some(t) = span_timer {
+            t.write_span(encoder, false);
+        }
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(
@@ -580,8 +595,14 @@ impl ReflectionRenderer {
             encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
             encoder.clear_buffer(&b.dispatch_args, 0, None);
         }
-        if plan.indirect && has_main {
-            let bg = self.classify.bind_group(
+        // Indirect frames clear their active tiles whatever the slot holds.
+        let clear_main = self.clears_main_in_pass(plan) && (plan.indirect || !clean);
+        // The classification clears the atlas where it runs (unless the bench moves its
+        // clears to the clear pass).
+        let classified = plan.indirect && has_main && !self.debug.tile_clear_pass;
+        let clear_atlas = !plan.layers.is_empty() && !clean && !classified;
+        let classify_job = (plan.indirect && has_main).then(|| {
+            self.classify.bind_group(
                 device,
                 &ClassifyBindings {
                     uniforms: &b.uniforms,
@@ -596,26 +617,28 @@ impl ReflectionRenderer {
                     intermediate,
                     atlas,
                 },
-            );
-            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
-                label: Some("ppr tile classify"),
-                timestamp_writes: timestamps(0),
-            });
+            )
+        });
+        let record_classify = |pass: &mut wgpu::ComputePass<'_>, bg: &wgpu::BindGroup| {
             self.classify.encode(
-                &mut pass,
-                &bg,
+                pass,
+                bg,
                 plan.viewport,
                 !self.debug.tile_clear_pass,
                 !plan.layers.is_empty(),
             );
             count(1);
+        };
+        // In the projection's compute pass (wgpu's barrier between the two dispatches) unless
+        // a clear pass comes between them.
+        let classify_with_projection = self.debug.classify_in_projection_pass && !(clear_main || clear_atlas);
+        if let (false, Some(bg)) = (classify_with_projection, &classify_job) {
+            let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                label: Some("ppr tile classify"),
+                timestamp_writes: timestamps(0),
+            });
+            record_classify(&mut pass, bg);
         }
-        // Indirect frames clear their active tiles whatever the slot holds.
-        let clear_main = self.clears_main_in_pass(plan) && (plan.indirect || !clean);
-        // The classification clears the atlas where it runs (unless the bench moves its
-        // clears to the clear pass).
-        let classified = plan.indirect && has_main && !self.debug.tile_clear_pass;
-        let clear_atlas = !plan.layers.is_empty() && !clean && !classified;
         if clear_main || clear_atlas {
             let bg = self.clear.bind_group(
                 device,
@@ -671,6 +694,9 @@ impl ReflectionRenderer {
                 label: Some("ppr projection"),
                 timestamp_writes: timestamps(2),
             });
+            if let (true, Some(bg)) = (classify_with_projection, &classify_job) {
+                record_classify(&mut pass, bg);
+            }
             let source_boxes = !plan.source_rects.is_empty();
             if plan.super_tiles {
                 // In the projection's compute pass: its timestamps cover the lists too, and
@@ -789,19 +815,29 @@ impl ReflectionRenderer {
             self.encode_upsample(encoder, view, inputs, r, timestamps(6));
             count(u32::from(has_main) + u32::from(!plan.layers.is_empty() && inputs.layer_output.is_some()));
         }
+        if let Some(t) = span_timer {
+            t.write_span(encoder, true);
+        }
         if let Some(t) = &self.timer {
             t.resolve(encoder);
+        }
+        if span {
+            let mut recorded = [false; TIMED_PASSES as usize];
+            recorded[FRAME_SPAN as usize] = span_timer.is_some();
+            self.recorded.set(recorded);
+            return;
         }
         let layers = layer_job.is_some() && !layers_with_reflection;
         let reduced = reduced.is_some();
         self.recorded.set([
-            plan.indirect && has_main,
+            classify_job.is_some() && !classify_with_projection,
             clear_main || clear_atlas,
             true,
             has_main,
             layers,
             reduced,
             reduced && (has_main || layers),
+            false,
         ]);
     }
 

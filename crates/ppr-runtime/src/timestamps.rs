@@ -16,6 +16,10 @@ pub struct PassTimings {
     pub downsample_ms: Option<f64>,
     /// Reduced-resolution tiers: the reflections back to the full size.
     pub upsample_ms: Option<f64>,
+    /// The whole frame from two encoder timestamps, its passes from the first to the last
+    /// and the barriers between them (`DebugOptions::frame_span`; the passes are then not
+    /// timed one by one).
+    pub frame_ms: Option<f64>,
 }
 
 impl PassTimings {
@@ -34,6 +38,7 @@ impl PassTimings {
             ("layers", self.layers_ms),
             ("downsample", self.downsample_ms),
             ("upsample", self.upsample_ms),
+            ("frame", self.frame_ms),
         ]
     }
 }
@@ -49,9 +54,13 @@ impl fmt::Display for PassTimings {
     }
 }
 
-/// Passes with a timestamp slot: classify, clear, projection, reflection, layers, and the
-/// reduced tiers' downsample and upsample, in [`PassTimings::passes`] order.
-pub const TIMED_PASSES: u32 = 7;
+/// Passes with a timestamp slot: classify, clear, projection, reflection, layers, the
+/// reduced tiers' downsample and upsample, and the whole frame's span, in
+/// [`PassTimings::passes`] order.
+pub const TIMED_PASSES: u32 = 8;
+
+/// The slot of the whole frame's span ([`PassTimer::write_span`]).
+pub const FRAME_SPAN: u32 = 7;
 
 /// A query set with a begin and an end timestamp per pass, and the buffers to read it.
 pub struct PassTimer {
@@ -101,6 +110,17 @@ impl PassTimer {
         }
     }
 
+    /// Whether the device can write timestamps between passes ([`Self::write_span`]).
+    pub fn spans(device: &wgpu::Device) -> bool {
+        device.features().contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
+    }
+
+    /// Records the frame span's begin (`end` false) or end timestamp into the encoder,
+    /// between passes. Needs [`Self::spans`].
+    pub fn write_span(&self, encoder: &mut wgpu::CommandEncoder, end: bool) {
+        encoder.write_timestamp(&self.query_set, 2 * FRAME_SPAN + u32::from(end));
+    }
+
     /// Records the resolve and the copy to the readback buffer (after the passes).
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.query_set, 0..2 * TIMED_PASSES, &self.resolve, 0);
@@ -135,6 +155,7 @@ impl PassTimer {
             layers_ms: ms(4),
             downsample_ms: ms(5),
             upsample_ms: ms(6),
+            frame_ms: ms(7),
         })
     }
 }

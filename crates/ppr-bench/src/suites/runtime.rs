@@ -111,6 +111,14 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("layers: own pass", Choice::Auto, Ablation::None),
         ("layers: after reflection", Choice::Auto, Ablation::None),
         ("layers: before reflection", Choice::Auto, Ablation::None),
+        ("frame span", Choice::Auto, Ablation::None),
+        ("frame span, layers own pass", Choice::Auto, Ablation::None),
+        ("frame span, layers after reflection", Choice::Auto, Ablation::None),
+        ("frame span, layers before reflection", Choice::Auto, Ablation::None),
+        ("frame span, glossy shared taps", Choice::Auto, Ablation::None),
+        ("frame span, classify in projection pass", Choice::Auto, Ablation::None),
+        ("frame span, classify in projection pass, layers before reflection", Choice::Auto, Ablation::None),
+        ("classify in projection pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -297,7 +305,7 @@ pub fn run_runtime(
                 if name.contains("separate lists") || name.ends_with("lists box only") {
                     params.fused_lists = Choice::Off;
                 }
-                if name == "glossy: shared taps" {
+                if name == "glossy: shared taps" || name.ends_with("glossy shared taps") {
                     params.glossy_shared_taps = Choice::On;
                 } else if name == "glossy: own taps" {
                     params.glossy_shared_taps = Choice::Off;
@@ -342,12 +350,17 @@ pub fn run_runtime(
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",
-                    layer_placement: match name {
-                        "layers: own pass" => LayerPlacement::OwnPass,
-                        "layers: after reflection" => LayerPlacement::AfterReflection,
-                        "layers: before reflection" => LayerPlacement::BeforeReflection,
-                        _ => tuning.layer_placement,
+                    layer_placement: if name.ends_with("layers own pass") || name == "layers: own pass" {
+                        LayerPlacement::OwnPass
+                    } else if name.ends_with("after reflection") {
+                        LayerPlacement::AfterReflection
+                    } else if name.ends_with("before reflection") {
+                        LayerPlacement::BeforeReflection
+                    } else {
+                        tuning.layer_placement
                     },
+                    frame_span: name.starts_with("frame span"),
+                    classify_in_projection_pass: name.contains("classify in projection pass"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {
