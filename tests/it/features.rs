@@ -219,7 +219,7 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
-            r.debug.classify_in_projection_pass = classify_merged;
+            r.debug.classify_own_pass = !classify_merged;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);

@@ -1,12 +1,46 @@
 //! Glossy reflections against a CPU reference: the mean colour along GGX-sampled
 //! reflected rays (`scene::GLOSSY_SAMPLES` per pixel), over the floor's on-screen pixels.
 
-use glam::Vec4;
-use ppr_runtime::ReflectionSettings;
-use ppr_tests::harness::{GpuFrame, renderer, run, validated};
-use ppr_tests::scene::{AnalyticScene, Frame};
+use glam::{DVec3, Vec3, Vec4};
+use ppr_runtime::{Camera, Projection, ReflectionSettings};
+use ppr_tests::harness::{Comparison, GpuFrame, compare, renderer, run, validated};
+use ppr_tests::masks::interior;
+use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
 
-use ppr_tests::glossy_scene::{SIZE, against, camera, scene};
+const SIZE: [u32; 2] = [160, 120];
+
+fn camera() -> Camera {
+    Camera::look_at(DVec3::new(0.3, 1.9, 2.8), DVec3::new(-0.2, 0.4, -5.0), Vec3::Y, Projection::default())
+}
+
+/// A floor mirror (rough when `roughness` > 0) in a room with textured walls and a box.
+fn scene(roughness: f64) -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    s.mirror("floor", DVec3::new(0.0, 0.0, -3.0), DVec3::X, DVec3::NEG_Z, [4.0, 5.0]);
+    s.roughen("floor", roughness);
+    s.quad(DVec3::new(0.0, 2.5, -8.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.25));
+    for side in [-1.0, 1.0] {
+        s.quad(
+            DVec3::new(4.5 * side, 2.5, -4.0),
+            DVec3::Z,
+            DVec3::Y,
+            [6.0, 2.5],
+            Albedo::Gradient(Vec3::new(0.9, 0.6, 0.2), Vec3::new(0.2, 0.5, 0.9)),
+        );
+    }
+    s.cuboid(DVec3::new(-1.2, 0.0, -4.6), DVec3::new(-0.4, 1.4, -3.8), Vec3::new(0.1, 0.8, 0.2));
+    s.cuboid(DVec3::new(0.8, 0.0, -6.0), DVec3::new(1.6, 0.8, -5.2), Vec3::new(0.9, 0.2, 0.1));
+    s
+}
+
+/// The output against `reference` over the floor's on-screen pixels, a pixel in from the
+/// mask's border.
+fn against(name: &str, frame: &Frame, out: &[Vec4], reference: &[Vec3]) -> Comparison {
+    let f = Frame { reference: reference.to_vec(), ..frame.clone_images() };
+    let mask = interior(&f, 1, |i| f.mirror[i].is_some() && f.on_screen[i]);
+    ppr_tests::harness::save_comparison(env!("CARGO_TARGET_TMPDIR"), name, &f, out, |i| mask[i]);
+    compare(&f, out, |i| mask[i])
+}
 
 fn render(s: &AnalyticScene, glossy: bool) -> (Frame, Vec<Vec4>) {
     let cam = camera();
@@ -23,26 +57,13 @@ fn render(s: &AnalyticScene, glossy: bool) -> (Frame, Vec<Vec4>) {
 #[test]
 fn a_rough_floor_is_as_close_to_its_glossy_reference_as_a_mirror_to_its_reflection() {
     let (mirror_frame, mirror) = render(&scene(0.0), true);
-    let mirror_psnr =
-        against(env!("CARGO_TARGET_TMPDIR"), "mirror", &mirror_frame, &mirror, &mirror_frame.reference);
+    let mirror_psnr = against("mirror", &mirror_frame, &mirror, &mirror_frame.reference);
     for roughness in [0.2, 0.35] {
         let s = scene(roughness);
         let (frame, glossy) = render(&s, true);
         let (_, sharp) = render(&s, false);
-        let glossy_psnr = against(
-            env!("CARGO_TARGET_TMPDIR"),
-            &format!("glossy_{roughness}"),
-            &frame,
-            &glossy,
-            &frame.glossy_reference,
-        );
-        let sharp_psnr = against(
-            env!("CARGO_TARGET_TMPDIR"),
-            &format!("sharp_{roughness}"),
-            &frame,
-            &sharp,
-            &frame.glossy_reference,
-        );
+        let glossy_psnr = against(&format!("glossy_{roughness}"), &frame, &glossy, &frame.glossy_reference);
+        let sharp_psnr = against(&format!("sharp_{roughness}"), &frame, &sharp, &frame.glossy_reference);
         eprintln!(
             "roughness {roughness}: glossy {glossy_psnr:?}\n  sharp {sharp_psnr:?}\n  mirror against its reflection {mirror_psnr:?}"
         );

@@ -6,7 +6,6 @@ mod confidence;
 mod encoding_parity;
 mod features;
 mod glossy;
-mod glossy_quads;
 mod parallel_trees;
 mod plane_groups;
 mod reflection;

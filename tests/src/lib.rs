@@ -5,7 +5,6 @@
 //! Test targets: `it/` (the runtime against the exact reflection: encoding parity,
 //! quality, artefacts, tiles) and `stability/` (hard cases; see docs/stability.md).
 
-pub mod glossy_scene;
 pub mod gpu;
 pub mod harness;
 pub mod masks;

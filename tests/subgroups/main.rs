@@ -2,8 +2,6 @@
 //! Vulkan without a GPU (`.ci/run` installs Debian's mesa-vulkan-drivers when missing). The
 //! `it` binary runs the same tests on llvmpipe through GL, without subgroup operations.
 
-#[path = "../it/glossy_quads.rs"]
-mod glossy_quads;
 #[path = "../it/subgroup_cull.rs"]
 mod subgroup_cull;
 

@@ -76,12 +76,11 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
 /// their own pass), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
-/// the exact reference is a mirror's), `shared-taps=on|off|auto` (glossy quads share their
-/// taps through subgroups) and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 13] = [
+const PPR_KEYS: [&str; 12] = [
     "culling",
     "indirect",
     "groups",
@@ -92,7 +91,6 @@ const PPR_KEYS: [&str; 13] = [
     "replace-far",
     "tier",
     "glossy",
-    "shared-taps",
     "bounces",
     "reference-bounces",
 ];
@@ -192,7 +190,7 @@ impl TechniqueSpec {
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
                 "culling" | "indirect" | "groups" | "trees" | "subgroups" | "fused-lists" | "replace-far"
-                | "glossy" | "shared-taps" => {
+                | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -334,9 +332,6 @@ pub fn ppr_settings(
     if let Some(v) = spec.param("fused-lists") {
         params.fused_lists = parse_choice(v).map_err(BenchError::Spec)?;
     }
-    if let Some(v) = spec.param("shared-taps") {
-        params.glossy_shared_taps = parse_choice(v).map_err(BenchError::Spec)?;
-    }
     Ok(Some((settings, params)))
 }
 
@@ -431,10 +426,6 @@ mod tests {
         assert_eq!(s.name, "ppr");
         assert_eq!(s.label(), "ppr culling=off indirect=on");
         assert_eq!(s.to_string(), "ppr:culling=off,indirect=on");
-        let shared: TechniqueSpec = "ppr:shared-taps=on".parse().expect("shared taps");
-        let (_, params) = ppr_settings(&shared, PlanParams::default()).expect("valid").expect("ppr");
-        assert_eq!(params.glossy_shared_taps, Choice::On);
-        assert!("ppr:shared-taps=many".parse::<TechniqueSpec>().is_err());
         let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
         let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
         assert!(!settings.glossy);

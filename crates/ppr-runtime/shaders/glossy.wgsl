@@ -76,40 +76,28 @@ fn ppr_glossy_roughness(p: vec3<f32>, c: vec2<f32>) -> f32 {
     return 0.0;
 }
 
-// A glossy pixel's footprint: where its taps go. `taps` 0: no blur (a mirror, no depth,
-// a footprint under GLOSSY_MIN_RADIUS_PX, or the bench's lookup-only profile).
-struct GlossyFootprint {
-    src: vec2<f32>,
-    // The taps' two axes, each scaled by the footprint radius (across narrowed by cos θi).
-    along: vec2<f32>,
-    across: vec2<f32>,
-    radius: f32,
-    taps: u32,
-}
-
-const GLOSSY_NO_FOOTPRINT: GlossyFootprint = GlossyFootprint(vec2<f32>(0.0), vec2<f32>(0.0), vec2<f32>(0.0), 0.0, 0u);
-
-// The footprint of the glossy reflection at `vpos` whose sharp reflection's source pixel
-// is `src` (from the decoded offset).
-fn ppr_glossy_footprint(vpos: vec2<i32>, src: vec2<f32>) -> GlossyFootprint {
+// The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
+// from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
+// is under a pixel.
+fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     let c = vec2<f32>(vpos) + 0.5;
     if (!ppr_glossy_candidate(c)) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     let d_here = valid_depth_at(vpos);
     if (d_here < 0.0) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     // Mirrors leave here, before the reflected point's depth is read.
     let p = ppr_unproject(c, d_here);
     let roughness = ppr_glossy_roughness(p, c);
     // max_taps 0: the lookup only (the bench's cost profile).
     if (!(roughness > 0.0) || glossy.max_taps == 0u) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     let d_src = valid_depth_at(vec2<i32>(floor(src)));
     if (d_src < 0.0) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     let q = ppr_unproject(floor(src) + 0.5, d_src);
     let v = normalize(p);
@@ -117,7 +105,7 @@ fn ppr_glossy_footprint(vpos: vec2<i32>, src: vec2<f32>) -> GlossyFootprint {
     let reach = length(to_q);
     let n_flat = normalize(to_q / max(reach, 1e-20) - v);
     if (!ppr_is_finite3(n_flat) || !ppr_is_finite3(q)) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     let alpha = roughness * roughness;
     // World radius of the median microfacet (tan θ = alpha), projected at q: move q across
@@ -127,11 +115,11 @@ fn ppr_glossy_footprint(vpos: vec2<i32>, src: vec2<f32>) -> GlossyFootprint {
     let s1 = ppr_project(q + across * (2.0 * alpha * reach));
     let radius = min(length(s1.xy - s0.xy), glossy.max_radius_px);
     if (!(radius >= GLOSSY_MIN_RADIUS_PX) || s0.z == 0.0 || s1.z == 0.0) {
-        return GLOSSY_NO_FOOTPRINT;
+        return sharp;
     }
     // max_taps 1: the footprint without its taps (the bench's cost profile).
     if (glossy.max_taps == 1u) {
-        return GlossyFootprint(src, vec2<f32>(0.0), vec2<f32>(0.0), radius, 0u);
+        return vec4<f32>(sharp.rgb * (1.0 + 1e-30 * radius), sharp.a);
     }
     // Taps scale with the footprint: a few pixels' blur needs few bilinear taps.
     let taps = clamp(u32(radius * GLOSSY_TAPS_PER_PX), min(GLOSSY_MIN_TAPS, glossy.max_taps), glossy.max_taps);
@@ -140,89 +128,14 @@ fn ppr_glossy_footprint(vpos: vec2<i32>, src: vec2<f32>) -> GlossyFootprint {
     along = select(vec2<f32>(0.0, 1.0), along / length(along), length(along) > 1e-3);
     let side = vec2<f32>(-along.y, along.x);
     let cos_i = clamp(dot(-v, n_flat), 0.05, 1.0);
-    return GlossyFootprint(src, radius * along, radius * cos_i * side, radius, taps);
-}
-
-// `sum` plus the footprint's taps `first`, `first + step`, ... below `fp.taps` (GGX inverse
-// CDF at stratified ξ, golden-angle azimuths); w counts the taps added.
-fn ppr_glossy_taps(fp: GlossyFootprint, sum: vec3<f32>, first: u32, step: u32) -> vec4<f32> {
-    var s = sum;
-    var n = 0u;
-    for (var k = first; k < fp.taps; k += step) {
-        let xi = (f32(k) + 0.5) / f32(fp.taps);
+    var sum = sharp.rgb;
+    for (var k = 0u; k < taps; k++) {
+        let xi = (f32(k) + 0.5) / f32(taps);
         let r = sqrt(xi / (1.0 - xi));
         let phi = f32(k) * 2.39996323;
-        let offset = r * (cos(phi) * fp.along + sin(phi) * fp.across);
-        let uv = (fp.src + offset) * frame.resolution.zw;
-        s += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
-        n += 1u;
+        let offset = radius * r * (cos(phi) * along + sin(phi) * cos_i * side);
+        let uv = (src + offset) * frame.resolution.zw;
+        sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
     }
-    return vec4<f32>(s, f32(n));
-}
-
-// The glossy reflection at `vpos` whose sharp reflection is `sharp` (source pixel `src`,
-// from the decoded offset), or `sharp` where the reflector is a mirror or the footprint
-// is under a pixel.
-fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
-    let fp = ppr_glossy_footprint(vpos, src);
-    if (fp.taps == 0u) {
-        if (fp.radius > 0.0) {
-            // The bench's footprint-only profile: keep the footprint alive.
-            return vec4<f32>(sharp.rgb * (1.0 + 1e-30 * fp.radius), sharp.a);
-        }
-        return sharp;
-    }
-    let sum = ppr_glossy_taps(fp, sharp.rgb, 0u, 1u);
-    return vec4<f32>(sum.rgb / f32(fp.taps + 1u), sharp.a);
-}
-
-// Footprints at least this wide (pixels) share their taps across a 2 x 2 quad of pixels
-// (GLOSSY_SHARED): each pixel is then blurred by up to a pixel more, well under its footprint.
-const GLOSSY_SHARE_MIN_RADIUS_PX: f32 = 2.0;
-
-// GLOSSY_SHARED: the glossy reflection at `vpos` (as ppr_glossy; `blur` false for a pixel
-// without a reflection or outside the viewport), with the taps shared by the 2 x 2 pixels
-// of a quad of subgroup invocations (`quad` this invocation's place in it: x in bit 0, y in
-// bit 1) where all four are glossy with a footprint of at least GLOSSY_SHARE_MIN_RADIUS_PX:
-// each takes every fourth tap of its own footprint and all four get the quad's sum (a
-// quarter of the taps; each pixel's own sharp sample stays its own). Elsewhere each pixel
-// takes all its taps. Call from subgroup-uniform control flow with every invocation of the
-// subgroup active (glossy_quads.wgsl).
-fn ppr_glossy_quad(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>, blur: bool, quad: u32) -> vec4<f32> {
-    var fp = GLOSSY_NO_FOOTPRINT;
-    if (blur) {
-        fp = ppr_glossy_footprint(vpos, src);
-    }
-    // Share only within a 2 x 2 block of pixels whose invocations are the quad's (the
-    // neighbours' pixels are checked, not assumed).
-    let wants = fp.taps > 0u && fp.radius >= GLOSSY_SHARE_MIN_RADIUS_PX;
-    let mine = vec3<i32>(vpos, i32(wants));
-    let nx = glossy_quad_xor_i3(mine, 1u);
-    let ny = glossy_quad_xor_i3(mine, 2u);
-    let dx = select(1, -1, (quad & 1u) != 0u);
-    let dy = select(1, -1, (quad & 2u) != 0u);
-    let pair = wants && nx.z != 0 && ny.z != 0
-        && all(nx.xy == vpos + vec2<i32>(dx, 0)) && all(ny.xy == vpos + vec2<i32>(0, dy));
-    // All four want it: this invocation's pair flag and both neighbours'.
-    let pair_x = glossy_quad_xor_i3(vec3<i32>(i32(pair)), 1u).x;
-    let pair_y = glossy_quad_xor_i3(vec3<i32>(i32(pair)), 2u).x;
-    let share = pair && pair_x != 0 && pair_y != 0;
-    var own = vec4<f32>(0.0);
-    if (share) {
-        own = ppr_glossy_taps(fp, vec3<f32>(0.0), quad, 4u);
-    } else if (fp.taps > 0u) {
-        own = ppr_glossy_taps(fp, sharp.rgb, 0u, 1u);
-    }
-    let half = own + glossy_quad_xor_f4(own, 1u);
-    let total = half + glossy_quad_xor_f4(half, 2u);
-    if (share) {
-        return vec4<f32>((sharp.rgb + total.rgb) / (1.0 + total.w), sharp.a);
-    }
-    if (fp.taps > 0u) {
-        return vec4<f32>(own.rgb / f32(fp.taps + 1u), sharp.a);
-    }
-    if (fp.radius > 0.0) {
-        return vec4<f32>(sharp.rgb * (1.0 + 1e-30 * fp.radius), sharp.a);
-    }
-    return sharp;
+    return vec4<f32>(sum / f32(taps + 1u), sharp.a);
 }

@@ -41,10 +41,6 @@ override CLEAR_NEXT: bool = false;
 // instance turns VALIDATION_INDIRECT_CALL off, precedes with a dispatch and barriers of its
 // own that check the arguments).
 override TILE_LOOP: bool = false;
-// With GLOSSY (and subgroup operations, glossy_quads.wgsl): each workgroup's invocations
-// take its 16 x 16 pixels two by two (four consecutive invocations a 2 x 2 quad), and quads
-// of wide glossy footprints share their taps (ppr_glossy_quad).
-override GLOSSY_SHARED: bool = false;
 // Bench only (never a correct image): 1 returns at once; 2 stores the chosen offset (no
 // colour read, no blur); 3 stores the sharp colour (no glossy blur).
 override ABLATION: u32 = 0u;
@@ -140,18 +136,10 @@ fn normal_mapped(vpos: vec2<i32>, chosen: PprChosen, flat: vec4<f32>) -> vec4<f3
     return flat;
 }
 
-// A pixel's reflection before the glossy blur, with what the blur needs: the source pixel
-// and whether to blur (a glossy variant's pixel with a reflection).
-struct SharpReflection {
-    colour: vec4<f32>,
-    src: vec2<f32>,
-    blur: bool,
-}
-
 // The reflection at `vpos` from its own intermediate value and its neighbours' (`v[0]` the
 // pixel's, `v[1..4]` at PPR_HOLE_OFFSETS): hole filling, the second ring where the first has
-// no data, colour and normal maps; the glossy blur's inputs.
-fn reflect_sharp(vpos: vec2<i32>, v: array<u32, 5>) -> SharpReflection {
+// no data, colour, normal maps and glossy blur. What `main` and `main_quads` store.
+fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>) -> vec4<f32> {
     let holes = (frame.flags & PPR_FLAG_HOLES) != 0u;
     var chosen = ppr_choose_value(v, holes, (frame.flags & PPR_FLAG_REPLACE_FAR) != 0u);
     if (holes && chosen.value == PPR_CLEAR_VALUE) {
@@ -163,39 +151,21 @@ fn reflect_sharp(vpos: vec2<i32>, v: array<u32, 5>) -> SharpReflection {
     }
     if (ABLATION == 2u) {
         let d = ppr_decoded_offset(ppr_decode(chosen.value, frame.encoding));
-        return SharpReflection(vec4<f32>(d, vec2<f32>(chosen.holes_offset)), vec2<f32>(0.0), false);
+        return vec4<f32>(d, vec2<f32>(chosen.holes_offset));
     }
     var colour = ppr_reflected_colour(vpos, chosen);
     if (ABLATION == 3u) {
-        return SharpReflection(colour, vec2<f32>(0.0), false);
+        return colour;
     }
     if (NORMAL_MAPS && colour.a > 0.0) {
         colour = normal_mapped(vpos, chosen, colour);
     }
-    var src = vec2<f32>(0.0);
-    let blur = GLOSSY && colour.a > 0.0;
-    if (blur) {
+    if (GLOSSY && colour.a > 0.0) {
         let decoded = ppr_decode(chosen.value, frame.encoding);
-        src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
+        let src = vec2<f32>(vpos) + 0.5 - (ppr_decoded_whole_offset(decoded) - vec2<f32>(chosen.holes_offset));
+        colour = ppr_glossy(vpos, src, colour);
     }
-    return SharpReflection(colour, src, blur);
-}
-
-// The reflection at `vpos` (reflect_sharp, then the glossy blur of the pixel alone). What
-// `main` (without GLOSSY_SHARED) and `main_quads` store.
-fn reflect_pixel(vpos: vec2<i32>, v: array<u32, 5>) -> vec4<f32> {
-    let r = reflect_sharp(vpos, v);
-    if (r.blur) {
-        return ppr_glossy(vpos, r.src, r.colour);
-    }
-    return r.colour;
-}
-
-// GLOSSY_SHARED: the pixel of a 16 x 16 tile that local invocation `lid` takes: local index
-// bits 0 and 1 the quad's x and y, the next three x, the last three y.
-fn quad_order(lid: vec2<u32>) -> vec2<u32> {
-    let i = lid.x + 16u * lid.y;
-    return vec2<u32>((i & 1u) | ((i >> 1u) & 14u), ((i >> 1u) & 1u) | ((i >> 4u) & 14u));
+    return colour;
 }
 
 // One pixel per invocation: 16 x 16 pixels per workgroup (direct), or one active 16 x 16
@@ -213,13 +183,8 @@ fn main(
     if (ABLATION == 1u) {
         return;
     }
-    // The pixel this invocation takes in its tile.
-    var in_tile = lid.xy;
-    if (GLOSSY_SHARED) {
-        in_tile = quad_order(lid.xy);
-    }
     if (!INDIRECT) {
-        shade(wid.xy * 16u + in_tile);
+        shade(global_id.xy);
         return;
     }
     let tiles_x = (frame.size.x + 15u) / 16u;
@@ -228,7 +193,7 @@ fn main(
         let stride = groups.x * groups.y;
         for (var slot = wid.x + wid.y * groups.x; slot < active_tiles.count; slot += stride) {
             let tile = active_tiles.tiles[slot];
-            shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + in_tile);
+            shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy);
         }
         return;
     }
@@ -237,35 +202,21 @@ fn main(
         return;
     }
     let tile = active_tiles.tiles[slot];
-    shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + in_tile);
+    shade(vec2<u32>(tile % tiles_x, tile / tiles_x) * 16u + lid.xy);
 }
 
-// The reflection at pixel `gid` (none outside the viewport). With GLOSSY_SHARED every
-// invocation reaches the quad exchange (call from workgroup-uniform control flow).
+// The reflection at pixel `gid` (none outside the viewport).
 fn shade(gid: vec2<u32>) {
-    let inside = all(gid < frame.size);
-    if (!GLOSSY_SHARED && !inside) {
+    if (any(gid >= frame.size)) {
         return;
     }
     let vpos = vec2<i32>(gid);
-    var r = SharpReflection(vec4<f32>(0.0), vec2<f32>(0.0), false);
-    if (inside) {
-        var v: array<u32, 5>;
-        v[0] = read_value(vpos);
-        for (var k = 0u; k < 4u; k++) {
-            v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
-        }
-        r = reflect_sharp(vpos, v);
+    var v: array<u32, 5>;
+    v[0] = read_value(vpos);
+    for (var k = 0u; k < 4u; k++) {
+        v[k + 1u] = read_value(vpos + PPR_HOLE_OFFSETS[k]);
     }
-    var colour = r.colour;
-    if (GLOSSY_SHARED && ABLATION == 0u) {
-        colour = ppr_glossy_quad(vpos, r.src, r.colour, r.blur, (gid.x & 1u) | ((gid.y & 1u) << 1u));
-    } else if (r.blur) {
-        colour = ppr_glossy(vpos, r.src, r.colour);
-    }
-    if (inside) {
-        textureStore(output, vpos, colour);
-    }
+    textureStore(output, vpos, reflect_pixel(vpos, v));
 }
 
 // Two by two pixels per invocation, sharing their neighbourhood: the four pixels' first

@@ -181,11 +181,6 @@ pub struct PlanParams {
     /// first count where lists win, 0.43 against 0.47). Subgroup culling sorts at most 128
     /// candidates.
     pub subgroup_tile_culling_min_shapes: usize,
-    /// Glossy frames: quads of 2 x 2 pixels whose footprints are at least 2 px share their
-    /// blur's taps through subgroup operations (a quarter of the taps each, every pixel
-    /// blurred by up to a pixel more; devices with subgroups of at least four invocations,
-    /// ignored elsewhere). `Auto` takes [`GLOSSY_SHARED_TAPS_BY_DEFAULT`].
-    pub glossy_shared_taps: Choice,
 }
 
 /// Default [`PlanParams::max_roughness`]: the extractor's own limit for metals (0.5), so
@@ -207,19 +202,7 @@ pub const UNIFORM_TESTS_CAPACITY: usize = 128;
 const INDIRECT_MIN_PIXELS: f64 = 2560.0 * 1440.0;
 const INDIRECT_FULL_PIXELS: f64 = 3840.0 * 2160.0;
 
-/// Whether `Auto` shares glossy taps across quads ([`PlanParams::glossy_shared_taps`]).
-pub const GLOSSY_SHARED_TAPS_BY_DEFAULT: bool = false;
-
 impl PlanParams {
-    /// Whether glossy quads share their taps (where the device can).
-    pub fn shares_glossy_taps(&self) -> bool {
-        match self.glossy_shared_taps {
-            Choice::On => true,
-            Choice::Off => false,
-            Choice::Auto => GLOSSY_SHARED_TAPS_BY_DEFAULT,
-        }
-    }
-
     /// The largest screen coverage at which `Auto` takes indirect dispatch on a viewport of
     /// `pixels`: none up to 2560×1440, [`Self::indirect_max_coverage`] from 3840×2160 on,
     /// linear in the pixel count between.
@@ -258,7 +241,6 @@ impl Default for PlanParams {
             subgroup_cull: Choice::Auto,
             subgroup_cull_min_shapes: 16,
             subgroup_tile_culling_min_shapes: 128,
-            glossy_shared_taps: Choice::Auto,
         }
     }
 }

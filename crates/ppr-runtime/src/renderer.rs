@@ -162,19 +162,21 @@ pub struct DebugOptions {
     /// of its workgroups run at once (`ProjectionVariant::occupancy_pad_kib`; bench only,
     /// the same image).
     pub occupancy_pad_kib: u32,
-    /// Where the layer reflection is recorded: in its own compute pass or in the
-    /// reflection's (then `PassTimings::layers_ms` is `None` and the reflection's time
-    /// covers both; the same image).
+    /// Where the layer reflection is recorded: in the reflection's compute pass (the
+    /// default; `PassTimings::layers_ms` is then `None` and the reflection's time covers
+    /// both) or in its own (bench only, the same image).
     pub layer_placement: LayerPlacement,
     /// Time the frame as a whole, from two encoder timestamps around its passes
     /// (`PassTimings::frame_ms`), instead of a pair around each pass: what the frame costs
     /// without the per-pass timestamps, which wait for each pass's end (bench only, on
     /// devices with `TIMESTAMP_QUERY_INSIDE_ENCODERS`; elsewhere nothing is timed).
     pub frame_span: bool,
-    /// Indirect frames record the tile classification in the projection's compute pass
-    /// (wgpu's barrier between the dispatches; then `PassTimings::classify_ms` is `None` and
-    /// the projection's time covers both; the same image) instead of in its own.
-    pub classify_in_projection_pass: bool,
+    /// Indirect frames record the tile classification in a compute pass of its own, timed on
+    /// its own (the layout before the twenty-sixth session; bench only, the same image),
+    /// instead of in the projection's (wgpu's barrier between the two dispatches; the
+    /// projection's time covers both), which took 0.006-0.007 ms off the 4K overviews of
+    /// the demo and the kitchen (H100, whole frames; docs/perf/runtime.md).
+    pub classify_own_pass: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -407,7 +409,6 @@ impl ReflectionRenderer {
             leave_next: self.debug.clear_pass_every_frame,
             tile_loop: (!self.debug.reflection_indirect_dispatch)
                 .then(|| self.debug.reflection_tile_loop.unwrap_or(TILE_LOOP_GROUPS)),
-            glossy_shared: self.plan_params.shares_glossy_taps(),
         }
     }
 
@@ -631,7 +632,7 @@ impl ReflectionRenderer {
         };
         // In the projection's compute pass (wgpu's barrier between the two dispatches) unless
         // a clear pass comes between them.
-        let classify_with_projection = self.debug.classify_in_projection_pass && !(clear_main || clear_atlas);
+        let classify_with_projection = !(self.debug.classify_own_pass || clear_main || clear_atlas);
         if let (false, Some(bg)) = (classify_with_projection, &classify_job) {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr tile classify"),
@@ -879,12 +880,6 @@ impl ReflectionRenderer {
             });
             self.upsample.encode(&mut pass, &bg, pixels, false, true);
         }
-    }
-
-    /// Whether glossy quads can share their taps on this device
-    /// ([`PlanParams::glossy_shared_taps`] is ignored where not).
-    pub fn shares_glossy_taps(&self) -> bool {
-        self.reflection.shares_glossy_taps()
     }
 
     /// Dispatches recorded by the last [`Self::encode`] (0 when nothing was visible).

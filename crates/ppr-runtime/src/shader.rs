@@ -43,13 +43,6 @@ pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
 /// [`SHADING`]).
 pub const GLOSSY: &str = include_str!("../shaders/glossy.wgsl");
 
-/// The glossy blur's quad exchange with subgroup operations (only on devices with
-/// [`wgpu::Features::SUBGROUP`]; needed by [`GLOSSY`]).
-pub const GLOSSY_QUADS: &str = include_str!("../shaders/glossy_quads.wgsl");
-
-/// The same functions as [`GLOSSY_QUADS`] for a subgroup of one invocation (any device).
-pub const GLOSSY_QUADS_FALLBACK: &str = include_str!("../shaders/glossy_quads_fallback.wgsl");
-
 /// The source of a pass: the shared modules, then `modules`, then the pass itself.
 pub fn source_with(modules: &[&str], pass: &str) -> String {
     let mut s =
@@ -163,8 +156,7 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
             "projection (subgroups, fused lists)",
             source_with(&[VIEW, TILE_TEST, SUBGROUP_CULL, FUSED_LISTS, &no_pad], projection::WGSL),
         ),
-        ("reflection", source_with(&[VIEW, SHADING, GLOSSY, GLOSSY_QUADS_FALLBACK], reflection::WGSL)),
-        ("reflection (subgroups)", source_with(&[VIEW, SHADING, GLOSSY, GLOSSY_QUADS], reflection::WGSL)),
+        ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
         ("upsample", source_with(&[VIEW], upsample::WGSL)),
@@ -346,7 +338,7 @@ mod tests {
     fn glossy_uniform_matches_rust() {
         use crate::gpu_types::{GLOSSY_CAPACITY, GpuGlossyShape, GpuGlossyShapes};
         let source = super::source_with(
-            &[super::VIEW, super::SHADING, super::GLOSSY, super::GLOSSY_QUADS_FALLBACK],
+            &[super::VIEW, super::SHADING, super::GLOSSY],
             crate::passes::reflection::WGSL,
         );
         let module =

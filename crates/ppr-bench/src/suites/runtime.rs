@@ -106,19 +106,14 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("occlusion last", Choice::Auto, Ablation::None),
         ("layers: no water stretch", Choice::Auto, Ablation::None),
         ("layers: full stretch walk", Choice::Auto, Ablation::None),
-        ("glossy: shared taps", Choice::Auto, Ablation::None),
-        ("glossy: own taps", Choice::Auto, Ablation::None),
         ("layers: own pass", Choice::Auto, Ablation::None),
         ("layers: after reflection", Choice::Auto, Ablation::None),
-        ("layers: before reflection", Choice::Auto, Ablation::None),
+        ("classify own pass", Choice::Auto, Ablation::None),
         ("frame span", Choice::Auto, Ablation::None),
         ("frame span, layers own pass", Choice::Auto, Ablation::None),
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
-        ("frame span, layers before reflection", Choice::Auto, Ablation::None),
-        ("frame span, glossy shared taps", Choice::Auto, Ablation::None),
-        ("frame span, classify in projection pass", Choice::Auto, Ablation::None),
-        ("frame span, classify in projection pass, layers before reflection", Choice::Auto, Ablation::None),
-        ("classify in projection pass", Choice::Auto, Ablation::None),
+        ("frame span, classify own pass", Choice::Auto, Ablation::None),
+        ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -305,11 +300,6 @@ pub fn run_runtime(
                 if name.contains("separate lists") || name.ends_with("lists box only") {
                     params.fused_lists = Choice::Off;
                 }
-                if name == "glossy: shared taps" || name.ends_with("glossy shared taps") {
-                    params.glossy_shared_taps = Choice::On;
-                } else if name == "glossy: own taps" {
-                    params.glossy_shared_taps = Choice::Off;
-                }
                 if name.contains("no subgroup culling") {
                     params.subgroup_cull = Choice::Off;
                 } else if name.starts_with("subgroup culling on") {
@@ -354,13 +344,11 @@ pub fn run_runtime(
                         LayerPlacement::OwnPass
                     } else if name.ends_with("after reflection") {
                         LayerPlacement::AfterReflection
-                    } else if name.ends_with("before reflection") {
-                        LayerPlacement::BeforeReflection
                     } else {
                         tuning.layer_placement
                     },
                     frame_span: name.starts_with("frame span"),
-                    classify_in_projection_pass: name.contains("classify in projection pass"),
+                    classify_own_pass: name.contains("classify own pass"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {

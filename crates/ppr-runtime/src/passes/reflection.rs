@@ -55,10 +55,6 @@ pub struct ReflectionVariant {
     /// by indirect dispatch (`None`: bench only, the same image). `ReflectionPass::new`
     /// builds the default's pipelines with [`crate::TILE_LOOP_GROUPS`].
     pub tile_loop: Option<u32>,
-    /// Glossy frames: quads of 2 x 2 pixels whose footprints are wide share their blur's
-    /// taps through subgroup operations (`glossy.wgsl`'s `ppr_glossy_quad`). Only where
-    /// the pass has subgroups ([`ReflectionPass::shares_glossy_taps`]); ignored elsewhere.
-    pub glossy_shared: bool,
 }
 
 /// What an ablated reflection pass leaves out (bench only: `ppr-bench runtime
@@ -97,14 +93,7 @@ impl ReflectionVariant {
     /// The pipeline of this variant under direct or indirect dispatch.
     fn key(self, indirect: bool) -> PipelineKey {
         let dispatch = (indirect, indirect && self.tile_loop.is_some());
-        let shared = self.glossy && self.glossy_shared;
-        (
-            dispatch,
-            self.index(),
-            (!self.runs_quads(indirect), self.ablation),
-            self.clears_next(indirect),
-            shared,
-        )
+        (dispatch, self.index(), (!self.runs_quads(indirect), self.ablation), self.clears_next(indirect))
     }
 
     /// Whether the pass clears the next encode's buffers: in direct dispatch, which visits
@@ -125,9 +114,9 @@ impl ReflectionVariant {
 }
 
 /// Pipelines by indirect (and the tile loop), [`ReflectionVariant::index`], one pixel per
-/// invocation and ablation, whether it clears the next encode's buffers and whether glossy
-/// quads share their taps ([`ReflectionVariant::key`]).
-type PipelineKey = ((bool, bool), usize, (bool, ReflectionAblation), bool, bool);
+/// invocation and ablation, and whether it clears the next encode's buffers
+/// ([`ReflectionVariant::key`]).
+type PipelineKey = ((bool, bool), usize, (bool, ReflectionAblation), bool);
 
 /// Pixels per workgroup side of `main_quads` (16 x 16 invocations of 2 x 2 pixels).
 const QUAD_BLOCK: u32 = 32;
@@ -138,9 +127,6 @@ pub struct ReflectionPass {
     /// [`Self::prepare_variant`].
     pipelines: HashMap<PipelineKey, wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
-    /// The module with subgroup operations for shared glossy taps, on devices with
-    /// [`wgpu::Features::SUBGROUP`] and subgroups of at least four invocations.
-    subgroup_module: Option<wgpu::ShaderModule>,
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
     sampler: wgpu::Sampler,
@@ -188,22 +174,12 @@ impl ReflectionPass {
                 storage_entry(11, false),
             ],
         });
-        use crate::shader::{GLOSSY, GLOSSY_QUADS, GLOSSY_QUADS_FALLBACK, SHADING, VIEW};
         let module = crate::shader::module_with(
             device,
             "ppr reflection",
-            &[VIEW, SHADING, GLOSSY, GLOSSY_QUADS_FALLBACK],
+            &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let quads = super::projection::has_subgroups(device) && device.adapter_info().subgroup_min_size >= 4;
-        let subgroup_module = quads.then(|| {
-            crate::shader::module_with(
-                device,
-                "ppr reflection (subgroups)",
-                &[VIEW, SHADING, GLOSSY, GLOSSY_QUADS],
-                WGSL,
-            )
-        });
         let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
             label: Some("ppr reflection linear"),
             address_mode_u: wgpu::AddressMode::ClampToEdge,
@@ -215,7 +191,6 @@ impl ReflectionPass {
         let mut pass = Self {
             pipelines: HashMap::new(),
             module,
-            subgroup_module,
             layout,
             bind_groups: BindGroupCache::default(),
             sampler,
@@ -231,13 +206,13 @@ impl ReflectionPass {
         device: &wgpu::Device,
         layout: &wgpu::BindGroupLayout,
         module: &wgpu::ShaderModule,
-        ((indirect, tile_loop), index, (pixel_per_thread, ablation), clear_next, shared): PipelineKey,
+        ((indirect, tile_loop), index, (pixel_per_thread, ablation), clear_next): PipelineKey,
     ) -> wgpu::ComputePipeline {
         let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
         let label = format!(
             "ppr reflection indirect={indirect} tile_loop={tile_loop} normal_maps={normal_maps} \
              glossy={glossy} pixel_per_thread={pixel_per_thread} ablation={ablation:?} \
-             clear_next={clear_next} glossy_shared={shared}"
+             clear_next={clear_next}"
         );
         let constants = [
             ("INDIRECT", flag(indirect)),
@@ -246,7 +221,6 @@ impl ReflectionPass {
             ("GLOSSY", flag(glossy)),
             ("ABLATION", ablation.code()),
             ("CLEAR_NEXT", flag(clear_next)),
-            ("GLOSSY_SHARED", flag(shared)),
         ];
         let entry = if pixel_per_thread { "main" } else { "main_quads" };
         compute_pipeline(device, &label, layout, module, entry, &constants)
@@ -256,18 +230,13 @@ impl ReflectionPass {
     /// glossy and hole-filling variant, so that settings may change after `prepare`) unless
     /// they exist.
     pub fn prepare_variant(&mut self, device: &wgpu::Device, variant: ReflectionVariant) {
-        let variant = ReflectionVariant {
-            glossy_shared: variant.glossy_shared && self.shares_glossy_taps(),
-            ..variant
-        };
         for indirect in [false, true] {
             for index in 0..4 {
                 for holes in [false, true] {
                     let (normal_maps, glossy) = (index & 1 != 0, index & 2 != 0);
                     let key = ReflectionVariant { normal_maps, glossy, holes, ..variant }.key(indirect);
                     if !self.pipelines.contains_key(&key) {
-                        let module = if key.4 { self.subgroup_module.as_ref() } else { None };
-                        let p = Self::pipeline(device, &self.layout, module.unwrap_or(&self.module), key);
+                        let p = Self::pipeline(device, &self.layout, &self.module, key);
                         self.pipelines.insert(key, p);
                     }
                 }
@@ -276,17 +245,7 @@ impl ReflectionPass {
     }
 
     fn pipeline_for(&self, indirect: bool, variant: ReflectionVariant) -> &wgpu::ComputePipeline {
-        let variant = ReflectionVariant {
-            glossy_shared: variant.glossy_shared && self.shares_glossy_taps(),
-            ..variant
-        };
         self.pipelines.get(&variant.key(indirect)).expect("variant prepared in prepare()")
-    }
-
-    /// Whether glossy quads can share their taps here (the device has subgroups of at least
-    /// four invocations): [`ReflectionVariant::glossy_shared`] is ignored elsewhere.
-    pub fn shares_glossy_taps(&self) -> bool {
-        self.subgroup_module.is_some()
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ReflectionBindings<'_>) -> wgpu::BindGroup {
