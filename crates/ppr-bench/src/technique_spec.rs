@@ -76,11 +76,13 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
 /// their own pass), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
-/// the exact reference is a mirror's) and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// the exact reference is a mirror's), `timing=passes|frame` (GPU time as the sum of the
+/// passes' own timestamps, the default, or the whole frame between two encoder timestamps,
+/// the barriers between passes included) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 12] = [
+const PPR_KEYS: [&str; 13] = [
     "culling",
     "indirect",
     "groups",
@@ -91,6 +93,7 @@ const PPR_KEYS: [&str; 12] = [
     "replace-far",
     "tier",
     "glossy",
+    "timing",
     "bounces",
     "reference-bounces",
 ];
@@ -195,6 +198,9 @@ impl TechniqueSpec {
                 }
                 "tier" => {
                     parse_tier(v).map_err(bad)?;
+                }
+                "timing" => {
+                    frame_timing(v).map_err(bad)?;
                 }
                 "bounces" | "reference-bounces" => {
                     parse_bounces(v).map_err(bad)?;
@@ -335,6 +341,15 @@ pub fn ppr_settings(
     Ok(Some((settings, params)))
 }
 
+/// `timing=`: whether PPR is timed as a whole frame (`frame`) or pass by pass (`passes`).
+fn frame_timing(v: &str) -> Result<bool, String> {
+    match v {
+        "frame" => Ok(true),
+        "passes" => Ok(false),
+        _ => Err(format!("timing: `{v}` is neither `passes` nor `frame`")),
+    }
+}
+
 /// Builds the technique `spec` names.
 ///
 /// # Errors
@@ -348,6 +363,9 @@ pub fn build_technique(
             PprRunner::new(ctx.device, ctx.queue, ctx.reflectors, spec.label(), settings, params)?;
         runner.set_bounces(ppr_bounces(spec)?);
         runner.set_reference_bounces(reference_bounces(spec)?);
+        if let Some(v) = spec.param("timing") {
+            runner.renderer().debug.frame_span = frame_timing(v).map_err(BenchError::Spec)?;
+        }
         return Ok(Box::new(runner));
     }
     let (device, queue, set) = (ctx.device, ctx.queue, ctx.reflectors);
@@ -426,6 +444,10 @@ mod tests {
         assert_eq!(s.name, "ppr");
         assert_eq!(s.label(), "ppr culling=off indirect=on");
         assert_eq!(s.to_string(), "ppr:culling=off,indirect=on");
+        let framed: TechniqueSpec = "ppr:timing=frame".parse().expect("frame timing");
+        assert_eq!(framed.param("timing"), Some("frame"));
+        assert!("ppr:timing=fast".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:timing=frame".parse::<TechniqueSpec>().is_err());
         let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
         let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
         assert!(!settings.glossy);
