@@ -279,7 +279,9 @@ pub struct CompareArgs {
     /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect= on|off|auto; fade= border fade
     /// as a fraction of the shorter side, 0..0.5; replace-far= on|off, the seed's 6-px rule;
     /// tier= full|half|quarter, the resolution the passes run at), exact,
-    /// ppr:glossy=off (every reflector blurred as a mirror), ssr-brute (thickness=),
+    /// ppr:glossy=off (every reflector blurred as a mirror), ppr:timing=frame (the whole
+    /// frame between two encoder timestamps instead of the sum of its passes' own, which
+    /// leaves out the barriers between them), ssr-brute (thickness=),
     /// ssr-low (stride=, refine=, thickness=), ssr-glossy (ssr-low's march and keys, then a
     /// blur of radius spread × roughness² × hit distance: spread= default 4, max-radius= in
     /// pixels default 32, taps= default 24), ssr-hiz (iterations=, thickness=), sspr,
