@@ -166,10 +166,11 @@ pub struct DebugOptions {
     /// default; `PassTimings::layers_ms` is then `None` and the reflection's time covers
     /// both) or in its own (bench only, the same image).
     pub layer_placement: LayerPlacement,
-    /// Time the frame as a whole, from two encoder timestamps around its passes
-    /// (`PassTimings::frame_ms`), instead of a pair around each pass: what the frame costs
-    /// without the per-pass timestamps, which wait for each pass's end (bench only, on
-    /// devices with `TIMESTAMP_QUERY_INSIDE_ENCODERS`; elsewhere nothing is timed).
+    /// Time the frame as a whole, from two encoder timestamps around everything `encode`
+    /// records (the upload's copies, the passes and the barriers between them;
+    /// `PassTimings::frame_ms`), instead of a pair around each pass, which leaves the
+    /// copies and barriers out (bench only, on devices with
+    /// `TIMESTAMP_QUERY_INSIDE_ENCODERS`; elsewhere nothing is timed).
     pub frame_span: bool,
     /// Indirect frames record the tile classification in a compute pass of its own, timed on
     /// its own (the layout before the twenty-sixth session; bench only, the same image),
@@ -563,6 +564,10 @@ impl ReflectionRenderer {
         let layer_output = inputs.layer_output.map(|o| reduced.map_or(o, |r| &r.layer_output.view));
         let normals = if reduced.is_some() { None } else { inputs.normals };
 
+        // The frame's span begins before its copies: everything this encode records.
+        if let Some(t) = span_timer {
+            t.write_span(encoder, false);
+        }
         // This prepared frame's uniforms, shapes and lists, copied in here (not at the
         // submit), so that each encode runs with the camera it was prepared for.
         view.upload.as_ref().expect("prepare() builds the upload").encode_copies(
@@ -570,9 +575,6 @@ impl ReflectionRenderer {
             b,
             &mut self.upload_ring.borrow_mut(),
         );
-        if let Some(t) = span_timer {
-            t.write_span(encoder, false);
-        }
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(

@@ -16,9 +16,9 @@ pub struct PassTimings {
     pub downsample_ms: Option<f64>,
     /// Reduced-resolution tiers: the reflections back to the full size.
     pub upsample_ms: Option<f64>,
-    /// The whole frame from two encoder timestamps, its passes from the first to the last
-    /// and the barriers between them (`DebugOptions::frame_span`; the passes are then not
-    /// timed one by one).
+    /// The whole frame from two encoder timestamps: the upload's copies, the passes and the
+    /// barriers between them (`DebugOptions::frame_span`; the passes are then not timed one
+    /// by one).
     pub frame_ms: Option<f64>,
 }
 
