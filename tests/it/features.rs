@@ -195,9 +195,8 @@ fn water_planes_at_two_heights_get_a_layer_each() {
 #[test]
 fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     // The layer reflection in the reflection's compute pass (no barrier between them), the
-    // tile classification in the projection's (wgpu's barrier between them), the upload
-    // through GPU memory: the same images as each pass in its own and the upload copied
-    // part by part, the same dispatches, and the merged passes untimed.
+    // tile classification in the projection's (wgpu's barrier between them): the same
+    // images as each in its own pass, the same dispatches, and the merged passes untimed.
     let mut s = AnalyticScene::default();
     room(&mut s);
     s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
@@ -207,23 +206,20 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
-    // (layer placement, classification merged, upload through GPU memory)
     let layouts = [
-        (LayerPlacement::OwnPass, false, false),
-        (LayerPlacement::AfterReflection, false, false),
-        (LayerPlacement::BeforeReflection, false, false),
-        (LayerPlacement::OwnPass, true, false),
-        (LayerPlacement::BeforeReflection, true, false),
-        (LayerPlacement::BeforeReflection, true, true),
+        (LayerPlacement::OwnPass, false),
+        (LayerPlacement::AfterReflection, false),
+        (LayerPlacement::BeforeReflection, false),
+        (LayerPlacement::OwnPass, true),
+        (LayerPlacement::BeforeReflection, true),
     ];
     for indirect in [Choice::Off, Choice::On] {
         let mut images = Vec::new();
-        for (placement, classify_merged, through_device) in layouts {
+        for (placement, classify_merged) in layouts {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
             r.debug.classify_own_pass = !classify_merged;
-            r.debug.upload_through_device = through_device;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);

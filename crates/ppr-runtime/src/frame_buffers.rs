@@ -47,11 +47,6 @@ pub(crate) struct FrameBuffers {
     /// frame), the frame's parallel trees (`crate::parallel_trees`, room for every family),
     /// then the table's static grid words (`crate::plane_groups`).
     pub plane_groups: wgpu::Buffer,
-    /// Room for every part of a frame's upload at once, in GPU memory: the staging buffer
-    /// (host memory) is copied here in one copy, and from here into the parts' buffers
-    /// (`DebugOptions::upload_through_device`), so that one copy instead of one per part
-    /// reads host memory.
-    pub upload_mirror: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -87,7 +82,7 @@ impl FrameBuffers {
         let n = table.shapes.len() as u64;
         let occluders =
             if table.occluder_indices.is_empty() { vec![0u32; 4] } else { table.occluder_indices.clone() };
-        let mut buffers = Self {
+        Self {
             uniforms: buffer(
                 "ppr frame uniforms",
                 std::mem::size_of::<FrameUniforms>() as u64,
@@ -143,22 +138,12 @@ impl FrameBuffers {
                 readable,
             ),
             plane_groups: plane_groups_buffer(device, table),
-            upload_mirror: buffer("ppr upload mirror", 16, wgpu::BufferUsages::COPY_DST),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
             next_slot: Cell::new(0),
             clean: Cell::new([false; 2]),
-        };
-        // Every upload target whole: an upload fits its targets, so it fits here.
-        let upload_bytes: u64 =
-            crate::frame_upload::UploadTarget::ALL.iter().map(|t| t.buffer(&buffers).size()).sum();
-        buffers.upload_mirror = buffer(
-            "ppr upload mirror",
-            upload_bytes,
-            wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
-        );
-        buffers
+        }
     }
 
     /// The slot (of [`Self::intermediate`] and [`Self::atlas`]) an encode uses, and whether

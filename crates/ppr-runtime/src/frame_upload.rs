@@ -31,20 +31,7 @@ pub(crate) enum UploadTarget {
 }
 
 impl UploadTarget {
-    pub const ALL: [Self; 10] = [
-        Self::Uniforms,
-        Self::Shapes,
-        Self::Visible,
-        Self::ScreenRects,
-        Self::Layers,
-        Self::Tests,
-        Self::UniformTests,
-        Self::SourceRects,
-        Self::PlaneGroups,
-        Self::Glossy,
-    ];
-
-    pub fn buffer(self, b: &FrameBuffers) -> &wgpu::Buffer {
+    fn buffer(self, b: &FrameBuffers) -> &wgpu::Buffer {
         match self {
             Self::Uniforms => &b.uniforms,
             Self::Shapes => &b.shapes,
@@ -140,14 +127,12 @@ impl FrameUpload {
 
     /// Writes the parts into a staging buffer of `ring` and records the copies from
     /// there into `buffers` (which must be the ones the frame was prepared for: every part
-    /// fits its target); with `through_device`, one copy into `buffers.upload_mirror` and
-    /// the parts' copies from there.
+    /// fits its target).
     pub fn encode_copies(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         buffers: &FrameBuffers,
         ring: &mut UploadRing,
-        through_device: bool,
     ) {
         if self.parts.is_empty() {
             return;
@@ -157,17 +142,10 @@ impl FrameUpload {
             debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
         }
         let staging = ring.stage(encoder, &slices);
-        let total: u64 = slices.iter().map(|s| s.len() as u64).sum();
-        let source = if through_device {
-            encoder.copy_buffer_to_buffer(&staging, 0, &buffers.upload_mirror, 0, total);
-            &buffers.upload_mirror
-        } else {
-            &staging
-        };
         let mut offset = 0;
         for (&(target, _), data) in self.parts.iter().zip(&slices) {
             let size = data.len() as u64;
-            encoder.copy_buffer_to_buffer(source, offset, target.buffer(buffers), 0, size);
+            encoder.copy_buffer_to_buffer(&staging, offset, target.buffer(buffers), 0, size);
             offset += size;
         }
     }

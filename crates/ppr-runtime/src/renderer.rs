@@ -178,10 +178,6 @@ pub struct DebugOptions {
     /// projection's time covers both), which took 0.006-0.007 ms off the 4K overviews of
     /// the demo and the kitchen (H100, whole frames; docs/perf/runtime.md).
     pub classify_own_pass: bool,
-    /// The frame's upload goes from its staging buffer (host memory) to the GPU in one copy,
-    /// into `FrameBuffers::upload_mirror`, and from there into each part's buffer, instead
-    /// of one copy per part from host memory (the same data).
-    pub upload_through_device: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -578,7 +574,6 @@ impl ReflectionRenderer {
             encoder,
             b,
             &mut self.upload_ring.borrow_mut(),
-            self.debug.upload_through_device,
         );
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {

@@ -114,8 +114,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
         ("frame span, classify own pass", Choice::Auto, Ablation::None),
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
-        ("frame span, upload through device", Choice::Auto, Ablation::None),
-        ("upload through device", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -351,7 +349,6 @@ pub fn run_runtime(
                     },
                     frame_span: name.starts_with("frame span"),
                     classify_own_pass: name.contains("classify own pass"),
-                    upload_through_device: name.ends_with("upload through device"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {
