@@ -195,8 +195,9 @@ fn water_planes_at_two_heights_get_a_layer_each() {
 #[test]
 fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     // The layer reflection in the reflection's compute pass (no barrier between them), the
-    // tile classification in the projection's (wgpu's barrier between them): the same
-    // images as each in its own pass, the same dispatches, and the merged passes untimed.
+    // tile classification and the reflection in the projection's (wgpu's barriers between
+    // them): the same images as each in its own pass, the same dispatches, and the merged
+    // passes untimed.
     let mut s = AnalyticScene::default();
     room(&mut s);
     s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
@@ -206,27 +207,32 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+    // (layer placement, classification in the projection's pass, reflection in it too)
     let layouts = [
-        (LayerPlacement::OwnPass, false),
-        (LayerPlacement::AfterReflection, false),
-        (LayerPlacement::BeforeReflection, false),
-        (LayerPlacement::OwnPass, true),
-        (LayerPlacement::BeforeReflection, true),
+        (LayerPlacement::OwnPass, false, false),
+        (LayerPlacement::AfterReflection, false, false),
+        (LayerPlacement::BeforeReflection, false, false),
+        (LayerPlacement::OwnPass, true, false),
+        (LayerPlacement::BeforeReflection, true, false),
+        (LayerPlacement::BeforeReflection, true, true),
+        (LayerPlacement::OwnPass, true, true),
     ];
     for indirect in [Choice::Off, Choice::On] {
         let mut images = Vec::new();
-        for (placement, classify_merged) in layouts {
+        for (placement, classify_merged, reflection_merged) in layouts {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
             r.debug.classify_own_pass = !classify_merged;
+            r.debug.reflection_in_projection_pass = reflection_merged;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
             assert_eq!(out.plan.indirect, indirect == Choice::On);
             // Each pass's timestamps: its own pass's, or none (the pass it joined covers it).
             let [classify, _, projection, reflection, layers, ..] = r.passes_recorded();
-            assert!(projection && reflection);
+            assert!(projection);
+            assert_eq!(reflection, !reflection_merged);
             assert_eq!(
                 classify,
                 indirect == Choice::On && !classify_merged,
@@ -237,7 +243,7 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
             assert!(reflected > 300, "{placement:?}: {reflected} layer pixels with a reflection");
             images.push((
                 placement,
-                classify_merged,
+                (classify_merged, reflection_merged),
                 r.last_dispatch_count(),
                 bits(&out.pixels),
                 bits(&out.layer_pixels),
@@ -245,7 +251,8 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
         }
         let (_, _, dispatches, main, layer) = &images[0];
         for (placement, merged, d, m, l) in &images[1..] {
-            let what = format!("{indirect:?}, layers {placement:?}, classify merged {merged}");
+            let what =
+                format!("{indirect:?}, layers {placement:?}, (classify, reflection) merged {merged:?}");
             assert_eq!(d, dispatches, "{what}: dispatches");
             assert!(m == main, "{what}: the main output differs");
             assert!(l == layer, "{what}: the layer output differs");

@@ -154,6 +154,11 @@ pub struct RuntimeArgs {
     /// reflection and upsample passes' output write.
     #[arg(long)]
     pub write_probe: bool,
+    /// Also time a frame's upload before its first pass: small copies from host memory
+    /// into device buffers (one per buffer, several into one, or one of everything), then
+    /// a dispatch that reads them, between two encoder timestamps.
+    #[arg(long)]
+    pub upload_probe: bool,
     /// Also run every scene with every reflector at roughness 0.2, glossy on and off (rows
     /// `<scene> (roughness 0.2, glossy)` and `(…, glossy off)`): what the glossy blur costs.
     #[arg(long)]
@@ -418,6 +423,7 @@ where
                 profile_rows: a.profile_rows.clone(),
                 skip_profile_rows: a.skip_profile_rows.clone(),
                 write_probe: a.write_probe,
+                upload_probe: a.upload_probe,
                 glossy: a.glossy,
                 stereo_sizes: a.stereo.clone(),
             };

@@ -37,6 +37,7 @@ pub mod technique;
 pub mod technique_spec;
 pub mod timing;
 pub mod trait_runner;
+pub mod upload_probe;
 pub mod write_probe;
 
 pub use config::{BenchConfig, Resolution};

@@ -178,6 +178,10 @@ pub struct DebugOptions {
     /// projection's time covers both), which took 0.006-0.007 ms off the 4K overviews of
     /// the demo and the kitchen (H100, whole frames; docs/perf/runtime.md).
     pub classify_own_pass: bool,
+    /// The reflection (with the layers beside it) recorded in the projection's compute pass
+    /// after the projection (wgpu's barrier between them; the projection's time then covers
+    /// the whole frame; bench only, the same image).
+    pub reflection_in_projection_pass: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -673,6 +677,74 @@ impl ReflectionRenderer {
                 count(1);
             }
         }
+        // The layer reflection's dispatch, in whichever compute pass records it.
+        let layer_job = match (plan.layers.is_empty(), layer_output) {
+            (false, Some(layer_output)) => Some(self.layer_reflection.bind_group(
+                device,
+                &LayerBindings {
+                    uniforms: &b.uniforms,
+                    atlas,
+                    layers: &b.layers,
+                    shapes: &b.shapes,
+                    depth,
+                    color,
+                    output: layer_output,
+                },
+            )),
+            _ => None,
+        };
+        let record_layers = |pass: &mut wgpu::ComputePass<'_>, bg: &wgpu::BindGroup| {
+            let r = plan.layer_rect;
+            let extent = [r.max[0] - r.min[0], r.max[1] - r.min[1]];
+            self.layer_reflection.encode(pass, bg, extent, self.debug.full_stretch_walk);
+            count(1);
+        };
+        let placement = self.debug.layer_placement;
+        let layers_with_reflection = has_main && placement != LayerPlacement::OwnPass;
+        let reflection_job = has_main.then(|| {
+            let bg = self.reflection.bind_group(
+                device,
+                &ReflectionBindings {
+                    uniforms: &b.uniforms,
+                    intermediate,
+                    color,
+                    output,
+                    active_tiles: &b.active_tiles,
+                    tile_flags: &b.tile_flags,
+                    depth,
+                    normals: normals.unwrap_or(color),
+                    glossy: &b.glossy,
+                    next_intermediate: &b.intermediate[1 - slot],
+                    next_atlas: &b.atlas[1 - slot],
+                },
+            );
+            let variant = self.reflection_variant(
+                plan.normal_maps && normals.is_some(),
+                self.settings.glossy && !plan.glossy.is_empty(),
+            );
+            (bg, variant)
+        });
+        // The layers (with the reflection) and the reflection, in whichever compute pass.
+        let record_reflection =
+            |pass: &mut wgpu::ComputePass<'_>, (bg, variant): &(wgpu::BindGroup, ReflectionVariant)| {
+                if let (LayerPlacement::BeforeReflection, Some(layer_bg)) = (placement, &layer_job) {
+                    record_layers(pass, layer_bg);
+                }
+                if plan.indirect {
+                    self.reflection.encode_tiles(pass, bg, &b.dispatch_args, plan.tile_count(), *variant);
+                } else {
+                    self.reflection.encode(pass, bg, plan.viewport, *variant);
+                }
+                if variant.clears_next(plan.indirect) {
+                    b.mark_clean(1 - slot);
+                }
+                count(1);
+                if let (LayerPlacement::AfterReflection, Some(layer_bg)) = (placement, &layer_job) {
+                    record_layers(pass, layer_bg);
+                }
+            };
+        // In the projection's compute pass (wgpu's barrier between them), or in its own.
+        let reflection_with_projection = self.debug.reflection_in_projection_pass;
         {
             let bg = self.projection.bind_group(
                 device,
@@ -741,71 +813,16 @@ impl ReflectionRenderer {
             }
             self.projection.encode(&mut pass, &bg, plan.viewport, self.variant(plan));
             count(1);
+            if let (true, Some(job)) = (reflection_with_projection, &reflection_job) {
+                record_reflection(&mut pass, job);
+            }
         }
-        // The layer reflection's dispatch, in whichever compute pass records it.
-        let layer_job = match (plan.layers.is_empty(), layer_output) {
-            (false, Some(layer_output)) => Some(self.layer_reflection.bind_group(
-                device,
-                &LayerBindings {
-                    uniforms: &b.uniforms,
-                    atlas,
-                    layers: &b.layers,
-                    shapes: &b.shapes,
-                    depth,
-                    color,
-                    output: layer_output,
-                },
-            )),
-            _ => None,
-        };
-        let record_layers = |pass: &mut wgpu::ComputePass<'_>, bg: &wgpu::BindGroup| {
-            let r = plan.layer_rect;
-            let extent = [r.max[0] - r.min[0], r.max[1] - r.min[1]];
-            self.layer_reflection.encode(pass, bg, extent, self.debug.full_stretch_walk);
-            count(1);
-        };
-        let placement = self.debug.layer_placement;
-        let layers_with_reflection = has_main && placement != LayerPlacement::OwnPass;
-        if has_main {
-            let bg = self.reflection.bind_group(
-                device,
-                &ReflectionBindings {
-                    uniforms: &b.uniforms,
-                    intermediate,
-                    color,
-                    output,
-                    active_tiles: &b.active_tiles,
-                    tile_flags: &b.tile_flags,
-                    depth,
-                    normals: normals.unwrap_or(color),
-                    glossy: &b.glossy,
-                    next_intermediate: &b.intermediate[1 - slot],
-                    next_atlas: &b.atlas[1 - slot],
-                },
-            );
-            let variant = self.reflection_variant(
-                plan.normal_maps && normals.is_some(),
-                self.settings.glossy && !plan.glossy.is_empty(),
-            );
+        if let (false, Some(job)) = (reflection_with_projection, &reflection_job) {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr reflection"),
                 timestamp_writes: timestamps(3),
             });
-            if let (LayerPlacement::BeforeReflection, Some(layer_bg)) = (placement, &layer_job) {
-                record_layers(&mut pass, layer_bg);
-            }
-            if plan.indirect {
-                self.reflection.encode_tiles(&mut pass, &bg, &b.dispatch_args, plan.tile_count(), variant);
-            } else {
-                self.reflection.encode(&mut pass, &bg, plan.viewport, variant);
-            }
-            if variant.clears_next(plan.indirect) {
-                b.mark_clean(1 - slot);
-            }
-            count(1);
-            if let (LayerPlacement::AfterReflection, Some(layer_bg)) = (placement, &layer_job) {
-                record_layers(&mut pass, layer_bg);
-            }
+            record_reflection(&mut pass, job);
         }
         if let (false, Some(layer_bg)) = (layers_with_reflection, &layer_job) {
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -836,7 +853,7 @@ impl ReflectionRenderer {
             classify_job.is_some() && !classify_with_projection,
             clear_main || clear_atlas,
             true,
-            has_main,
+            has_main && !reflection_with_projection,
             layers,
             reduced,
             reduced && (has_main || layers),

@@ -173,6 +173,19 @@ pub fn write_runtime_report(
         }
         let _ = writeln!(md);
     }
+    if !outcome.upload_probe.is_empty() {
+        let _ = writeln!(
+            md,
+            "A frame's upload before its first pass (`--upload-probe`): 256-byte parts copied from \
+             a staging buffer in host memory, then one dispatch that reads them, between two \
+             encoder timestamps; medians:\n"
+        );
+        let _ = writeln!(md, "| variant | copies | median ms |\n| --- | ---: | ---: |");
+        for p in &outcome.upload_probe {
+            let _ = writeln!(md, "| {} | {} | {} |", p.variant, p.copies, ms(p.median_ms));
+        }
+        let _ = writeln!(md);
+    }
     if !outcome.stereo.is_empty() {
         let _ = writeln!(
             md,

@@ -19,6 +19,7 @@ use crate::scene::{BenchScene, SceneOptions, SceneSpec};
 use crate::stereo_probe::{StereoRow, run_stereo_probe};
 use crate::technique::BenchFrame;
 use crate::timing::{TimingSeries, TimingSource};
+use crate::upload_probe::{UploadProbeRow, run_upload_probe};
 use crate::write_probe::{WriteProbeRow, run_write_probe};
 
 /// What the runtime suite runs.
@@ -39,6 +40,8 @@ pub struct RuntimeConfig {
     pub skip_profile_rows: Vec<String>,
     /// Also time full-screen image writes (`write_probe.rs`) at each resolution.
     pub write_probe: bool,
+    /// Also time the upload's copies before a first pass (`upload_probe.rs`).
+    pub upload_probe: bool,
     /// Also run every scene with every reflector at roughness [`GLOSSY_PROBE_ROUGHNESS`],
     /// glossy on and off: what the glossy blur costs.
     pub glossy: bool,
@@ -114,6 +117,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
         ("frame span, classify own pass", Choice::Auto, Ablation::None),
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
+        ("frame span, reflection in projection pass", Choice::Auto, Ablation::None),
+        ("reflection in projection pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -189,6 +194,8 @@ pub struct RuntimeOutcome {
     pub notes: Vec<String>,
     /// Full-screen write probes, per resolution (with `write_probe`).
     pub write_probe: Vec<(Resolution, Vec<WriteProbeRow>)>,
+    /// Small copies before a dispatch (with `upload_probe`).
+    pub upload_probe: Vec<UploadProbeRow>,
     /// Stereo against two mono frames (with `stereo_sizes`).
     pub stereo: Vec<StereoRow>,
 }
@@ -221,6 +228,7 @@ pub fn run_runtime(
             write_probe.push((res, run_write_probe(device, queue, res.size(), reps)));
         }
     }
+    let upload_probe = if rc.upload_probe { run_upload_probe(device, queue, reps) } else { Vec::new() };
     let frames = FrameLoop::new(device, cfg);
     let mut rows = Vec::new();
     let mut notes = Vec::new();
@@ -349,6 +357,7 @@ pub fn run_runtime(
                     },
                     frame_span: name.starts_with("frame span"),
                     classify_own_pass: name.contains("classify own pass"),
+                    reflection_in_projection_pass: name.ends_with("reflection in projection pass"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {
@@ -427,7 +436,7 @@ pub fn run_runtime(
             });
         }
     }
-    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe, stereo })
+    Ok(RuntimeOutcome { adapter: gpu.describe(), bandwidth, rows, notes, write_probe, upload_probe, stereo })
 }
 
 /// Reads the last frame's active tiles and intermediate buffer back and counts what the

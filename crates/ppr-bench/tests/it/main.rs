@@ -11,3 +11,4 @@ mod quick_scaling;
 mod resolution_tiers;
 mod scaling_levels;
 mod shared_scenes;
+mod upload_probe;
