@@ -207,32 +207,36 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
-    // (layer placement, classification in the projection's pass, reflection in it too)
+    // (layer placement, classification in the projection's pass, reflection in its own)
     let layouts = [
-        (LayerPlacement::OwnPass, false, false),
+        (LayerPlacement::OwnPass, false, true),
         (LayerPlacement::AfterReflection, false, false),
         (LayerPlacement::BeforeReflection, false, false),
-        (LayerPlacement::OwnPass, true, false),
-        (LayerPlacement::BeforeReflection, true, false),
-        (LayerPlacement::BeforeReflection, true, true),
         (LayerPlacement::OwnPass, true, true),
+        (LayerPlacement::BeforeReflection, true, false),
+        (LayerPlacement::OwnPass, true, false),
     ];
     for indirect in [Choice::Off, Choice::On] {
         let mut images = Vec::new();
-        for (placement, classify_merged, reflection_merged) in layouts {
+        for (placement, classify_merged, reflection_own_pass) in layouts {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
             r.debug.classify_own_pass = !classify_merged;
-            r.debug.reflection_in_projection_pass = reflection_merged;
+            r.debug.reflection_own_pass = reflection_own_pass;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
             assert_eq!(out.plan.indirect, indirect == Choice::On);
             // Each pass's timestamps: its own pass's, or none (the pass it joined covers it).
-            let [classify, _, projection, reflection, layers, ..] = r.passes_recorded();
-            assert!(projection);
-            assert_eq!(reflection, !reflection_merged);
+            // The reflection joins the projection's pass only where no layer dispatch goes
+            // with it.
+            let reflection_merged = !reflection_own_pass && placement == LayerPlacement::OwnPass;
+            let [classify, _, projection, reflection, layers, .., together] = r.passes_recorded();
+            assert_eq!(
+                (projection, reflection, together),
+                (!reflection_merged, !reflection_merged, reflection_merged)
+            );
             assert_eq!(
                 classify,
                 indirect == Choice::On && !classify_merged,
@@ -257,6 +261,35 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
             assert!(m == main, "{what}: the main output differs");
             assert!(l == layer, "{what}: the layer output differs");
         }
+    }
+}
+
+#[test]
+fn without_layers_the_reflection_shares_the_projection_s_compute_pass() {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let cam = camera();
+    let gpu = GpuFrame::upload(&s.render(&cam, SIZE));
+    for indirect in [Choice::Off, Choice::On] {
+        let mut outputs = Vec::new();
+        for own_pass in [true, false] {
+            let mut r = renderer();
+            r.plan_params.indirect = indirect;
+            r.debug.reflection_own_pass = own_pass;
+            r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
+            let out = run(&mut r, &gpu, &cam);
+            assert!(out.plan.layers.is_empty(), "{}", out.plan);
+            let [_, _, projection, reflection, .., together] = r.passes_recorded();
+            assert_eq!((projection, reflection, together), (own_pass, own_pass, !own_pass), "{indirect:?}");
+            let reflected = out.pixels.iter().filter(|p| p.w > 0.0).count();
+            assert!(reflected > 1000, "{indirect:?}: {reflected} pixels with a reflection");
+            outputs.push((
+                r.last_dispatch_count(),
+                out.pixels.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>(),
+            ));
+        }
+        assert!(outputs[0] == outputs[1], "{indirect:?}: one compute pass changes the frame");
     }
 }
 

@@ -29,7 +29,7 @@ use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
-use crate::timestamps::{FRAME_SPAN, PassTimer, PassTimings, TIMED_PASSES};
+use crate::timestamps::{FRAME_SPAN, PROJECTION_REFLECTION, PassTimer, PassTimings, TIMED_PASSES};
 use crate::upload_ring::UploadRing;
 
 /// Pixels within this fraction of their camera distance from a reflector's plane count as
@@ -178,10 +178,14 @@ pub struct DebugOptions {
     /// projection's time covers both), which took 0.006-0.007 ms off the 4K overviews of
     /// the demo and the kitchen (H100, whole frames; docs/perf/runtime.md).
     pub classify_own_pass: bool,
-    /// The reflection (with the layers beside it) recorded in the projection's compute pass
-    /// after the projection (wgpu's barrier between them; the projection's time then covers
-    /// the whole frame; bench only, the same image).
-    pub reflection_in_projection_pass: bool,
+    /// The reflection recorded in a compute pass of its own also in frames without a layer
+    /// reflection beside it (the layout before the twenty-sixth session; bench only, the
+    /// same image), instead of in the projection's (wgpu's barrier between them; timed
+    /// together as `PassTimings::projection_reflection_ms`), which took 0.006 ms off the
+    /// kitchen's two views without layers at 1080p and 4K (H100, whole frames). Frames with
+    /// layers keep the reflection's own pass, whose layer dispatch runs beside it: in the
+    /// projection's it would follow a barrier of its own (0.001-0.002 ms slower).
+    pub reflection_own_pass: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -743,8 +747,10 @@ impl ReflectionRenderer {
                     record_layers(pass, layer_bg);
                 }
             };
-        // In the projection's compute pass (wgpu's barrier between them), or in its own.
-        let reflection_with_projection = self.debug.reflection_in_projection_pass;
+        // In the projection's compute pass (wgpu's barrier between them) unless a layer
+        // dispatch goes with it (it would wait on a barrier of its own there), or in its own.
+        let layers_beside = layer_job.is_some() && layers_with_reflection;
+        let reflection_with_projection = has_main && !self.debug.reflection_own_pass && !layers_beside;
         {
             let bg = self.projection.bind_group(
                 device,
@@ -767,7 +773,11 @@ impl ReflectionRenderer {
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr projection"),
-                timestamp_writes: timestamps(2),
+                timestamp_writes: timestamps(if reflection_with_projection {
+                    PROJECTION_REFLECTION
+                } else {
+                    2
+                }),
             });
             if let (true, Some(bg)) = (classify_with_projection, &classify_job) {
                 record_classify(&mut pass, bg);
@@ -852,12 +862,13 @@ impl ReflectionRenderer {
         self.recorded.set([
             classify_job.is_some() && !classify_with_projection,
             clear_main || clear_atlas,
-            true,
+            !reflection_with_projection,
             has_main && !reflection_with_projection,
             layers,
             reduced,
             reduced && (has_main || layers),
             false,
+            reflection_with_projection,
         ]);
     }
 

@@ -20,6 +20,10 @@ pub struct PassTimings {
     /// barriers between them (`DebugOptions::frame_span`; the passes are then not timed one
     /// by one).
     pub frame_ms: Option<f64>,
+    /// The projection and the reflection recorded in one compute pass (frames without a
+    /// layer reflection beside the reflection; then `projection_ms` and `reflection_ms`
+    /// are `None`).
+    pub projection_reflection_ms: Option<f64>,
 }
 
 impl PassTimings {
@@ -39,6 +43,7 @@ impl PassTimings {
             ("downsample", self.downsample_ms),
             ("upsample", self.upsample_ms),
             ("frame", self.frame_ms),
+            ("projection + reflection", self.projection_reflection_ms),
         ]
     }
 }
@@ -55,12 +60,15 @@ impl fmt::Display for PassTimings {
 }
 
 /// Passes with a timestamp slot: classify, clear, projection, reflection, layers, the
-/// reduced tiers' downsample and upsample, and the whole frame's span, in
-/// [`PassTimings::passes`] order.
-pub const TIMED_PASSES: u32 = 8;
+/// reduced tiers' downsample and upsample, the whole frame's span, and the projection and
+/// reflection in one compute pass, in [`PassTimings::passes`] order.
+pub const TIMED_PASSES: u32 = 9;
 
 /// The slot of the whole frame's span ([`PassTimer::write_span`]).
 pub const FRAME_SPAN: u32 = 7;
+
+/// The slot of the projection and the reflection recorded in one compute pass.
+pub const PROJECTION_REFLECTION: u32 = 8;
 
 /// A query set with a begin and an end timestamp per pass, and the buffers to read it.
 pub struct PassTimer {
@@ -101,7 +109,7 @@ impl PassTimer {
     }
 
     /// Timestamp writes for pass `index` (0 classify, 1 clear, 2 projection, 3 reflection,
-    /// 4 layers).
+    /// 4 layers, 5 downsample, 6 upsample, 8 projection + reflection).
     pub fn writes(&self, index: u32) -> wgpu::ComputePassTimestampWrites<'_> {
         wgpu::ComputePassTimestampWrites {
             query_set: &self.query_set,
@@ -156,6 +164,7 @@ impl PassTimer {
             downsample_ms: ms(5),
             upsample_ms: ms(6),
             frame_ms: ms(7),
+            projection_reflection_ms: ms(8),
         })
     }
 }

@@ -58,7 +58,7 @@ pub fn write_runtime_report(
         let [w, h] = r.resolution.size();
         let mut total_bytes = 0;
         for (pass, s) in r.timings.passes() {
-            let bytes = r.bytes.iter().find(|b| b.pass == pass).map(|b| b.bytes);
+            let bytes = pass_bytes_of(&r.bytes, &pass);
             total_bytes += bytes.unwrap_or(0);
             let floor = match (bw, bytes) {
                 (Some(bw), Some(b)) => bw.floor_ms(b),
@@ -223,4 +223,35 @@ pub fn write_runtime_report(
     let md_path = dir.join("runtime.md");
     std::fs::write(&md_path, md).map_err(|e| BenchError::io(&md_path, e))?;
     Ok(vec![md_path, csv_path])
+}
+
+/// The bytes of `pass` (passes recorded together, `a + b`, move both's; the frame's span,
+/// every pass's).
+fn pass_bytes_of(bytes: &[crate::bandwidth::PassBytes], pass: &str) -> Option<u64> {
+    let one = |name: &str| bytes.iter().find(|b| b.pass == name).map(|b| b.bytes);
+    match pass {
+        "frame" => Some(bytes.iter().map(|b| b.bytes).sum()),
+        joined if joined.contains(" + ") => joined.split(" + ").map(one).sum(),
+        name => one(name),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::pass_bytes_of;
+    use crate::bandwidth::PassBytes;
+
+    #[test]
+    fn passes_timed_together_move_both_passes_bytes() {
+        let bytes = [
+            PassBytes { pass: "projection", bytes: 10, rule: "" },
+            PassBytes { pass: "reflection", bytes: 5, rule: "" },
+            PassBytes { pass: "classify", bytes: 2, rule: "" },
+        ];
+        assert_eq!(pass_bytes_of(&bytes, "projection"), Some(10));
+        assert_eq!(pass_bytes_of(&bytes, "projection + reflection"), Some(15));
+        assert_eq!(pass_bytes_of(&bytes, "frame"), Some(17));
+        assert_eq!(pass_bytes_of(&bytes, "layers"), None);
+        assert_eq!(pass_bytes_of(&bytes, "projection + layers"), None);
+    }
 }

@@ -117,8 +117,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
         ("frame span, classify own pass", Choice::Auto, Ablation::None),
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
-        ("frame span, reflection in projection pass", Choice::Auto, Ablation::None),
-        ("reflection in projection pass", Choice::Auto, Ablation::None),
+        ("frame span, reflection own pass", Choice::Auto, Ablation::None),
+        ("reflection own pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
@@ -357,7 +357,7 @@ pub fn run_runtime(
                     },
                     frame_span: name.starts_with("frame span"),
                     classify_own_pass: name.contains("classify own pass"),
-                    reflection_in_projection_pass: name.ends_with("reflection in projection pass"),
+                    reflection_own_pass: name.ends_with("reflection own pass"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {
