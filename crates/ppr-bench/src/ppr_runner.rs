@@ -42,6 +42,14 @@ impl PprRunner {
         self.reference_bounces = Some(bounces.max(1));
     }
 
+    /// Records the reflection in a compute pass of its own on every frame, so that the
+    /// projection is timed apart (for the suites that report it alone: `scaling`,
+    /// `extract-trade`). The runtime's default records them in one pass on frames without
+    /// layers, about 0.006 ms faster (`DebugOptions::reflection_own_pass`).
+    pub fn time_projection_apart(&mut self) {
+        self.technique.renderer().debug.reflection_own_pass = true;
+    }
+
     /// The runtime renderer (plan, intermediate buffer, active tiles).
     pub fn renderer(&mut self) -> &mut ReflectionRenderer {
         self.technique.renderer()

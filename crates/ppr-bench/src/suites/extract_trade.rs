@@ -117,6 +117,8 @@ pub fn run_extract_trade(
             let reflective: f64 = set.reflectors.iter().map(|r| r.area() * r.coverage).sum();
             let mut ppr =
                 PprRunner::new(device, queue, &set, "ppr", ReflectionSettings::ALL, PlanParams::default())?;
+            // The trade reports the projection's and the reflection's times apart.
+            ppr.time_projection_apart();
             let (mut proj, mut refl, mut total, mut visible) =
                 (Vec::new(), Vec::new(), Vec::new(), Vec::new());
             for cam in &scene.cameras {

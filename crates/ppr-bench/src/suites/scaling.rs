@@ -111,14 +111,11 @@ impl Measurer<'_> {
         };
         let mut runners = Vec::new();
         for (_, params) in variants {
-            runners.push(PprRunner::new(
-                device,
-                queue,
-                &g.reflectors,
-                "ppr",
-                ReflectionSettings::ALL,
-                *params,
-            )?);
+            let mut runner =
+                PprRunner::new(device, queue, &g.reflectors, "ppr", ReflectionSettings::ALL, *params)?;
+            // The report's projection columns need the projection's own time.
+            runner.time_projection_apart();
+            runners.push(runner);
         }
         // The first round lightest first, so that the heavy variants' frames (up to 50 ms at
         // 10 000 shapes without culling) cannot leave the GPU slow for the light ones; the
