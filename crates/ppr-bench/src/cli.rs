@@ -286,7 +286,8 @@ pub struct CompareArgs {
     /// tier= full|half|quarter, the resolution the passes run at), exact,
     /// ppr:glossy=off (every reflector blurred as a mirror), ppr:timing=frame (the whole
     /// frame between two encoder timestamps instead of the sum of its passes' own, which
-    /// leaves out the barriers between them), ssr-brute (thickness=),
+    /// leaves out the barriers between them and the upload's copies; the SSR and SSPR
+    /// baselines take timing=frame too), ssr-brute (thickness=),
     /// ssr-low (stride=, refine=, thickness=), ssr-glossy (ssr-low's march and keys, then a
     /// blur of radius spread × roughness² × hit distance: spread= default 4, max-radius= in
     /// pixels default 32, taps= default 24), ssr-hiz (iterations=, thickness=), sspr,

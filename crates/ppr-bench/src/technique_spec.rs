@@ -78,7 +78,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's), `timing=passes|frame` (GPU time as the sum of the
 /// passes' own timestamps, the default, or the whole frame between two encoder timestamps,
-/// the barriers between passes included) and `bounces=N` (N frames of the same camera, each fed the previous one's
+/// the barriers between passes included; the SSR and SSPR baselines take it too) and `bounces=N` (N frames of the same camera, each fed the previous one's
 /// composited image as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
@@ -106,13 +106,13 @@ pub const MAX_BOUNCES: u32 = 4;
 fn keys_of(name: &str) -> &'static [&'static str] {
     match name {
         n if n.starts_with("ppr") => &PPR_KEYS,
-        "ssr-brute" => &["thickness", "reference-bounces"],
-        "ssr-low" => &["stride", "refine", "thickness", "reference-bounces"],
+        "ssr-brute" => &["thickness", "timing", "reference-bounces"],
+        "ssr-low" => &["stride", "refine", "thickness", "timing", "reference-bounces"],
         "ssr-glossy" => {
-            &["stride", "refine", "thickness", "spread", "max-radius", "taps", "reference-bounces"]
+            &["stride", "refine", "thickness", "spread", "max-radius", "taps", "timing", "reference-bounces"]
         }
-        "ssr-hiz" => &["iterations", "thickness", "reference-bounces"],
-        "sspr" | "sspr-stretch" => &["reference-bounces"],
+        "ssr-hiz" => &["iterations", "thickness", "timing", "reference-bounces"],
+        "sspr" | "sspr-stretch" => &["timing", "reference-bounces"],
         "exact" => &["bounces"],
         _ => &[],
     }
@@ -373,7 +373,12 @@ pub fn build_technique(
     let int = |key: &str| spec.param(key).and_then(|v| v.parse::<u32>().ok());
     let runner =
         |family, inner: Box<dyn ReflectionTechnique>| -> Result<Box<dyn BenchTechnique>, BenchError> {
-            let runner = TraitRunner::new(spec.label(), family, inner);
+            let mut runner = TraitRunner::new(spec.label(), family, inner);
+            if let Some(v) = spec.param("timing")
+                && frame_timing(v).map_err(BenchError::Spec)?
+            {
+                runner = runner.with_frame_timing(device, queue);
+            }
             Ok(Box::new(runner.with_reference_bounces(reference_bounces(spec)?)))
         };
     match spec.name.as_str() {
@@ -447,7 +452,8 @@ mod tests {
         let framed: TechniqueSpec = "ppr:timing=frame".parse().expect("frame timing");
         assert_eq!(framed.param("timing"), Some("frame"));
         assert!("ppr:timing=fast".parse::<TechniqueSpec>().is_err());
-        assert!("ssr-low:timing=frame".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:timing=frame".parse::<TechniqueSpec>().is_ok());
+        assert!("exact:timing=frame".parse::<TechniqueSpec>().is_err());
         let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
         let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
         assert!(!settings.glossy);

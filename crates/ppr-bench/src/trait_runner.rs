@@ -3,6 +3,7 @@
 
 use ppr_runtime::Camera;
 use ppr_testbed::ReflectionTechnique;
+use ppr_testbed::encoder_timer::EncoderTimer;
 
 use crate::technique::{BenchFrame, BenchTechnique, Family};
 use crate::timing::PassTime;
@@ -13,11 +14,21 @@ pub struct TraitRunner {
     family: Family,
     inner: Box<dyn ReflectionTechnique>,
     reference_bounces: u32,
+    /// With `timing=frame`: two encoder timestamps around everything the technique records.
+    span: Option<EncoderTimer>,
 }
 
 impl TraitRunner {
     pub fn new(label: impl Into<String>, family: Family, inner: Box<dyn ReflectionTechnique>) -> Self {
-        Self { label: label.into(), family, inner, reference_bounces: 1 }
+        Self { label: label.into(), family, inner, reference_bounces: 1, span: None }
+    }
+
+    /// Timed as a whole frame, between two encoder timestamps around everything it records
+    /// (as `ppr:timing=frame`; its own pass timestamps stay inside), where the device has
+    /// encoder timestamps; by its passes elsewhere.
+    pub fn with_frame_timing(mut self, device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        self.span = EncoderTimer::new(device, queue);
+        self
     }
 
     /// Scored against the reference of `bounces` bounces (1 by default).
@@ -51,10 +62,19 @@ impl BenchTechnique for TraitRunner {
     }
 
     fn encode(&mut self, encoder: &mut wgpu::CommandEncoder, frame: &BenchFrame<'_>) {
+        if let Some(t) = &self.span {
+            t.begin(encoder);
+        }
         self.inner.encode(encoder, &frame.reflection);
+        if let Some(t) = &self.span {
+            t.end(encoder);
+        }
     }
 
     fn read_timings(&mut self, device: &wgpu::Device) -> Option<Vec<PassTime>> {
+        if let Some(t) = &self.span {
+            return t.read_ms(device).map(|ms| vec![PassTime::new("frame", ms)]);
+        }
         let passes: Vec<PassTime> =
             self.inner.timings(device)?.into_iter().map(|(name, ms)| PassTime::new(name, ms)).collect();
         (!passes.is_empty()).then_some(passes)

@@ -66,3 +66,55 @@ fn quick_compare_writes_a_full_csv_a_table_and_a_plot() {
     let md = std::fs::read_to_string(out.path().join("comparison.md")).expect("markdown");
     assert!(md.contains("| technique |") && md.contains("## demo, 64x36"), "{md}");
 }
+
+#[test]
+fn timing_frame_times_ppr_and_ssr_as_whole_frames_where_the_adapter_can() {
+    let out = tempfile::tempdir().expect("temp dir");
+    let root = repo_root();
+    let args: Vec<String> = [
+        "ppr-bench",
+        "compare",
+        "--quick",
+        "--technique",
+        "ppr:timing=frame",
+        "--technique",
+        "ssr-low:timing=frame",
+        "--technique",
+        "ssr-low",
+        "--out",
+    ]
+    .iter()
+    .map(|s| (*s).to_string())
+    .chain([
+        out.path().display().to_string(),
+        "--repo-root".into(),
+        root.display().to_string(),
+        "--scenes-dir".into(),
+        root.join("../shared/scenes").display().to_string(),
+    ])
+    .collect();
+    ppr_bench::cli::run_cli(args).expect("quick bench runs");
+    let csv = std::fs::read_to_string(out.path().join("comparison.csv")).expect("csv");
+    let mut lines = csv.lines();
+    let header = split_line(lines.next().expect("header"));
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}"));
+    let rows: Vec<Vec<String>> = lines.map(split_line).collect();
+    let passes = |technique: &str| {
+        rows.iter().find(|r| r[col("technique")] == technique).unwrap_or_else(|| panic!("no {technique} row"))
+            [col("passes_median_ms")]
+        .clone()
+    };
+    let gpu = ppr_testbed::GpuContext::new_headless().expect("a wgpu adapter (llvmpipe without a GPU)");
+    let spans = gpu.device.features().contains(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS);
+    for technique in ["ppr timing=frame", "ssr-low timing=frame"] {
+        let p = passes(technique);
+        eprintln!("{technique}: {p} (encoder timestamps: {spans})");
+        // A whole frame's one span where the adapter writes timestamps between passes
+        // (llvmpipe's GL timers may leave a run without times: then no pass at all).
+        assert!(p.is_empty() || p.starts_with("frame=") && !p.contains(';'), "{technique}: {p}");
+        if !spans {
+            assert!(p.is_empty(), "{technique}: no encoder timestamps, no span: {p}");
+        }
+    }
+    assert!(passes("ssr-low").starts_with("ssr march="), "{}", passes("ssr-low"));
+}
