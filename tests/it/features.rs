@@ -36,6 +36,19 @@ fn room(s: &mut AnalyticScene) {
     s.cuboid(DVec3::new(-2.2, 0.0, -6.6), DVec3::new(-1.6, 2.0, -6.0), Vec3::new(0.1, 0.8, 0.2));
 }
 
+/// The room with a floor mirror (3.5 m × 3.5 m) in the middle.
+fn floor_mirror_room() -> AnalyticScene {
+    let mut s = AnalyticScene::default();
+    room(&mut s);
+    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    s
+}
+
+/// An output's bits, pixel by pixel (for bit-for-bit comparisons).
+fn output_bits(pixels: &[Vec4]) -> Vec<[u32; 4]> {
+    pixels.iter().map(|v| v.to_array().map(f32::to_bits)).collect()
+}
+
 /// Error over `mask` pixels away from edges of `reference`.
 fn compare_layer(
     frame: &Frame,
@@ -57,9 +70,7 @@ fn compare_layer(
 
 #[test]
 fn a_glass_panel_over_a_floor_mirror_reflects_both() {
-    let mut s = AnalyticScene::default();
-    room(&mut s);
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let mut s = floor_mirror_room();
     // A glass table top 0.8 m above the mirror, covering part of it.
     s.glass("glass top", DVec3::new(0.6, 0.7, -2.2), DVec3::X, DVec3::NEG_Z, [2.0, 1.6]);
     let cam = camera();
@@ -111,9 +122,7 @@ fn indirect_dispatch_keeps_a_mirror_seen_through_glass_written_to_depth() {
     // A renderer whose depth pass writes the glass (the testbed's does): the mirror under
     // a large glass table is then not in the depth buffer, and the tiles that show it only
     // through the glass must still be classified active (the classification counts layers).
-    let mut s = AnalyticScene::default();
-    room(&mut s);
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let mut s = floor_mirror_room();
     s.glass("glass top", DVec3::new(0.0, 0.7, -3.0), DVec3::X, DVec3::NEG_Z, [3.4, 2.6]);
     // Looking down at the table, so that whole tiles show the mirror only through it.
     let cam = Camera::look_at(
@@ -198,15 +207,12 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     // tile classification and the reflection in the projection's (wgpu's barriers between
     // them): the same images as each in its own pass, the same dispatches, and the merged
     // passes untimed.
-    let mut s = AnalyticScene::default();
-    room(&mut s);
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let mut s = floor_mirror_room();
     s.glass("glass top", DVec3::new(0.6, 0.7, -2.2), DVec3::X, DVec3::NEG_Z, [2.0, 1.6]);
     s.water("basin", DVec3::new(-2.0, 0.3, -2.0), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
     let cam = camera();
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
-    let bits = |p: &[Vec4]| p.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
     // (layer placement, classification in the projection's pass, reflection in its own)
     let layouts = [
         (LayerPlacement::OwnPass, false, true),
@@ -249,8 +255,8 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
                 placement,
                 (classify_merged, reflection_merged),
                 r.last_dispatch_count(),
-                bits(&out.pixels),
-                bits(&out.layer_pixels),
+                output_bits(&out.pixels),
+                output_bits(&out.layer_pixels),
             ));
         }
         let (_, _, dispatches, main, layer) = &images[0];
@@ -266,9 +272,7 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
 
 #[test]
 fn without_layers_the_reflection_shares_the_projection_s_compute_pass() {
-    let mut s = AnalyticScene::default();
-    room(&mut s);
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let s = floor_mirror_room();
     let cam = camera();
     let gpu = GpuFrame::upload(&s.render(&cam, SIZE));
     for indirect in [Choice::Off, Choice::On] {
@@ -284,10 +288,7 @@ fn without_layers_the_reflection_shares_the_projection_s_compute_pass() {
             assert_eq!((projection, reflection, together), (own_pass, own_pass, !own_pass), "{indirect:?}");
             let reflected = out.pixels.iter().filter(|p| p.w > 0.0).count();
             assert!(reflected > 1000, "{indirect:?}: {reflected} pixels with a reflection");
-            outputs.push((
-                r.last_dispatch_count(),
-                out.pixels.iter().map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>(),
-            ));
+            outputs.push((r.last_dispatch_count(), output_bits(&out.pixels)));
         }
         assert!(outputs[0] == outputs[1], "{indirect:?}: one compute pass changes the frame");
     }
@@ -432,9 +433,7 @@ fn normal_maps_bring_the_reflection_closer_to_the_bumpy_reference() {
 
 #[test]
 fn without_glass_water_or_normal_maps_nothing_extra_runs() {
-    let mut s = AnalyticScene::default();
-    room(&mut s);
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -4.0), DVec3::X, DVec3::NEG_Z, [3.5, 3.5]);
+    let s = floor_mirror_room();
     let cam = camera();
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
