@@ -412,6 +412,35 @@ fn frames_reuse_their_upload_staging_buffers() {
     assert!(bits(&after) == bits(&first[1]), "the frame after a dropped encoder");
 }
 
+#[test]
+fn a_small_level_s_upload_is_one_copy() {
+    // Every part of a frame's upload (uniforms, layers, shapes, lists, tests, glossy
+    // reflectors) lies in one buffer, close together for a small level: one copy command
+    // carries them all, and the frames are those of one copy per part, bit for bit (two
+    // views by turns, a water layer and a glossy pond, direct and indirect frames).
+    let (set, cams, frames) = pond_views();
+    for indirect in [Choice::Off, Choice::On] {
+        let mut one = renderer();
+        let mut each = renderer();
+        each.debug.separate_upload_copies = true;
+        for r in [&mut one, &mut each] {
+            r.plan_params.indirect = indirect;
+            r.set_reflectors(&set);
+        }
+        for (k, v) in [0, 1, 1, 0].into_iter().enumerate() {
+            let a = run(&mut one, &frames[v], &cams[v]);
+            let b = run(&mut each, &frames[v], &cams[v]);
+            let what = format!("{indirect:?}, frame {k} (view {v})");
+            assert!(!a.plan.layers.is_empty() && !a.plan.visible.is_empty(), "{what}: {}", a.plan);
+            assert_eq!(one.last_upload_copy_count(), 1, "{what}");
+            assert!(each.last_upload_copy_count() >= 6, "{what}: {} copies", each.last_upload_copy_count());
+            assert!(a.pixels.iter().filter(|p| p.w > 0.0).count() > 500, "{what}: reflections found");
+            assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
+            assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+        }
+    }
+}
+
 /// The clear pass's index in `ReflectionRenderer::passes_recorded`.
 const CLEAR: usize = 1;
 

@@ -213,31 +213,37 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
     let cam = camera();
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
-    // (layer placement, classification in the projection's pass, reflection in its own)
+    // (layer placement, classification in the projection's pass, reflection in its own,
+    // layered frames' reflection in its own)
     let layouts = [
-        (LayerPlacement::OwnPass, false, true),
-        (LayerPlacement::AfterReflection, false, false),
-        (LayerPlacement::BeforeReflection, false, false),
-        (LayerPlacement::OwnPass, true, true),
-        (LayerPlacement::BeforeReflection, true, false),
-        (LayerPlacement::OwnPass, true, false),
+        (LayerPlacement::OwnPass, false, true, false),
+        (LayerPlacement::AfterReflection, false, false, false),
+        (LayerPlacement::BeforeReflection, false, false, true),
+        (LayerPlacement::BeforeReflection, false, false, false),
+        (LayerPlacement::OwnPass, true, true, false),
+        (LayerPlacement::BeforeReflection, true, false, true),
+        (LayerPlacement::BeforeReflection, true, false, false),
+        (LayerPlacement::OwnPass, true, false, false),
     ];
     for indirect in [Choice::Off, Choice::On] {
         let mut images = Vec::new();
-        for (placement, classify_merged, reflection_own_pass) in layouts {
+        for (placement, classify_merged, reflection_own_pass, layered_own_pass) in layouts {
             let mut r = renderer();
             r.plan_params.indirect = indirect;
             r.debug.layer_placement = placement;
             r.debug.classify_own_pass = !classify_merged;
             r.debug.reflection_own_pass = reflection_own_pass;
+            r.debug.layered_reflection_own_pass = layered_own_pass;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
             assert_eq!(out.plan.indirect, indirect == Choice::On);
             // Each pass's timestamps: its own pass's, or none (the pass it joined covers it).
-            // The reflection joins the projection's pass only where no layer dispatch goes
-            // with it.
-            let reflection_merged = !reflection_own_pass && placement == LayerPlacement::OwnPass;
+            // The reflection joins the projection's pass where no layer dispatch goes with
+            // it, or where the layers go first (unless the bench keeps layered frames apart).
+            let reflection_merged = !reflection_own_pass
+                && (placement == LayerPlacement::OwnPass
+                    || (placement == LayerPlacement::BeforeReflection && !layered_own_pass));
             let [classify, _, projection, reflection, layers, .., together] = r.passes_recorded();
             assert_eq!(
                 (projection, reflection, together),

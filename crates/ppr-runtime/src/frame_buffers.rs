@@ -5,6 +5,7 @@ use std::cell::Cell;
 use wgpu::util::DeviceExt;
 
 use crate::gpu_types::{FrameUniforms, GpuGlossyShapes, GpuLayer, GpuShape, GpuShapeTest};
+use crate::passes::BufferPart;
 use crate::passes::block_lists::block_lists_size;
 use crate::passes::super_tile_lists::super_lists_size;
 use crate::passes::tile_classify::ACTIVE_TILES_HEADER;
@@ -12,22 +13,15 @@ use crate::plan::FramePlan;
 use crate::plan::{MAX_LAYERS, UNIFORM_TESTS_CAPACITY};
 use crate::plane_groups::plane_group_words_offset;
 use crate::shapes::ShapeTable;
+use crate::upload_layout::{UploadLayout, UploadTarget};
 
 /// Buffers reallocated only when the viewport or the set changes.
 pub(crate) struct FrameBuffers {
-    pub uniforms: wgpu::Buffer,
-    pub shapes: wgpu::Buffer,
-    pub visible: wgpu::Buffer,
-    pub screen_rects: wgpu::Buffer,
-    /// Per visible shape, the screen box of the pixels that may reflect into it.
-    pub source_rects: wgpu::Buffer,
-    /// Per projection test and layer, then per parallel tree member, its test planes.
-    pub tests: wgpu::Buffer,
-    /// The first [`UNIFORM_TESTS_CAPACITY`] of `tests`, as a uniform buffer.
-    pub uniform_tests: wgpu::Buffer,
+    /// Every part of the frame upload (uniforms, shapes, lists, tests, plane groups), each
+    /// a range of it ([`Self::part`]), so that a frame fills them with one copy or a few.
+    pub upload: wgpu::Buffer,
+    pub upload_layout: UploadLayout,
     pub occluders: wgpu::Buffer,
-    /// The visible glossy reflectors (`GpuGlossyShapes`).
-    pub glossy: wgpu::Buffer,
     /// Two intermediate buffers used by turns ([`Self::take_slot`]): a direct-dispatch
     /// reflection pass clears the one the next encode uses, which then needs no clear pass.
     pub intermediate: [wgpu::Buffer; 2],
@@ -35,7 +29,6 @@ pub(crate) struct FrameBuffers {
     pub dispatch_args: wgpu::Buffer,
     pub tile_flags: wgpu::Buffer,
     pub debug_writes: wgpu::Buffer,
-    pub layers: wgpu::Buffer,
     /// Atlas of the layer reflectors' regions (grown on demand), one per slot as the
     /// intermediate buffer.
     pub atlas: [wgpu::Buffer; 2],
@@ -43,10 +36,6 @@ pub(crate) struct FrameBuffers {
     pub super_lists: wgpu::Buffer,
     /// Block counts and lists (full size only once a plan uses tile culling).
     pub block_lists: wgpu::Buffer,
-    /// The merged plane groups' headers (one slot per group of the table, written per
-    /// frame), the frame's parallel trees (`crate::parallel_trees`, room for every family),
-    /// then the table's static grid words (`crate::plane_groups`).
-    pub plane_groups: wgpu::Buffer,
     viewport: [u32; 2],
     shape_count: usize,
     debug: bool,
@@ -82,34 +71,38 @@ impl FrameBuffers {
         let n = table.shapes.len() as u64;
         let occluders =
             if table.occluder_indices.is_empty() { vec![0u32; 4] } else { table.occluder_indices.clone() };
+        let group_words = plane_groups_words(table);
+        let upload_layout = UploadLayout::new(
+            |target| match target {
+                UploadTarget::Uniforms => std::mem::size_of::<FrameUniforms>() as u64,
+                UploadTarget::Glossy => std::mem::size_of::<GpuGlossyShapes>() as u64,
+                UploadTarget::Layers => (MAX_LAYERS * std::mem::size_of::<GpuLayer>()) as u64,
+                UploadTarget::Shapes => n * std::mem::size_of::<GpuShape>() as u64,
+                UploadTarget::Visible => 4 * n,
+                UploadTarget::ScreenRects | UploadTarget::SourceRects => 16 * n,
+                // The loop's tests (entries and layers), then the parallel trees' members:
+                // each shape at most once, plus one entry per tree.
+                UploadTarget::Tests => 2 * n * std::mem::size_of::<GpuShapeTest>() as u64,
+                UploadTarget::PlaneGroups => 4 * group_words.len() as u64,
+            },
+            {
+                let limits = device.limits();
+                u64::from(
+                    limits
+                        .min_storage_buffer_offset_alignment
+                        .max(limits.min_uniform_buffer_offset_alignment),
+                )
+            },
+            (UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>()) as u64,
+        );
         Self {
-            uniforms: buffer(
-                "ppr frame uniforms",
-                std::mem::size_of::<FrameUniforms>() as u64,
-                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            ),
-            shapes: buffer("ppr shapes", n * std::mem::size_of::<GpuShape>() as u64, storage),
-            visible: buffer("ppr visible shapes", 4 * n, storage),
-            screen_rects: buffer("ppr screen rects", 16 * n, storage),
-            source_rects: buffer("ppr source rects", 16 * n, storage),
-            // The loop's tests (entries and layers), then the parallel trees' members: each
-            // shape at most once, plus one entry per tree.
-            tests: buffer("ppr shape tests", 2 * n * std::mem::size_of::<GpuShapeTest>() as u64, storage),
-            uniform_tests: buffer(
-                "ppr shape tests (uniform)",
-                (UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>()) as u64,
-                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            ),
+            upload: upload_buffer(device, &group_words, &upload_layout),
+            upload_layout,
             occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ppr occluder lists"),
                 contents: bytemuck::cast_slice(&occluders),
                 usage: storage,
             }),
-            glossy: buffer(
-                "ppr glossy reflectors",
-                std::mem::size_of::<GpuGlossyShapes>() as u64,
-                wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-            ),
             intermediate: ["ppr intermediate buffer 0", "ppr intermediate buffer 1"]
                 .map(|label| buffer(label, (pixels * 4).next_multiple_of(16), readable)),
             active_tiles: buffer(
@@ -124,7 +117,6 @@ impl FrameBuffers {
             ),
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
-            layers: buffer("ppr layers", (MAX_LAYERS * std::mem::size_of::<GpuLayer>()) as u64, storage),
             atlas: ["ppr layer atlas 0", "ppr layer atlas 1"]
                 .map(|label| buffer(label, 4 * atlas_capacity(layer_pixels, pixels), readable)),
             super_lists: buffer(
@@ -137,12 +129,29 @@ impl FrameBuffers {
                 if tile_culling { block_lists_size(plan.viewport) } else { 16 },
                 readable,
             ),
-            plane_groups: plane_groups_buffer(device, table),
             viewport: plan.viewport,
             shape_count: table.shapes.len(),
             debug,
             next_slot: Cell::new(0),
             clean: Cell::new([false; 2]),
+        }
+    }
+
+    /// `target`'s range of [`Self::upload`], to bind.
+    pub fn part(&self, target: UploadTarget) -> BufferPart<'_> {
+        self.range_of(self.upload_layout.range(target))
+    }
+
+    /// The loop's tests as a uniform array: the first bytes of the tests' part.
+    pub fn uniform_tests(&self) -> BufferPart<'_> {
+        self.range_of(self.upload_layout.uniform_tests())
+    }
+
+    fn range_of(&self, range: std::ops::Range<u64>) -> BufferPart<'_> {
+        BufferPart {
+            buffer: &self.upload,
+            offset: range.start,
+            size: wgpu::BufferSize::new(range.end - range.start),
         }
     }
 
@@ -203,15 +212,26 @@ fn atlas_capacity(layer_pixels: u32, pixels: u64) -> u64 {
     u64::from(layer_pixels).next_multiple_of((pixels / 8).max(1024).next_multiple_of(4))
 }
 
-/// Room for every group's header (zeros until a frame writes them), then the static words.
-fn plane_groups_buffer(device: &wgpu::Device, table: &ShapeTable) -> wgpu::Buffer {
+/// The plane groups' part as a new frame buffer holds it: room for every group's header
+/// (zeros until a frame writes them), then the static words, in whole vec4s (the projection
+/// also reads it as `array<vec4<u32>>`).
+fn plane_groups_words(table: &ShapeTable) -> Vec<u32> {
     let mut words = vec![0u32; plane_group_words_offset(table) as usize];
     words.extend(&table.plane_groups.words);
-    // Whole vec4s: the projection also reads the buffer as `array<vec4<u32>>`.
     words.resize(words.len().max(4).next_multiple_of(4), 0);
+    words
+}
+
+/// The upload buffer, zero but for the plane groups' static words (which stay: no copy
+/// reaches them, the frames write the headers before them).
+fn upload_buffer(device: &wgpu::Device, group_words: &[u32], layout: &UploadLayout) -> wgpu::Buffer {
+    let mut bytes = vec![0u8; layout.size() as usize];
+    let groups = layout.range(UploadTarget::PlaneGroups).start as usize;
+    let words: &[u8] = bytemuck::cast_slice(group_words);
+    bytes[groups..groups + words.len()].copy_from_slice(words);
     device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some("ppr plane groups"),
-        contents: bytemuck::cast_slice(&words),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+        label: Some("ppr frame upload parts"),
+        contents: &bytes,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
     })
 }

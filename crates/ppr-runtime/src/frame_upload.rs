@@ -1,9 +1,10 @@
 //! What one `prepare` hands to the GPU: the frame uniforms, the camera-relative shapes,
 //! the visible list, the screen rectangles, the layers, the shape tests, the source boxes
 //! and the merged plane groups' headers and trees' words, in memory kept from frame to
-//! frame. `encode` writes the parts one after the other into a staging buffer
-//! (`upload_ring.rs`: reused frame after frame) and records copies from there into the
-//! frame buffers before its passes.
+//! frame. `encode` writes the parts into a staging buffer (`upload_ring.rs`: reused frame
+//! after frame) as they lie in the frame buffers' upload buffer (`upload_layout.rs`) and
+//! records one copy from there per run of parts that lie close together: one copy for a
+//! level of a few hundred shapes.
 //!
 //! Why not `queue.write_buffer` into the frame buffers: those writes all land at the next
 //! submit, before any command of it, so two views prepared and encoded before one submit
@@ -13,39 +14,13 @@
 use crate::frame_buffers::FrameBuffers;
 use crate::gpu_types::GpuShape;
 use crate::shape_tests::FrameTests;
+use crate::upload_layout::{UploadTarget, copy_runs};
 use crate::upload_ring::UploadRing;
 
-/// The frame buffer a part of the upload is copied into (at offset 0).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum UploadTarget {
-    Uniforms,
-    Shapes,
-    Visible,
-    ScreenRects,
-    Layers,
-    Tests,
-    UniformTests,
-    SourceRects,
-    PlaneGroups,
-    Glossy,
-}
-
-impl UploadTarget {
-    fn buffer(self, b: &FrameBuffers) -> &wgpu::Buffer {
-        match self {
-            Self::Uniforms => &b.uniforms,
-            Self::Shapes => &b.shapes,
-            Self::Visible => &b.visible,
-            Self::ScreenRects => &b.screen_rects,
-            Self::Layers => &b.layers,
-            Self::Tests => &b.tests,
-            Self::UniformTests => &b.uniform_tests,
-            Self::SourceRects => &b.source_rects,
-            Self::PlaneGroups => &b.plane_groups,
-            Self::Glossy => &b.glossy,
-        }
-    }
-}
+/// Gap between two parts up to which one copy takes both (and the gap): a copy command
+/// costs the GPU about 1.5 µs (the upload probe, `docs/perf/runtime.md`), in which the bus
+/// moves tens of kilobytes.
+pub(crate) const MAX_COPY_GAP: u64 = 16 << 10;
 
 /// The memory of one view's upload, kept from frame to frame (at thousands of shapes,
 /// fresh vectors of megabytes a frame cost page faults on every frame): the small parts
@@ -63,14 +38,9 @@ pub(crate) struct UploadMemory {
 /// Where an upload part's bytes are in its [`UploadMemory`].
 #[derive(Clone, Copy, Debug)]
 enum Part {
-    Packed {
-        offset: usize,
-        len: usize,
-    },
+    Packed { offset: usize, len: usize },
     Shapes,
     Tests,
-    /// The tests the loop reads (for the uniform copy).
-    LoopedTests,
     GroupWords,
 }
 
@@ -83,15 +53,14 @@ pub(crate) struct FrameUpload {
 
 impl FrameUpload {
     /// The upload of `memory`'s shapes (into [`UploadTarget::Shapes`]), tests
-    /// ([`UploadTarget::Tests`], and those the loop reads into
-    /// [`UploadTarget::UniformTests`] where `uniform_tests`) and plane-group words
-    /// ([`UploadTarget::PlaneGroups`]), and of the small `packed` parts, copied into its
-    /// bytes (emptied first). Every part is a whole number of 4-byte words, as every GPU
+    /// ([`UploadTarget::Tests`]: the uniform tests are their first ones) and plane-group
+    /// words ([`UploadTarget::PlaneGroups`]), and of the small `packed` parts, copied into
+    /// its bytes (emptied first). Every part is a whole number of 4-byte words, as every GPU
     /// struct of the runtime is.
-    pub fn new(packed: &[(UploadTarget, &[u8])], mut memory: UploadMemory, uniform_tests: bool) -> Self {
+    pub fn new(packed: &[(UploadTarget, &[u8])], mut memory: UploadMemory) -> Self {
         memory.bytes.clear();
         memory.bytes.reserve(packed.iter().map(|(_, p)| p.len()).sum());
-        let mut parts = Vec::with_capacity(packed.len() + 4);
+        let mut parts = Vec::with_capacity(packed.len() + 3);
         for &(target, data) in packed {
             parts.push((target, Part::Packed { offset: memory.bytes.len(), len: data.len() }));
             memory.bytes.extend_from_slice(data);
@@ -101,9 +70,6 @@ impl FrameUpload {
             (UploadTarget::Tests, Part::Tests),
             (UploadTarget::PlaneGroups, Part::GroupWords),
         ]);
-        if uniform_tests {
-            parts.push((UploadTarget::UniformTests, Part::LoopedTests));
-        }
         let mut upload = Self { memory, parts: Vec::new() };
         upload.parts = parts.into_iter().filter(|&(_, part)| !upload.bytes_of(part).is_empty()).collect();
         upload
@@ -120,33 +86,56 @@ impl FrameUpload {
             Part::Packed { offset, len } => &m.bytes[offset..offset + len],
             Part::Shapes => bytemuck::cast_slice(&m.shapes),
             Part::Tests => bytemuck::cast_slice(&m.tests.tests),
-            Part::LoopedTests => bytemuck::cast_slice(&m.tests.tests[..m.tests.looped]),
             Part::GroupWords => bytemuck::cast_slice(&m.tests.group_words),
         }
     }
 
     /// Writes the parts into a staging buffer of `ring` and records the copies from
-    /// there into `buffers` (which must be the ones the frame was prepared for: every part
-    /// fits its target).
+    /// there into `buffers`' upload buffer (which must be the one the frame was prepared
+    /// for: every part fits its range): one per run of parts apart by at most `max_gap`
+    /// bytes (`None`: one per part). Returns how many copies it recorded.
     pub fn encode_copies(
         &self,
         encoder: &mut wgpu::CommandEncoder,
         buffers: &FrameBuffers,
         ring: &mut UploadRing,
-    ) {
+        max_gap: Option<u64>,
+    ) -> usize {
         if self.parts.is_empty() {
-            return;
+            return 0;
         }
-        let slices: Vec<&[u8]> = self.parts.iter().map(|&(_, part)| self.bytes_of(part)).collect();
-        for (&(target, _), data) in self.parts.iter().zip(&slices) {
-            debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
+        let layout = &buffers.upload_layout;
+        // Each part's bytes and where they go.
+        let mut placed: Vec<(u64, &[u8])> = self
+            .parts
+            .iter()
+            .map(|&(target, part)| {
+                let (range, data) = (layout.range(target), self.bytes_of(part));
+                debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
+                debug_assert!(data.len() as u64 <= range.end - range.start, "{target:?} fits its part");
+                (range.start, data)
+            })
+            .collect();
+        placed.sort_by_key(|&(offset, _)| offset);
+        let ranges: Vec<_> = placed.iter().map(|&(o, d)| o..o + d.len() as u64).collect();
+        let runs = copy_runs(&ranges, max_gap);
+        // The runs one after the other in the staging buffer, each with its gaps.
+        let mut staged = Vec::with_capacity(placed.len());
+        let mut run_starts = Vec::with_capacity(runs.len());
+        let mut size = 0;
+        let mut next = placed.iter().peekable();
+        for run in &runs {
+            run_starts.push(size);
+            while let Some(&&(offset, data)) = next.peek().filter(|(o, _)| *o < run.end) {
+                staged.push((size + offset - run.start, data));
+                next.next();
+            }
+            size += run.end - run.start;
         }
-        let staging = ring.stage(encoder, &slices);
-        let mut offset = 0;
-        for (&(target, _), data) in self.parts.iter().zip(&slices) {
-            let size = data.len() as u64;
-            encoder.copy_buffer_to_buffer(&staging, offset, target.buffer(buffers), 0, size);
-            offset += size;
+        let staging = ring.stage(encoder, size, &staged);
+        for (run, from) in runs.iter().zip(run_starts) {
+            encoder.copy_buffer_to_buffer(&staging, from, &buffers.upload, run.start, run.end - run.start);
         }
+        runs.len()
     }
 }

@@ -49,6 +49,7 @@ mod stereo;
 #[doc(hidden)]
 pub mod timestamps;
 // Reused staging buffers for the frame uploads.
+mod upload_layout;
 mod upload_ring;
 mod wgpu_compat;
 

@@ -9,7 +9,7 @@ use ppr_format::ValidatedSet;
 use crate::camera::Camera;
 use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
-use crate::frame_upload::{FrameUpload, UploadMemory, UploadTarget};
+use crate::frame_upload::{FrameUpload, MAX_COPY_GAP, UploadMemory};
 use crate::glossy::glossy_shapes;
 use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::block_lists::BlockListBindings;
@@ -30,6 +30,7 @@ use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
 use crate::timestamps::{FRAME_SPAN, PROJECTION_REFLECTION, PassTimer, PassTimings, TIMED_PASSES};
+use crate::upload_layout::UploadTarget;
 use crate::upload_ring::UploadRing;
 
 /// Pixels within this fraction of their camera distance from a reflector's plane count as
@@ -178,14 +179,23 @@ pub struct DebugOptions {
     /// projection's time covers both), which took 0.006-0.007 ms off the 4K overviews of
     /// the demo and the kitchen (H100, whole frames; docs/perf/runtime.md).
     pub classify_own_pass: bool,
-    /// The reflection recorded in a compute pass of its own also in frames without a layer
-    /// reflection beside it (the layout before the twenty-sixth session; bench only, the
-    /// same image), instead of in the projection's (wgpu's barrier between them; timed
-    /// together as `PassTimings::projection_reflection_ms`), which took 0.006 ms off the
-    /// kitchen's two views without layers at 1080p and 4K (H100, whole frames). Frames with
-    /// layers keep the reflection's own pass, whose layer dispatch runs beside it: in the
-    /// projection's it would follow a barrier of its own (0.001-0.002 ms slower).
+    /// The reflection recorded in a compute pass of its own (the layout before the
+    /// twenty-sixth session; bench only, the same image), instead of in the projection's
+    /// (wgpu's barrier between them; timed together as
+    /// `PassTimings::projection_reflection_ms`), which took 0.006 ms off the kitchen's two
+    /// views without layers at 1080p and 4K (H100, whole frames). See also
+    /// `layered_reflection_own_pass`.
     pub reflection_own_pass: bool,
+    /// Copy each part of the frame upload on its own (nine copy commands or so, as before
+    /// the twenty-seventh session; bench only, the same frame) instead of one copy per run
+    /// of parts that lie close together in the upload buffer (one for a level of a few
+    /// hundred shapes).
+    pub separate_upload_copies: bool,
+    /// On frames whose layer dispatch goes with the reflection: record the two in a compute
+    /// pass of their own after the projection's, as the twenty-sixth session did (its
+    /// merged layout waited on a second barrier: 0.001-0.002 ms slower), instead of in the
+    /// projection's pass, the layers first (their barrier readies the reflection's buffers).
+    pub layered_reflection_own_pass: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -248,6 +258,8 @@ pub struct ReflectionRenderer {
     pub(crate) views: Vec<PreparedView>,
     timer: Option<PassTimer>,
     pub(crate) dispatches: Cell<u32>,
+    /// Copy commands of the last encode's upload.
+    upload_copies: Cell<usize>,
     /// Where `encode` writes each view's upload for its copies: staging buffers that come
     /// back once their encoder's commands are submitted and done.
     upload_ring: RefCell<UploadRing>,
@@ -283,6 +295,7 @@ impl ReflectionRenderer {
             views: Vec::new(),
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
+            upload_copies: Cell::new(0),
             upload_ring: RefCell::new(UploadRing::new(device)),
             layer_output_given: Cell::new(None),
             recorded: Cell::new([false; TIMED_PASSES as usize]),
@@ -393,6 +406,13 @@ impl ReflectionRenderer {
             })
             .collect();
         plans
+    }
+
+    /// How many copy commands the last view `encode` recorded carried its upload (one for
+    /// a level of a few hundred shapes: tests and diagnostics).
+    #[doc(hidden)]
+    pub fn last_upload_copy_count(&self) -> usize {
+        self.upload_copies.get()
     }
 
     /// How many staging buffers `encode` has created for the frame uploads (they are
@@ -511,7 +531,6 @@ impl ReflectionRenderer {
                 ),
             ],
             memory,
-            plan.uniform_tests,
         ))
     }
 
@@ -550,6 +569,7 @@ impl ReflectionRenderer {
         }
         if plan.is_empty() {
             self.recorded.set([false; TIMED_PASSES as usize]);
+            self.upload_copies.set(0);
             return;
         }
         let device = &self.device;
@@ -578,17 +598,19 @@ impl ReflectionRenderer {
         }
         // This prepared frame's uniforms, shapes and lists, copied in here (not at the
         // submit), so that each encode runs with the camera it was prepared for.
-        view.upload.as_ref().expect("prepare() builds the upload").encode_copies(
+        let copies = view.upload.as_ref().expect("prepare() builds the upload").encode_copies(
             encoder,
             b,
             &mut self.upload_ring.borrow_mut(),
+            (!self.debug.separate_upload_copies).then_some(MAX_COPY_GAP),
         );
+        self.upload_copies.set(copies);
         let has_main = !plan.visible.is_empty();
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(
                 device,
                 &DownsampleBindings {
-                    uniforms: &b.uniforms,
+                    uniforms: b.part(UploadTarget::Uniforms),
                     full_depth: inputs.depth,
                     reduced_depth: &r.depth.view,
                 },
@@ -616,15 +638,15 @@ impl ReflectionRenderer {
             self.classify.bind_group(
                 device,
                 &ClassifyBindings {
-                    uniforms: &b.uniforms,
+                    uniforms: b.part(UploadTarget::Uniforms),
                     depth,
-                    shapes: &b.shapes,
-                    visible: &b.visible,
-                    screen_rects: &b.screen_rects,
+                    shapes: b.part(UploadTarget::Shapes),
+                    visible: b.part(UploadTarget::Visible),
+                    screen_rects: b.part(UploadTarget::ScreenRects),
                     active_tiles: &b.active_tiles,
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
-                    layers: &b.layers,
+                    layers: b.part(UploadTarget::Layers),
                     intermediate,
                     atlas,
                 },
@@ -653,7 +675,11 @@ impl ReflectionRenderer {
         if clear_main || clear_atlas {
             let bg = self.clear.bind_group(
                 device,
-                &ClearBindings { intermediate, uniforms: &b.uniforms, active_tiles: &b.active_tiles },
+                &ClearBindings {
+                    intermediate,
+                    uniforms: b.part(UploadTarget::Uniforms),
+                    active_tiles: &b.active_tiles,
+                },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
                 label: Some("ppr clear"),
@@ -673,7 +699,7 @@ impl ReflectionRenderer {
                     device,
                     &ClearBindings {
                         intermediate: atlas,
-                        uniforms: &b.uniforms,
+                        uniforms: b.part(UploadTarget::Uniforms),
                         active_tiles: &b.active_tiles,
                     },
                 );
@@ -686,13 +712,14 @@ impl ReflectionRenderer {
             (false, Some(layer_output)) => Some(self.layer_reflection.bind_group(
                 device,
                 &LayerBindings {
-                    uniforms: &b.uniforms,
+                    uniforms: b.part(UploadTarget::Uniforms),
                     atlas,
-                    layers: &b.layers,
-                    shapes: &b.shapes,
+                    layers: b.part(UploadTarget::Layers),
+                    shapes: b.part(UploadTarget::Shapes),
                     depth,
                     color,
                     output: layer_output,
+                    intermediate,
                 },
             )),
             _ => None,
@@ -709,7 +736,7 @@ impl ReflectionRenderer {
             let bg = self.reflection.bind_group(
                 device,
                 &ReflectionBindings {
-                    uniforms: &b.uniforms,
+                    uniforms: b.part(UploadTarget::Uniforms),
                     intermediate,
                     color,
                     output,
@@ -717,7 +744,7 @@ impl ReflectionRenderer {
                     tile_flags: &b.tile_flags,
                     depth,
                     normals: normals.unwrap_or(color),
-                    glossy: &b.glossy,
+                    glossy: b.part(UploadTarget::Glossy),
                     next_intermediate: &b.intermediate[1 - slot],
                     next_atlas: &b.atlas[1 - slot],
                 },
@@ -747,28 +774,33 @@ impl ReflectionRenderer {
                     record_layers(pass, layer_bg);
                 }
             };
-        // In the projection's compute pass (wgpu's barrier between them) unless a layer
-        // dispatch goes with it (it would wait on a barrier of its own there), or in its own.
+        // In the projection's compute pass (wgpu's barrier between them), or in its own. A
+        // layer dispatch beside the reflection comes first there, and its barrier readies the
+        // reflection's buffers too (it binds the intermediate buffer for that), so that the
+        // reflection runs beside it; the bench may keep such frames in two passes.
         let layers_beside = layer_job.is_some() && layers_with_reflection;
-        let reflection_with_projection = has_main && !self.debug.reflection_own_pass && !layers_beside;
+        let reflection_with_projection = has_main
+            && !self.debug.reflection_own_pass
+            && !(layers_beside
+                && (self.debug.layered_reflection_own_pass || placement != LayerPlacement::BeforeReflection));
         {
             let bg = self.projection.bind_group(
                 device,
                 &ProjectionBindings {
-                    uniforms: &b.uniforms,
+                    uniforms: b.part(UploadTarget::Uniforms),
                     depth,
-                    shapes: &b.shapes,
-                    tests: &b.tests,
+                    shapes: b.part(UploadTarget::Shapes),
+                    tests: b.part(UploadTarget::Tests),
                     occluders: &b.occluders,
                     intermediate,
                     debug_writes: &b.debug_writes,
-                    layers: &b.layers,
+                    layers: b.part(UploadTarget::Layers),
                     atlas,
                     super_lists: &b.super_lists,
-                    source_boxes: &b.source_rects,
+                    source_boxes: b.part(UploadTarget::SourceRects),
                     block_lists: &b.block_lists,
-                    uniform_tests: &b.uniform_tests,
-                    plane_groups: &b.plane_groups,
+                    uniform_tests: b.uniform_tests(),
+                    plane_groups: b.part(UploadTarget::PlaneGroups),
                 },
             );
             let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
@@ -789,10 +821,10 @@ impl ReflectionRenderer {
                 let lists = self.super_tile_lists.bind_group(
                     device,
                     &SuperTileBindings {
-                        uniforms: &b.uniforms,
+                        uniforms: b.part(UploadTarget::Uniforms),
                         depth,
-                        tests: &b.tests,
-                        source_boxes: &b.source_rects,
+                        tests: b.part(UploadTarget::Tests),
+                        source_boxes: b.part(UploadTarget::SourceRects),
                         super_lists: &b.super_lists,
                     },
                 );
@@ -803,10 +835,10 @@ impl ReflectionRenderer {
                 let lists = self.block_lists.bind_group(
                     device,
                     &BlockListBindings {
-                        uniforms: &b.uniforms,
+                        uniforms: b.part(UploadTarget::Uniforms),
                         depth,
-                        tests: &b.tests,
-                        source_boxes: &b.source_rects,
+                        tests: b.part(UploadTarget::Tests),
+                        source_boxes: b.part(UploadTarget::SourceRects),
                         super_lists: &b.super_lists,
                         block_lists: &b.block_lists,
                     },
@@ -889,7 +921,7 @@ impl ReflectionRenderer {
             timestamp_writes,
         });
         let bindings = |reduced_output, output| UpsampleBindings {
-            uniforms: &b.uniforms,
+            uniforms: b.part(UploadTarget::Uniforms),
             full_depth: inputs.depth,
             reduced_depth: &r.depth.view,
             reduced_output,

@@ -11,6 +11,8 @@ use crate::wgpu_compat::MappedRangeMut;
 const MIN_BYTES: u64 = 1 << 20;
 /// Most buffers kept waiting for a frame (the largest are kept).
 const MAX_FREE: usize = 4;
+/// Written into the gaps between parts.
+static ZEROS: [u8; 4096] = [0; 4096];
 
 pub(crate) struct UploadRing {
     device: wgpu::Device,
@@ -33,17 +35,21 @@ impl UploadRing {
         self.created
     }
 
-    /// A staging buffer holding `parts` one after the other from offset 0 (non-empty in
-    /// all, each a whole number of 4-byte words), for copies recorded in `encoder`; it
-    /// comes back to the ring once `encoder`'s commands are submitted and done (one never
-    /// submitted is dropped).
-    pub fn stage(&mut self, encoder: &wgpu::CommandEncoder, parts: &[&[u8]]) -> wgpu::Buffer {
+    /// A staging buffer of `size` bytes holding each of `parts` at its offset (in order of
+    /// offset, apart, the last ending at `size`; each a whole number of 4-byte words) and
+    /// zeros between them, for copies recorded in `encoder`; it comes back to the ring once
+    /// `encoder`'s commands are submitted and done (one never submitted is dropped).
+    pub fn stage(
+        &mut self,
+        encoder: &wgpu::CommandEncoder,
+        size: u64,
+        parts: &[(u64, &[u8])],
+    ) -> wgpu::Buffer {
         self.free.extend(self.returned.try_iter());
         if self.free.len() > MAX_FREE {
             self.free.sort_by_key(|b| std::cmp::Reverse(b.size()));
             self.free.truncate(MAX_FREE);
         }
-        let size: u64 = parts.iter().map(|p| p.len() as u64).sum();
         let buffer = match self.free.iter().position(|b| b.size() >= size) {
             Some(i) => self.free.swap_remove(i),
             None => {
@@ -58,13 +64,20 @@ impl UploadRing {
         };
         {
             // One mapped range (a range's offset must be a multiple of 8); each part
-            // written through its own slice of it.
+            // written through its own slice of it, and each gap zeroed.
             let mut view = buffer.slice(..size).get_mapped_range_mut().into_view_mut();
-            let mut offset = 0;
-            for part in parts {
+            let mut end = 0;
+            for &(offset, part) in parts {
+                let offset = offset as usize;
+                debug_assert!(offset >= end, "parts in order, apart");
+                for start in (end..offset).step_by(ZEROS.len()) {
+                    let len = ZEROS.len().min(offset - start);
+                    view.slice(start..start + len).copy_from_slice(&ZEROS[..len]);
+                }
                 view.slice(offset..offset + part.len()).copy_from_slice(part);
-                offset += part.len();
+                end = offset + part.len();
             }
+            debug_assert_eq!(end as u64, size, "the last part ends the staged bytes");
         }
         buffer.unmap();
         let (sender, back) = (self.sender.clone(), buffer.clone());

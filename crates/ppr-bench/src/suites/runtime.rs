@@ -118,6 +118,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, classify own pass", Choice::Auto, Ablation::None),
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
         ("frame span, reflection own pass", Choice::Auto, Ablation::None),
+        ("frame span, separate upload copies", Choice::Auto, Ablation::None),
+        ("frame span, layered reflection own pass", Choice::Auto, Ablation::None),
+        ("layered reflection own pass", Choice::Auto, Ablation::None),
         ("reflection own pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
@@ -357,7 +360,10 @@ pub fn run_runtime(
                     },
                     frame_span: name.starts_with("frame span"),
                     classify_own_pass: name.contains("classify own pass"),
-                    reflection_own_pass: name.ends_with("reflection own pass"),
+                    reflection_own_pass: name.ends_with(", reflection own pass")
+                        || name == "reflection own pass",
+                    layered_reflection_own_pass: name.ends_with("layered reflection own pass"),
+                    separate_upload_copies: name.ends_with("separate upload copies"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {

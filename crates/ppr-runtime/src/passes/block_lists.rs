@@ -3,7 +3,9 @@
 
 use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
-use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{
+    BufferPart, buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry,
+};
 
 pub const WGSL: &str = include_str!("../../shaders/block_lists.wgsl");
 
@@ -21,12 +23,12 @@ pub fn block_lists_size(viewport: [u32; 2]) -> u64 {
 
 /// Buffers and views the pass reads and writes.
 pub struct BlockListBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub depth: &'a wgpu::TextureView,
     /// Per visible shape, its test planes (`ShapeTest`).
-    pub tests: &'a wgpu::Buffer,
+    pub tests: BufferPart<'a>,
     /// Per visible shape, its source box (read with source boxes).
-    pub source_boxes: &'a wgpu::Buffer,
+    pub source_boxes: BufferPart<'a>,
     /// Super-tile counts and lists (read with super-tiles).
     pub super_lists: &'a wgpu::Buffer,
     pub block_lists: &'a wgpu::Buffer,
@@ -85,22 +87,21 @@ impl BlockListPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &BlockListBindings<'_>) -> wgpu::BindGroup {
-        let entry = buffer_entry;
         self.bind_groups.get(
             device,
             &wgpu::BindGroupDescriptor {
                 label: Some("ppr block lists"),
                 layout: &self.layout,
                 entries: &[
-                    entry(0, b.uniforms),
+                    buffer_entry(0, b.uniforms),
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: wgpu::BindingResource::TextureView(b.depth),
                     },
-                    entry(2, b.tests),
-                    entry(3, b.source_boxes),
-                    entry(4, b.super_lists),
-                    entry(5, b.block_lists),
+                    buffer_entry(2, b.tests),
+                    buffer_entry(3, b.source_boxes),
+                    buffer_entry(4, b.super_lists),
+                    buffer_entry(5, b.block_lists),
                 ],
             },
         )

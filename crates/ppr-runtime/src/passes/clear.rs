@@ -2,7 +2,7 @@
 //! per thread) or only in the active tiles (indirect, one workgroup per tile).
 
 use super::bind_group_cache::BindGroupCache;
-use super::{compute_pipeline, storage_entry, uniform_entry};
+use super::{BufferPart, compute_pipeline, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/clear.wgsl");
 /// Threads per workgroup of `clear_all`, as in `clear.wgsl`.
@@ -11,7 +11,7 @@ const GROUP: u32 = 256;
 /// Buffers the clear pass reads and writes.
 pub struct ClearBindings<'a> {
     pub intermediate: &'a wgpu::Buffer,
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub active_tiles: &'a wgpu::Buffer,
 }
 
@@ -46,7 +46,7 @@ impl ClearPass {
                 layout: &self.layout,
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.binding() },
                     wgpu::BindGroupEntry { binding: 2, resource: b.active_tiles.as_entire_binding() },
                 ],
             },

@@ -2,7 +2,9 @@
 //! size the rest of the passes run at (`crates/ppr-runtime/shaders/downsample.wgsl`).
 
 use super::bind_group_cache::BindGroupCache;
-use super::{compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry};
+use super::{
+    BufferPart, compute_pipeline, loaded_texture_entry, tile_groups, uniform_entry, write_texture_entry,
+};
 
 pub const WGSL: &str = include_str!("../../shaders/downsample.wgsl");
 
@@ -12,7 +14,7 @@ pub const REDUCED_DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::R32Fl
 /// What the downsample pass reads and writes.
 pub struct DownsampleBindings<'a> {
     /// The reduced plan's uniforms.
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub full_depth: &'a wgpu::TextureView,
     pub reduced_depth: &'a wgpu::TextureView,
 }
@@ -48,7 +50,7 @@ impl DownsamplePass {
                 label: Some("ppr downsample"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     view(1, b.full_depth),
                     view(2, b.reduced_depth),
                 ],

@@ -2,7 +2,7 @@
 //! their atlas regions, into the layer output.
 
 use super::bind_group_cache::BindGroupCache;
-use super::{TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{BufferPart, TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/layer_reflection.wgsl");
 
@@ -28,13 +28,18 @@ pub enum LayerPlacement {
 
 /// Buffers and views the layer pass reads and writes.
 pub struct LayerBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub atlas: &'a wgpu::Buffer,
-    pub layers: &'a wgpu::Buffer,
-    pub shapes: &'a wgpu::Buffer,
+    pub layers: BufferPart<'a>,
+    pub shapes: BufferPart<'a>,
     pub depth: &'a wgpu::TextureView,
     pub color: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
+    /// The frame's intermediate buffer, which the shader does not read: bound (read-only)
+    /// so that where the layers and the reflection follow the projection in its compute
+    /// pass, the barrier wgpu puts before this dispatch also readies the intermediate
+    /// buffer for the reflection, which then runs beside it without a barrier of its own.
+    pub intermediate: &'a wgpu::Buffer,
 }
 
 /// The layer reflection pass.
@@ -85,6 +90,7 @@ impl LayerReflectionPass {
                     },
                     count: None,
                 },
+                storage_entry(8, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -121,10 +127,10 @@ impl LayerReflectionPass {
                 label: Some("ppr layer reflection"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: b.atlas.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: b.layers.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: b.shapes.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.layers.binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.shapes.binding() },
                     wgpu::BindGroupEntry {
                         binding: 4,
                         resource: wgpu::BindingResource::TextureView(b.depth),
@@ -141,6 +147,7 @@ impl LayerReflectionPass {
                         binding: 7,
                         resource: wgpu::BindingResource::TextureView(b.output),
                     },
+                    wgpu::BindGroupEntry { binding: 8, resource: b.intermediate.as_entire_binding() },
                 ],
             },
         )

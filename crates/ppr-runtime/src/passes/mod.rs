@@ -117,9 +117,35 @@ pub fn tile_groups([w, h]: [u32; 2]) -> (u32, u32) {
     (w.div_ceil(TILE), h.div_ceil(TILE))
 }
 
-/// A bind-group entry for a whole buffer.
-pub(crate) fn buffer_entry(binding: u32, buffer: &wgpu::Buffer) -> wgpu::BindGroupEntry<'_> {
-    wgpu::BindGroupEntry { binding, resource: buffer.as_entire_binding() }
+/// A buffer or a range of one, to bind (a part of the frame upload is a range of its
+/// buffer: `crate::upload_layout`).
+#[derive(Clone, Copy, Debug)]
+pub struct BufferPart<'a> {
+    pub buffer: &'a wgpu::Buffer,
+    pub offset: u64,
+    /// `None`: to the buffer's end.
+    pub size: Option<wgpu::BufferSize>,
+}
+
+impl<'a> BufferPart<'a> {
+    pub fn binding(self) -> wgpu::BindingResource<'a> {
+        wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+            buffer: self.buffer,
+            offset: self.offset,
+            size: self.size,
+        })
+    }
+}
+
+impl<'a> From<&'a wgpu::Buffer> for BufferPart<'a> {
+    fn from(buffer: &'a wgpu::Buffer) -> Self {
+        Self { buffer, offset: 0, size: None }
+    }
+}
+
+/// A bind-group entry for a whole buffer or a range of one.
+pub(crate) fn buffer_entry<'a>(binding: u32, buffer: impl Into<BufferPart<'a>>) -> wgpu::BindGroupEntry<'a> {
+    wgpu::BindGroupEntry { binding, resource: buffer.into().binding() }
 }
 
 /// 0.0 or 1.0, as override constants take booleans.

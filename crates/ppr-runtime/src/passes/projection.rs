@@ -5,7 +5,9 @@
 use super::bind_group_cache::BindGroupCache;
 use std::collections::HashMap;
 
-use super::{buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{
+    BufferPart, buffer_entry, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry,
+};
 
 pub const WGSL: &str = include_str!("../../shaders/projection.wgsl");
 
@@ -145,28 +147,28 @@ impl Ablation {
 
 /// Buffers and views the projection pass reads and writes.
 pub struct ProjectionBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub depth: &'a wgpu::TextureView,
-    pub shapes: &'a wgpu::Buffer,
+    pub shapes: BufferPart<'a>,
     /// Per projection test (visible shape or merged plane group), then per layer: its test planes (`ShapeTest` of
     /// `tile_test.wgsl`).
-    pub tests: &'a wgpu::Buffer,
+    pub tests: BufferPart<'a>,
     pub occluders: &'a wgpu::Buffer,
     pub intermediate: &'a wgpu::Buffer,
     pub debug_writes: &'a wgpu::Buffer,
-    pub layers: &'a wgpu::Buffer,
+    pub layers: BufferPart<'a>,
     pub atlas: &'a wgpu::Buffer,
     /// Super-tile counts and lists (read with `super_tiles`; any buffer otherwise).
     pub super_lists: &'a wgpu::Buffer,
     /// Per visible shape, then per layer, its source box (read with `source_boxes`).
-    pub source_boxes: &'a wgpu::Buffer,
+    pub source_boxes: BufferPart<'a>,
     /// Block counts and lists (read with `tile_culling`; any buffer otherwise).
     pub block_lists: &'a wgpu::Buffer,
     /// The first shape tests as a uniform buffer (read with `uniform_tests`).
-    pub uniform_tests: &'a wgpu::Buffer,
+    pub uniform_tests: BufferPart<'a>,
     /// The merged plane groups' headers and grids (`crate::plane_groups`) and the frame's
     /// parallel trees (`crate::parallel_trees`).
-    pub plane_groups: &'a wgpu::Buffer,
+    pub plane_groups: BufferPart<'a>,
 }
 
 /// Workgroup memory the projection's own variables may take (the fused lists' list and
@@ -307,31 +309,30 @@ impl ProjectionPass {
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &ProjectionBindings<'_>) -> wgpu::BindGroup {
-        let entry = buffer_entry;
         self.bind_groups.get(
             device,
             &wgpu::BindGroupDescriptor {
                 label: Some("ppr projection"),
                 layout: &self.layout,
                 entries: &[
-                    entry(0, b.uniforms),
+                    buffer_entry(0, b.uniforms),
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: wgpu::BindingResource::TextureView(b.depth),
                     },
-                    entry(2, b.shapes),
-                    entry(3, b.tests),
-                    entry(4, b.occluders),
-                    entry(5, b.intermediate),
-                    entry(6, b.debug_writes),
-                    entry(7, b.layers),
-                    entry(8, b.atlas),
-                    entry(9, b.super_lists),
-                    entry(10, b.source_boxes),
-                    entry(11, b.block_lists),
-                    entry(12, b.uniform_tests),
-                    entry(13, b.plane_groups),
-                    entry(14, b.plane_groups),
+                    buffer_entry(2, b.shapes),
+                    buffer_entry(3, b.tests),
+                    buffer_entry(4, b.occluders),
+                    buffer_entry(5, b.intermediate),
+                    buffer_entry(6, b.debug_writes),
+                    buffer_entry(7, b.layers),
+                    buffer_entry(8, b.atlas),
+                    buffer_entry(9, b.super_lists),
+                    buffer_entry(10, b.source_boxes),
+                    buffer_entry(11, b.block_lists),
+                    buffer_entry(12, b.uniform_tests),
+                    buffer_entry(13, b.plane_groups),
+                    buffer_entry(14, b.plane_groups),
                 ],
             },
         )

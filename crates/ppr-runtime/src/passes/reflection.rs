@@ -1,7 +1,9 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
 use super::bind_group_cache::BindGroupCache;
-use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry};
+use super::{
+    BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry,
+};
 
 use std::collections::HashMap;
 
@@ -12,7 +14,7 @@ pub const OUTPUT_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 
 /// Buffers and views the reflection pass reads and writes.
 pub struct ReflectionBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub intermediate: &'a wgpu::Buffer,
     pub color: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
@@ -22,7 +24,7 @@ pub struct ReflectionBindings<'a> {
     /// Shading normals (world space, xyz); any float texture when normal maps are off.
     pub normals: &'a wgpu::TextureView,
     /// The frame's glossy reflectors (`GpuGlossyShapes`).
-    pub glossy: &'a wgpu::Buffer,
+    pub glossy: BufferPart<'a>,
     /// The next encode's intermediate buffer and atlas (the other slot of
     /// `FrameBuffers`), cleared by the direct-dispatch pipelines.
     pub next_intermediate: &'a wgpu::Buffer,
@@ -255,7 +257,7 @@ impl ReflectionPass {
                 label: Some("ppr reflection"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: b.intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry {
                         binding: 2,
@@ -279,7 +281,7 @@ impl ReflectionPass {
                         binding: 8,
                         resource: wgpu::BindingResource::TextureView(b.normals),
                     },
-                    wgpu::BindGroupEntry { binding: 9, resource: b.glossy.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 9, resource: b.glossy.binding() },
                     wgpu::BindGroupEntry { binding: 10, resource: b.next_intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 11, resource: b.next_atlas.as_entire_binding() },
                 ],

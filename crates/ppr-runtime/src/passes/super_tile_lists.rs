@@ -2,7 +2,7 @@
 //! some pixel of it, so that the tiled projection's 16 × 16 tiles test only those.
 
 use super::bind_group_cache::BindGroupCache;
-use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/super_tile_lists.wgsl");
 
@@ -27,12 +27,12 @@ pub fn super_lists_size(viewport: [u32; 2]) -> u64 {
 
 /// Buffers and views the pass reads and writes.
 pub struct SuperTileBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub depth: &'a wgpu::TextureView,
     /// Per visible shape, its test planes (`ShapeTest`).
-    pub tests: &'a wgpu::Buffer,
+    pub tests: BufferPart<'a>,
     /// Per visible shape, its source box (read with source boxes).
-    pub source_boxes: &'a wgpu::Buffer,
+    pub source_boxes: BufferPart<'a>,
     pub super_lists: &'a wgpu::Buffer,
 }
 
@@ -76,13 +76,13 @@ impl SuperTileListPass {
                 label: Some("ppr super-tile lists"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: wgpu::BindingResource::TextureView(b.depth),
                     },
-                    wgpu::BindGroupEntry { binding: 2, resource: b.tests.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: b.source_boxes.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.tests.binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.source_boxes.binding() },
                     wgpu::BindGroupEntry { binding: 4, resource: b.super_lists.as_entire_binding() },
                 ],
             },

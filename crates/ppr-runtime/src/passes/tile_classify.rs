@@ -4,7 +4,7 @@
 
 use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
-use super::{compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
 
@@ -13,16 +13,16 @@ pub const ACTIVE_TILES_HEADER: u64 = 16;
 
 /// Buffers and views the classification reads and writes.
 pub struct ClassifyBindings<'a> {
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub depth: &'a wgpu::TextureView,
-    pub shapes: &'a wgpu::Buffer,
-    pub visible: &'a wgpu::Buffer,
-    pub screen_rects: &'a wgpu::Buffer,
+    pub shapes: BufferPart<'a>,
+    pub visible: BufferPart<'a>,
+    pub screen_rects: BufferPart<'a>,
     pub active_tiles: &'a wgpu::Buffer,
     pub dispatch_args: &'a wgpu::Buffer,
     pub tile_flags: &'a wgpu::Buffer,
     /// Layer reflectors of the frame (glass, water): reflectors seen through them count.
-    pub layers: &'a wgpu::Buffer,
+    pub layers: BufferPart<'a>,
     /// Cleared over the active tiles (unless the clear pass does it, [`TileClassifyPass::encode`]).
     pub intermediate: &'a wgpu::Buffer,
     /// The layers' atlas, cleared over the frame's layer regions (unless the clear pass
@@ -106,18 +106,18 @@ impl TileClassifyPass {
                 label: Some("ppr tile classify"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     wgpu::BindGroupEntry {
                         binding: 1,
                         resource: wgpu::BindingResource::TextureView(b.depth),
                     },
-                    wgpu::BindGroupEntry { binding: 2, resource: b.shapes.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: b.visible.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: b.shapes.binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: b.visible.binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.binding() },
                     wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 8, resource: b.layers.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 8, resource: b.layers.binding() },
                     wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 10, resource: b.atlas.as_entire_binding() },
                 ],

@@ -4,7 +4,8 @@
 use super::bind_group_cache::BindGroupCache;
 use super::reflection::OUTPUT_FORMAT;
 use super::{
-    TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry, write_texture_entry,
+    BufferPart, TILE, compute_pipeline, flag, loaded_texture_entry, storage_entry, uniform_entry,
+    write_texture_entry,
 };
 
 pub const WGSL: &str = include_str!("../../shaders/upsample.wgsl");
@@ -12,7 +13,7 @@ pub const WGSL: &str = include_str!("../../shaders/upsample.wgsl");
 /// What the upsample pass reads and writes.
 pub struct UpsampleBindings<'a> {
     /// The reduced plan's uniforms.
-    pub uniforms: &'a wgpu::Buffer,
+    pub uniforms: BufferPart<'a>,
     pub full_depth: &'a wgpu::TextureView,
     pub reduced_depth: &'a wgpu::TextureView,
     pub reduced_output: &'a wgpu::TextureView,
@@ -62,7 +63,7 @@ impl UpsamplePass {
                 label: Some("ppr upsample"),
                 layout: &self.layout,
                 entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 0, resource: b.uniforms.binding() },
                     view(1, b.full_depth),
                     view(2, b.reduced_depth),
                     view(3, b.reduced_output),
