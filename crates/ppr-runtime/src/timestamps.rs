@@ -20,9 +20,8 @@ pub struct PassTimings {
     /// barriers between them (`DebugOptions::frame_span`; the passes are then not timed one
     /// by one).
     pub frame_ms: Option<f64>,
-    /// The projection and the reflection recorded in one compute pass (frames without a
-    /// layer reflection beside the reflection; then `projection_ms` and `reflection_ms`
-    /// are `None`).
+    /// The projection and the reflection (and the layer reflection beside it) recorded in
+    /// one compute pass (the default; then `projection_ms` and `reflection_ms` are `None`).
     pub projection_reflection_ms: Option<f64>,
 }
 
