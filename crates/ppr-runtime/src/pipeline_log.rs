@@ -5,14 +5,17 @@
 //!
 //! Nothing is recorded until [`start`]; while it is off, the only cost is one atomic load
 //! per module and pipeline creation. While it is on, [`crate::shader::create_module`]
-//! remembers each module's source, keyed by the module itself (wgpu's `ShaderModule` is
-//! `Clone + Ord` by identity; the log keeps a clone, so no other module can take its
-//! identity while it is remembered), and `passes::compute_pipeline` records a
-//! [`PipelineSource`] for each pipeline whose module it knows. [`stop`] forgets the modules.
+//! remembers each module's source, keyed by the creating thread and the module itself
+//! (wgpu's `ShaderModule` is `Clone + Ord` by its id, which is unique within one
+//! `wgpu::Instance` only: two instances, as two tests running side by side have, hand out
+//! the same ids; the log keeps a clone, so no other module of the instance can take its id
+//! while it is remembered), and `passes::compute_pipeline` records a [`PipelineSource`] for
+//! each pipeline whose module the creating thread made. [`stop`] forgets the modules.
 
-use std::collections::BTreeMap;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Mutex, MutexGuard};
+use std::thread::ThreadId;
 
 /// One compute pipeline as this crate created it.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,13 +34,15 @@ static ON: AtomicBool = AtomicBool::new(false);
 
 /// The remembered modules and the pipelines recorded since the last [`take`].
 struct Log {
-    modules: BTreeMap<wgpu::ShaderModule, String>,
+    /// By creating thread and module (`None` until the first is remembered: a `static`
+    /// cannot build a `HashMap`).
+    modules: Option<HashMap<(ThreadId, wgpu::ShaderModule), String>>,
     pipelines: Vec<PipelineSource>,
     /// Pipelines whose module was created while the log was off (or elsewhere).
     unknown: usize,
 }
 
-static LOG: Mutex<Log> = Mutex::new(Log { modules: BTreeMap::new(), pipelines: Vec::new(), unknown: 0 });
+static LOG: Mutex<Log> = Mutex::new(Log { modules: None, pipelines: Vec::new(), unknown: 0 });
 
 fn log() -> MutexGuard<'static, Log> {
     // A panic while holding the lock leaves plain data behind: keep using it.
@@ -54,7 +59,7 @@ pub fn start() {
 /// pipelines not yet taken stay for [`take`].
 pub fn stop() {
     ON.store(false, Ordering::SeqCst);
-    log().modules.clear();
+    log().modules = None;
 }
 
 /// Whether the log records.
@@ -76,7 +81,10 @@ pub fn unknown_modules() -> usize {
 /// Remembers `source` as `module`'s WGSL (when the log is on).
 pub(crate) fn remember_module(module: &wgpu::ShaderModule, source: String) {
     if is_on() {
-        log().modules.insert(module.clone(), source);
+        log()
+            .modules
+            .get_or_insert_with(HashMap::new)
+            .insert((std::thread::current().id(), module.clone()), source);
     }
 }
 
@@ -91,7 +99,8 @@ pub(crate) fn record_pipeline(
         return;
     }
     let mut log = log();
-    let Some(source) = log.modules.get(module).cloned() else {
+    let key = (std::thread::current().id(), module.clone());
+    let Some(source) = log.modules.as_ref().and_then(|m| m.get(&key)).cloned() else {
         log.unknown += 1;
         return;
     };
@@ -101,4 +110,57 @@ pub(crate) fn record_pipeline(
         entry_point: entry_point.to_owned(),
         constants: constants.iter().map(|&(n, v)| (n.to_owned(), v)).collect(),
     });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn device() -> wgpu::Device {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
+            "no GPU adapter found: GPU tests need one (Mesa's llvmpipe through wgpu's GL backend works \
+             without a GPU)",
+        );
+        pollster::block_on(adapter.request_device(&Default::default()))
+            .expect("the adapter refused a device")
+            .0
+    }
+
+    #[test]
+    fn two_instances_side_by_side_keep_their_own_sources() {
+        // Two threads, each with its own instance (whose module ids start alike), each
+        // remember a module before either makes its pipeline: each pipeline is logged with
+        // its own thread's source.
+        start();
+        let both = std::sync::Barrier::new(2);
+        std::thread::scope(|scope| {
+            for k in 0..2u32 {
+                let both = &both;
+                scope.spawn(move || {
+                    let device = device();
+                    let source = format!(
+                        "@group(0) @binding(0) var<storage, read_write> out: array<u32>;\n\
+                         @compute @workgroup_size(1) fn main() {{ out[0] = {k}u; }}"
+                    );
+                    let module = crate::shader::create_module(&device, "pipeline log test", source);
+                    both.wait();
+                    let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                        label: None,
+                        entries: &[crate::passes::storage_entry(0, false)],
+                    });
+                    let label = format!("pipeline log test {k}");
+                    crate::passes::compute_pipeline(&device, &label, &layout, &module, "main", &[]);
+                });
+            }
+        });
+        let logged: Vec<PipelineSource> =
+            take().into_iter().filter(|p| p.label.starts_with("pipeline log test")).collect();
+        stop();
+        assert_eq!(logged.len(), 2, "{logged:?}");
+        for p in &logged {
+            let k = p.label.rsplit(' ').next().unwrap_or_default();
+            assert!(p.source.contains(&format!("out[0] = {k}u;")), "{}: {}", p.label, p.source);
+        }
+    }
 }
