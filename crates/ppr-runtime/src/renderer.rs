@@ -186,15 +186,20 @@ pub struct DebugOptions {
     /// views without layers at 1080p and 4K (H100, whole frames). See also
     /// `layered_reflection_own_pass`.
     pub reflection_own_pass: bool,
-    /// Copy each part of the frame upload on its own (nine copy commands or so, as before
+    /// Copy each part of the frame upload on its own (eight to ten copy commands, as before
     /// the twenty-seventh session; bench only, the same frame) instead of one copy per run
     /// of parts that lie close together in the upload buffer (one for a level of a few
-    /// hundred shapes).
+    /// hundred shapes), which took 0.009-0.013 ms off every frame of the demo and the
+    /// kitchen and 0.035 off the 10 000-tread stairway's (H100, whole frames;
+    /// docs/perf/runtime.md).
     pub separate_upload_copies: bool,
     /// On frames whose layer dispatch goes with the reflection: record the two in a compute
-    /// pass of their own after the projection's, as the twenty-sixth session did (its
-    /// merged layout waited on a second barrier: 0.001-0.002 ms slower), instead of in the
-    /// projection's pass, the layers first (their barrier readies the reflection's buffers).
+    /// pass of their own after the projection's (the twenty-sixth session's layout; bench
+    /// only, the same image), instead of in the projection's pass with the layers first
+    /// (the layer dispatch binds the intermediate buffer, so that its barrier readies the
+    /// reflection's buffers too), which took 0.005-0.008 ms off every layered frame of the
+    /// demo and the kitchen (H100, whole frames). Without that binding the merged layout
+    /// waited on a second barrier and lost 0.001-0.002 ms.
     pub layered_reflection_own_pass: bool,
     /// The projection's writes in stages, each stage's loads issued for a thread's four
     /// pixels before any is used (`ProjectionVariant::batched_writes`; bench only until
