@@ -49,6 +49,8 @@ mod stereo;
 #[doc(hidden)]
 pub mod timestamps;
 // Reused staging buffers for the frame uploads.
+#[cfg(test)]
+mod test_device;
 mod upload_layout;
 mod upload_ring;
 mod wgpu_compat;

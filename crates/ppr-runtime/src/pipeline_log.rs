@@ -115,17 +115,7 @@ pub(crate) fn record_pipeline(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn device() -> wgpu::Device {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
-            "no GPU adapter found: GPU tests need one (Mesa's llvmpipe through wgpu's GL backend works \
-             without a GPU)",
-        );
-        pollster::block_on(adapter.request_device(&Default::default()))
-            .expect("the adapter refused a device")
-            .0
-    }
+    use crate::test_device::device;
 
     #[test]
     fn two_instances_side_by_side_keep_their_own_sources() {

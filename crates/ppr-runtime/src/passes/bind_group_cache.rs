@@ -93,17 +93,7 @@ fn key_of(entries: &[wgpu::BindGroupEntry<'_>]) -> Option<Vec<(u32, Bound)>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn device() -> wgpu::Device {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
-        let adapter = pollster::block_on(instance.request_adapter(&Default::default())).expect(
-            "no GPU adapter found: GPU tests need one (Mesa's llvmpipe through wgpu's GL backend works \
-             without a GPU)",
-        );
-        pollster::block_on(adapter.request_device(&Default::default()))
-            .expect("the adapter refused a device")
-            .0
-    }
+    use crate::test_device::device;
 
     #[test]
     fn a_bind_group_is_made_again_only_for_other_resources_and_dropped_when_idle() {
