@@ -23,6 +23,7 @@ mod glossy;
 pub mod gpu_types;
 #[doc(hidden)]
 pub mod parallel_trees;
+mod pass_layout;
 #[doc(hidden)]
 pub mod passes;
 #[cfg(feature = "pipeline-log")]
