@@ -97,46 +97,6 @@ fn the_write_shortcuts_leave_the_buffer_every_write_leaves() {
 }
 
 #[test]
-fn batched_writes_leave_the_buffer_every_write_leaves() {
-    // `DebugOptions::batched_writes`: a thread's four pending writes in stages (their
-    // pre-loads, then their depth-occlusion loads, then their atomics) instead of one pixel
-    // after the other; `reload_pending`: their plane and shape loaded again when written. Treads not walked as a tree (every write through the loop's path),
-    // the occlusion before or after the encoding: the same buffer, bit for bit, where the
-    // pre-loads and the depth test decide many writes.
-    let scene = stairway(40);
-    let set = validated(&scene.reflector_set());
-    let mut checked = 0usize;
-    for camera in cameras() {
-        let gpu = GpuFrame::upload(&scene.render(&camera, SIZE));
-        for order in [Choice::On, Choice::Off] {
-            // (batched writes, the pending plane reloaded): the second option as well.
-            let [a, b, c, d] =
-                [(false, false), (true, false), (false, true), (true, true)].map(|(batched, reload)| {
-                    let mut r = configured(Choice::Off, Choice::On, Choice::Off);
-                    r.plan_params.occlusion_first = order;
-                    r.debug.batched_writes = batched;
-                    r.debug.reload_pending = reload;
-                    r.set_reflectors(&set);
-                    run(&mut r, &gpu, &camera)
-                });
-            assert!(a.plan.trees.is_empty() && a.plan.depth_occlusion, "{}", a.plan);
-            let n = written(&a);
-            assert!(n > 800, "the treads must reflect something: {n}");
-            for (what, other) in [("batched", &b), ("reloaded", &c), ("batched and reloaded", &d)] {
-                let differing =
-                    a.intermediate.iter().zip(&other.intermediate).filter(|(x, y)| x != y).count();
-                assert_eq!(
-                    differing, 0,
-                    "{what}, occlusion first {order:?}: {differing} of {n} written pixels differ"
-                );
-            }
-            checked += n;
-        }
-    }
-    assert!(checked > 10_000, "{checked} written pixels over the cameras");
-}
-
-#[test]
 fn a_walked_tree_writes_what_its_shapes_write() {
     let scene = stairway(40);
     let set = validated(&scene.reflector_set());

@@ -101,11 +101,6 @@ fn a_merged_plane_writes_what_its_shapes_write() {
             assert!(c.plan.tile_culling, "{}", c.plan);
             assert_eq!(c.intermediate, b.intermediate, "culling {culling:?}, super-tiles {super_tiles:?}");
         }
-        // Batched writes test the group's grid per pixel as the loop's path does.
-        let mut batched = configured(Choice::On, Choice::Off, Choice::Off);
-        batched.debug.batched_writes = true;
-        batched.set_reflectors(&set);
-        assert_eq!(run(&mut batched, &gpu, &camera).intermediate, b.intermediate, "batched writes");
     }
     eprintln!("{total_differing} of {checked} written pixels differ over the cameras");
 }

@@ -66,13 +66,6 @@
 //   target before its encoding, not after (the same buffer: a write happens where it is
 //   not occluded and lowers the stored value, in either order). Occluded writes then skip
 //   the encoding; writes that lose to the stored value pay the test before they find out.
-// - BATCHED_WRITES (bench until timed): a thread's pending writes of one shape go out in
-//   stages, each stage's memory reads issued for its four pixels before any is used
-//   (write_quad), instead of one pixel's pre-load and occlusion test after the other's.
-//   The same buffer; not with DEBUG_WRITES, the parallel rule or the debug write modes.
-// - RELOAD_PENDING (bench until timed): the pending writes' plane and shape are loaded
-//   again from their test when written, not kept through the next step (five values less
-//   live across the loop).
 
 override TILE_CULLING: bool = false;
 override SUPER_TILES: bool = false;
@@ -88,8 +81,6 @@ override SOURCE_BOXES: bool = false;
 override UNIFORM_TESTS: bool = false;
 override PARALLEL_TREES: bool = false;
 override OCCLUSION_FIRST: bool = false;
-override BATCHED_WRITES: bool = false;
-override RELOAD_PENDING: bool = false;
 override SUBGROUP_CULL: bool = false;
 // How the fused lists reduce the box of the block's positions (fused_lists.wgsl): 0 the
 // workgroup's atomics, 1 per subgroup first, 2 per subgroup into slots, one barrier.
@@ -454,74 +445,23 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
 // is its test's plane (`ShapeTest.plane`: the shape's normal and minus its plane distance,
 // bit for bit what `shapes` holds), so that the write needs no load of the shape.
 fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
-    let mirrored = p - 2.0 * dist * plane.xyz;
-    if (!lands_on_shape(mirrored, plane, shape)) {
-        return false;
-    }
-    return write_projection(pixel, mirrored, plane.xyz, -plane.w);
-}
-
-// Whether the reflection point of `mirrored` lies on the shape: on a member of a merged
-// plane group (never with occluder lists), not just in the group's bounding rectangle;
-// with occluder lists, not behind one of the shape's occluders.
-fn lands_on_shape(mirrored: vec3<f32>, plane: vec4<f32>, shape: u32) -> bool {
+    let n = plane.xyz;
+    let mirrored = p - 2.0 * dist * n;
     if ((shape & GROUP_TEST_FLAG) != 0u) {
-        let hit = mirrored * (-plane.w / dot(mirrored, plane.xyz));
-        return group_covers(shape & ~GROUP_TEST_FLAG, hit);
+        // A merged plane group (never with occluder lists): does the reflection point lie
+        // on a member, not just in the group's bounding rectangle?
+        let hit = mirrored * (-plane.w / dot(mirrored, n));
+        if (!group_covers(shape & ~GROUP_TEST_FLAG, hit)) {
+            return false;
+        }
     } else if (OCCLUDER_TESTS) {
         let s = shapes[shape];
         let hit = mirrored * (s.plane_dist / dot(mirrored, s.normal));
-        return !is_occluded(hit, s);
-    }
-    return true;
-}
-
-// BATCHED_WRITES: the writes of the pixels `pending` of quad `q` (at `base`) into the shape
-// of `plane` (`shape`), at distances `dists` from it, in stages: where each lands and its
-// encoded value; the values stored there (four loads, then their uses); the depth
-// occlusion at the targets (four depth loads, then their uses); the atomics. The per-pixel
-// path waits on one pixel's loads before it issues the next pixel's.
-fn write_quad(base: vec2<u32>, q: Quad, pending: vec4<bool>, dists: vec4<f32>, plane: vec4<f32>, shape: u32) {
-    var index = vec4<u32>(0u);
-    var value = vec4<u32>(PPR_CLEAR_VALUE);
-    // Each target pixel, x in the low half and y in the high half.
-    var packed = vec4<u32>(0u);
-    for (var j = 0u; j < 4u; j++) {
-        let mirrored = quad_position(q, j) - 2.0 * lane_f32(dists, j) * plane.xyz;
-        if (!lane_bool(pending, j) || !lands_on_shape(mirrored, plane, shape)) {
-            continue;
-        }
-        let pt = projection_point(quad_pixel(base, j), mirrored);
-        if (pt.on_screen) {
-            let m = lane_mask(j);
-            index = select(index, vec4<u32>(pt.t.x + pt.t.y * frame.size.x), m);
-            packed = select(packed, vec4<u32>(pt.t.x | (pt.t.y << 16u)), m);
-            value = select(value, vec4<u32>(projected_value(pt)), m);
+        if (is_occluded(hit, s)) {
+            return false;
         }
     }
-    var stored = vec4<u32>(PPR_CLEAR_VALUE);
-    for (var j = 0u; j < 4u; j++) {
-        if (lane_u32(value, j) != PPR_CLEAR_VALUE) {
-            stored = select(stored, vec4<u32>(atomicLoad(&intermediate[lane_u32(index, j)])), lane_mask(j));
-        }
-    }
-    // A write that would not lower the stored value is left out (PPR_CLEAR_VALUE: none).
-    var live = value < stored;
-    if (DEPTH_OCCLUSION) {
-        var occluded = vec4<bool>(false);
-        for (var j = 0u; j < 4u; j++) {
-            let t = lane_u32(packed, j);
-            if (lane_bool(live, j) && occluded_at(vec2<u32>(t & 0xffffu, t >> 16u), plane.xyz, -plane.w)) {
-                occluded = occluded | lane_mask(j);
-            }
-        }
-        live = live & !occluded;
-    }
-    for (var j = 0u; j < 4u; j++) {
-        if (lane_bool(live, j)) {
-            atomicMin(&intermediate[lane_u32(index, j)], lane_u32(value, j));
-        }
-    }
+    return write_projection(pixel, mirrored, n, -plane.w);
 }
 
 // The four pixels of a thread (one per 16x16 quarter of the block), as vectors: pixel j
@@ -542,10 +482,6 @@ fn lane_f32(v: vec4<f32>, j: u32) -> f32 {
 }
 
 fn lane_u32(v: vec4<u32>, j: u32) -> u32 {
-    return select(select(v.x, v.y, j == 1u), select(v.z, v.w, j == 3u), j > 1u);
-}
-
-fn lane_bool(v: vec4<bool>, j: u32) -> bool {
     return select(select(v.x, v.y, j == 1u), select(v.z, v.w, j == 3u), j > 1u);
 }
 
@@ -874,18 +810,7 @@ fn main(
             best_k = vec4<u32>(NO_SHAPE);
             group = t.group;
         }
-        let batched = BATCHED_WRITES && !PARALLEL_RULE && !DEBUG_WRITES && ABLATION == 0u
-            && (frame.flags & (PPR_FLAG_WRITE_LAST | PPR_FLAG_WRITE_MAX)) == 0u;
-        if (RELOAD_PENDING && !PARALLEL_RULE && any(pending_k != vec4<u32>(NO_SHAPE))) {
-            // Every pending lane holds the same shape (the others NO_SHAPE, the largest).
-            let pt = shape_test(min(min(pending_k.x, pending_k.y), min(pending_k.z, pending_k.w)));
-            pending_plane = pt.plane;
-            pending_shape = pt.shape;
-        }
-        if (batched && any(pending_k != vec4<u32>(NO_SHAPE))) {
-            write_quad(base, q, pending_k != vec4<u32>(NO_SHAPE), pending_d, pending_plane, pending_shape);
-            pending_k = vec4<u32>(NO_SHAPE);
-        } else if (any(pending_k != vec4<u32>(NO_SHAPE))) {
+        if (any(pending_k != vec4<u32>(NO_SHAPE))) {
             for (var j = 0u; j < 4u; j++) {
                 let pk = lane_u32(pending_k, j);
                 if (pk != NO_SHAPE) {
@@ -926,10 +851,8 @@ fn main(
         } else {
             pending_k = select(vec4<u32>(NO_SHAPE), vec4<u32>(k), passes);
             pending_d = dist;
-            if (!RELOAD_PENDING) {
-                pending_plane = t.plane;
-                pending_shape = t.shape;
-            }
+            pending_plane = t.plane;
+            pending_shape = t.shape;
         }
     }
     if (ABLATION == 3u && dot(tested, vec4<f32>(1.0)) == 1234.5) {

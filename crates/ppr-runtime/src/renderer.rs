@@ -197,13 +197,6 @@ pub struct DebugOptions {
     /// demo and the kitchen (H100, whole frames). Without that binding the merged layout
     /// waited on a second barrier and lost 0.001-0.002 ms.
     pub layered_reflection_own_pass: bool,
-    /// The projection's writes in stages, each stage's loads issued for a thread's four
-    /// pixels before any is used (`ProjectionVariant::batched_writes`; bench only until
-    /// timed, the same buffer).
-    pub batched_writes: bool,
-    /// The projection's pending writes load their plane and shape again when written
-    /// (`ProjectionVariant::reload_pending`; bench only until timed, the same buffer).
-    pub reload_pending: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -469,8 +462,6 @@ impl ReflectionRenderer {
             no_inside_entries: self.debug.no_inside_entries,
             box_reduction: self.debug.box_reduction,
             list_prefetch: self.debug.list_prefetch,
-            batched_writes: self.debug.batched_writes,
-            reload_pending: self.debug.reload_pending,
             occupancy_pad_kib: self.debug.occupancy_pad_kib,
             ablation: self.debug.projection_ablation,
         }

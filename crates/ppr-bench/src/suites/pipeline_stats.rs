@@ -67,9 +67,6 @@ pub fn projection_variants() -> Vec<ProjectionVariant> {
         out.push(ProjectionVariant { layers: false, ..base });
         out.push(ProjectionVariant { source_boxes: false, ..base });
         out.push(ProjectionVariant { occlusion_first: false, ..base });
-        out.push(ProjectionVariant { batched_writes: true, ..base });
-        out.push(ProjectionVariant { reload_pending: true, ..base });
-        out.push(ProjectionVariant { batched_writes: true, reload_pending: true, ..base });
     }
     // Tile culling with the block-list pass's lists instead of the projection's own.
     out.push(ProjectionVariant { fused_lists: false, ..fused });

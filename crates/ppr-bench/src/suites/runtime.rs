@@ -121,14 +121,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, separate upload copies", Choice::Auto, Ablation::None),
         ("frame span, layered reflection own pass", Choice::Auto, Ablation::None),
         ("layered reflection own pass", Choice::Auto, Ablation::None),
-        ("batched writes", Choice::Auto, Ablation::None),
-        ("frame span, batched writes", Choice::Auto, Ablation::None),
-        ("reflection own pass, batched writes", Choice::Auto, Ablation::None),
-        ("reload pending", Choice::Auto, Ablation::None),
-        ("frame span, reload pending", Choice::Auto, Ablation::None),
-        ("reflection own pass, reload pending", Choice::Auto, Ablation::None),
-        ("batched writes, reload pending", Choice::Auto, Ablation::None),
-        ("frame span, batched writes, reload pending", Choice::Auto, Ablation::None),
         ("reflection own pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
@@ -371,8 +363,6 @@ pub fn run_runtime(
                     reflection_own_pass: name.ends_with(", reflection own pass")
                         || name == "reflection own pass",
                     layered_reflection_own_pass: name.ends_with("layered reflection own pass"),
-                    batched_writes: name.contains("batched writes"),
-                    reload_pending: name.ends_with("reload pending"),
                     separate_upload_copies: name.ends_with("separate upload copies"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots

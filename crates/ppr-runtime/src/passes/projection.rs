@@ -80,13 +80,6 @@ pub struct ProjectionVariant {
     /// occupancy (`occupancy_pad.wgsl`). Clamped to what the device allows beside the
     /// pass's own.
     pub occupancy_pad_kib: u32,
-    /// Bench only until timed (the same buffer): a thread's pending writes in stages,
-    /// each stage's loads issued for its four pixels before any is used (`BATCHED_WRITES`
-    /// of `projection.wgsl`).
-    pub batched_writes: bool,
-    /// Bench only until timed (the same buffer): the pending writes' plane and shape loaded
-    /// again when written instead of kept live through the next step (`RELOAD_PENDING`).
-    pub reload_pending: bool,
     /// Leave parts out to time the rest (bench only; never a correct image).
     pub ablation: Ablation,
 }
@@ -268,8 +261,6 @@ impl ProjectionPass {
             ("PARALLEL_TREES", flag(v.parallel_trees)),
             ("SUBGROUP_CULL", flag(v.subgroup_cull)),
             ("OCCLUSION_FIRST", flag(v.occlusion_first)),
-            ("BATCHED_WRITES", flag(v.batched_writes)),
-            ("RELOAD_PENDING", flag(v.reload_pending)),
             ("QUAD_ROW_STEP", if v.spread_quads() { 16.0 } else { 2.0 }),
             ("INSIDE_ENTRIES", flag(!v.no_inside_entries)),
             ("SUBGROUP_BOX", self.box_reduction_code(v.box_reduction)),
