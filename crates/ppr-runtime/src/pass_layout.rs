@@ -5,7 +5,10 @@
 use crate::passes::layer_reflection::LayerPlacement;
 use crate::plan::FramePlan;
 use crate::renderer::DebugOptions;
-use crate::timestamps::{FRAME_SPAN, TIMED_PASSES};
+use crate::timestamps::{
+    CLASSIFY, CLEAR, DOWNSAMPLE, FRAME_SPAN, LAYERS, PROJECTION, PROJECTION_REFLECTION, REFLECTION,
+    TIMED_PASSES, UPSAMPLE,
+};
 
 /// One encode's dispatches and compute passes. The projection's compute pass is always
 /// recorded (it holds the lists and the layer writes too); the rest as the fields say.
@@ -100,17 +103,19 @@ impl PassLayout {
             recorded[FRAME_SPAN as usize] = spans;
             return recorded;
         }
-        [
-            self.classify && !self.classify_with_projection,
-            self.clears(),
-            !self.reflection_with_projection,
-            self.has_main && !self.reflection_with_projection,
-            self.layers_own_pass(),
-            self.reduced,
-            self.reduced && (self.has_main || self.layers_own_pass()),
-            false,
-            self.reflection_with_projection,
-        ]
+        for (slot, timed) in [
+            (CLASSIFY, self.classify && !self.classify_with_projection),
+            (CLEAR, self.clears()),
+            (PROJECTION, !self.reflection_with_projection),
+            (REFLECTION, self.has_main && !self.reflection_with_projection),
+            (LAYERS, self.layers_own_pass()),
+            (DOWNSAMPLE, self.reduced),
+            (UPSAMPLE, self.reduced && (self.has_main || self.layers_own_pass())),
+            (PROJECTION_REFLECTION, self.reflection_with_projection),
+        ] {
+            recorded[slot as usize] = timed;
+        }
+        recorded
     }
 }
 
@@ -124,15 +129,15 @@ mod tests {
     use crate::plan::{FramePlan, LayerAlloc, PlanParams, ScreenRect};
     use crate::renderer::DebugOptions;
     use crate::shapes::ShapeTable;
-    use crate::timestamps::{FRAME_SPAN, PROJECTION_REFLECTION, TIMED_PASSES};
+    use crate::timestamps::{self, FRAME_SPAN, PROJECTION_REFLECTION, TIMED_PASSES};
 
-    const CLASSIFY: usize = 0;
-    const CLEAR: usize = 1;
-    const PROJECTION: usize = 2;
-    const REFLECTION: usize = 3;
-    const LAYERS: usize = 4;
-    const DOWNSAMPLE: usize = 5;
-    const UPSAMPLE: usize = 6;
+    const CLASSIFY: usize = timestamps::CLASSIFY as usize;
+    const CLEAR: usize = timestamps::CLEAR as usize;
+    const PROJECTION: usize = timestamps::PROJECTION as usize;
+    const REFLECTION: usize = timestamps::REFLECTION as usize;
+    const LAYERS: usize = timestamps::LAYERS as usize;
+    const DOWNSAMPLE: usize = timestamps::DOWNSAMPLE as usize;
+    const UPSAMPLE: usize = timestamps::UPSAMPLE as usize;
 
     /// A plan with `visible` shapes (none tested: the layout reads the lists' lengths only),
     /// indirect or not, with or without a layer.

@@ -63,6 +63,15 @@ impl fmt::Display for PassTimings {
 /// reflection in one compute pass, in [`PassTimings::passes`] order.
 pub const TIMED_PASSES: u32 = 9;
 
+/// The slots of the passes timed on their own, in [`PassTimings::passes`] order.
+pub const CLASSIFY: u32 = 0;
+pub const CLEAR: u32 = 1;
+pub const PROJECTION: u32 = 2;
+pub const REFLECTION: u32 = 3;
+pub const LAYERS: u32 = 4;
+pub const DOWNSAMPLE: u32 = 5;
+pub const UPSAMPLE: u32 = 6;
+
 /// The slot of the whole frame's span ([`PassTimer::write_span`]).
 pub const FRAME_SPAN: u32 = 7;
 

@@ -16,17 +16,10 @@ use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::upsample::UpsampleBindings;
 use crate::plan::FramePlan;
 use crate::reduced_targets::ReducedTargets;
-use crate::timestamps::{PROJECTION_REFLECTION, PassTimer};
+use crate::timestamps::{
+    CLASSIFY, CLEAR, DOWNSAMPLE, LAYERS, PROJECTION, PROJECTION_REFLECTION, PassTimer, REFLECTION, UPSAMPLE,
+};
 use crate::upload_layout::UploadTarget;
-
-// Timed passes' indices (as in `PassTimings::passes`).
-const CLASSIFY: u32 = 0;
-const CLEAR: u32 = 1;
-const PROJECTION: u32 = 2;
-const REFLECTION: u32 = 3;
-const LAYERS: u32 = 4;
-const DOWNSAMPLE: u32 = 5;
-const UPSAMPLE: u32 = 6;
 
 /// What one encode records with: the renderer's passes, the view's plan, buffers and
 /// textures, its layout, and the bind groups of the dispatches that go into more than one
