@@ -78,11 +78,15 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
 /// the exact reference is a mirror's), `timing=passes|frame` (GPU time as the sum of the
 /// passes' own timestamps, the default, or the whole frame between two encoder timestamps,
-/// the barriers between passes included; the SSR and SSPR baselines take it too) and `bounces=N` (N frames of the same camera, each fed the previous one's
-/// composited image as its colour input; scored against the N-bounce reference).
+/// the barriers between passes included; the SSR and SSPR baselines take it too),
+/// `upsample=per-pixel|shared` (the reduced tiers' upsample reads each pixel's reduced
+/// samples itself, the default, or each workgroup's once into workgroup memory: the same
+/// image; `DebugOptions::shared_upsample`) and `bounces=N` (N frames of the same camera,
+/// each fed the previous one's composited image as its colour input; scored against the
+/// N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 13] = [
+const PPR_KEYS: [&str; 14] = [
     "culling",
     "indirect",
     "groups",
@@ -94,6 +98,7 @@ const PPR_KEYS: [&str; 13] = [
     "tier",
     "glossy",
     "timing",
+    "upsample",
     "bounces",
     "reference-bounces",
 ];
@@ -201,6 +206,9 @@ impl TechniqueSpec {
                 }
                 "timing" => {
                     frame_timing(v).map_err(bad)?;
+                }
+                "upsample" => {
+                    shared_upsample(v).map_err(bad)?;
                 }
                 "bounces" | "reference-bounces" => {
                     parse_bounces(v).map_err(bad)?;
@@ -350,6 +358,16 @@ fn frame_timing(v: &str) -> Result<bool, String> {
     }
 }
 
+/// `upsample=`: whether the reduced tiers' upsample reads each workgroup's reduced samples
+/// once into workgroup memory (`shared`) or each pixel its own (`per-pixel`).
+fn shared_upsample(v: &str) -> Result<bool, String> {
+    match v {
+        "shared" => Ok(true),
+        "per-pixel" => Ok(false),
+        _ => Err(format!("upsample: `{v}` is neither `per-pixel` nor `shared`")),
+    }
+}
+
 /// Builds the technique `spec` names.
 ///
 /// # Errors
@@ -365,6 +383,9 @@ pub fn build_technique(
         runner.set_reference_bounces(reference_bounces(spec)?);
         if let Some(v) = spec.param("timing") {
             runner.renderer().debug.frame_span = frame_timing(v).map_err(BenchError::Spec)?;
+        }
+        if let Some(v) = spec.param("upsample") {
+            runner.renderer().debug.shared_upsample = shared_upsample(v).map_err(BenchError::Spec)?;
         }
         return Ok(Box::new(runner));
     }
@@ -454,6 +475,18 @@ mod tests {
         assert!("ppr:timing=fast".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:timing=frame".parse::<TechniqueSpec>().is_ok());
         assert!("exact:timing=frame".parse::<TechniqueSpec>().is_err());
+        let shared: TechniqueSpec = "ppr:tier=half,upsample=shared".parse().expect("shared upsample");
+        assert_eq!(shared.label(), "ppr tier=half upsample=shared");
+        assert_eq!(shared_upsample(shared.param("upsample").expect("set")), Ok(true));
+        let own: TechniqueSpec = "ppr-filter:upsample=per-pixel".parse().expect("per-pixel upsample");
+        assert_eq!(shared_upsample(own.param("upsample").expect("set")), Ok(false));
+        let wrong = "ppr:tier=half,upsample=tiled".parse::<TechniqueSpec>().expect_err("not a mode");
+        let message = wrong.to_string();
+        assert!(
+            message.contains("ppr:tier=half,upsample=tiled") && message.contains("per-pixel"),
+            "{message}"
+        );
+        assert!("ssr-low:upsample=shared".parse::<TechniqueSpec>().is_err());
         let sharp: TechniqueSpec = "ppr:glossy=off".parse().expect("glossy");
         let (settings, _) = ppr_settings(&sharp, PlanParams::default()).expect("valid").expect("ppr");
         assert!(!settings.glossy);

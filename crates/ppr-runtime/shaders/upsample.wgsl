@@ -7,7 +7,14 @@
 //
 // Variants: INDIRECT (reduced tiles not cleared this frame read as empty), LAYERS (the
 // glass and water output: plain bilinear over the layer rectangle, the reflection lies on
-// the panel, not on the depth buffer's surface).
+// the panel, not on the depth buffer's surface), SHARED (where the four samples come from).
+// Without SHARED, the default, each pixel reads its four samples (colour and depth) from
+// the reduced textures and computes their camera distances itself, so that each sample is
+// read, and its distance computed, by about 4 pixels at the half tier and 16 at the
+// quarter tier. With SHARED (bench only, the same image bit for bit) each 16 × 16
+// workgroup first reads every sample its pixels can need once, into workgroup memory
+// (colour and, unless LAYERS, camera distance: the same `reduced_sample` and
+// `reduced_distance` calls), and each pixel reads its four from there.
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var full_depth: texture_2d<f32>;
@@ -18,6 +25,17 @@
 
 override INDIRECT: bool = false;
 override LAYERS: bool = false;
+override SHARED: bool = false;
+
+// Output pixels per workgroup edge.
+const GROUP_EDGE: i32 = 16;
+// Reduced samples per axis a workgroup's pixels can read (SHARED): with a scale of at most
+// 1 their base indices lie within 15 of each other, plus the neighbour after the last: at
+// most 17, and one more of margin.
+const SPAN_EDGE: i32 = 18;
+var<workgroup> span_colour: array<vec4<f32>, SPAN_EDGE * SPAN_EDGE>;
+// The samples' camera distances (`reduced_distance`; unused with LAYERS).
+var<workgroup> span_distance: array<f32, SPAN_EDGE * SPAN_EDGE>;
 
 // Camera distance of a pixel centre at a depth, for a viewport of `size` pixels.
 fn distance_at(pixel: vec2<f32>, depth: f32, size: vec2<f32>) -> f32 {
@@ -36,27 +54,70 @@ fn reduced_sample(q: vec2<i32>) -> vec4<f32> {
     return textureLoad(reduced_output, q, 0);
 }
 
+// Camera distance of the surface at reduced sample `q`; -1 where its depth is not valid
+// (a distance is never negative).
+fn reduced_distance(q: vec2<i32>) -> f32 {
+    let d = textureLoad(reduced_depth, q, 0).r;
+    if (!ppr_is_valid_depth(d)) {
+        return -1.0;
+    }
+    return distance_at(vec2<f32>(q) + 0.5, d, frame.resolution.xy);
+}
+
+// The centre of output pixel `p` in reduced pixels, relative to the reduced pixel centres:
+// its first sample is the floor, monotone in `p`.
+fn reduced_position(p: vec2<i32>, scale: vec2<f32>) -> vec2<f32> {
+    return (vec2<f32>(p) + 0.5) * scale - 0.5;
+}
+
 @compute @workgroup_size(16, 16)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+fn main(
+    @builtin(global_invocation_id) gid: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
     let full = vec2<f32>(textureDimensions(output));
     let scale = frame.resolution.xy / full;
     var lo = vec2<i32>(0);
     var hi = vec2<i32>(frame.size) - 1;
-    var p = vec2<i32>(gid.xy);
+    var origin = vec2<i32>(0);
     if (LAYERS) {
         // The layer rectangle in reduced pixels, and the output pixels it covers.
         lo = vec2<i32>(frame.layer_origin);
         hi = lo + vec2<i32>(frame.layer_extent) - 1;
-        p += vec2<i32>(floor(vec2<f32>(lo) / scale));
+        origin = vec2<i32>(floor(vec2<f32>(lo) / scale));
     }
-    if (any(vec2<f32>(p) >= full) || any(hi < lo)) {
+    if (any(hi < lo)) {
         return;
     }
-    if (LAYERS && any(vec2<f32>(p) + 0.5 >= (vec2<f32>(hi) + 1.0) / scale + 1.0)) {
+    let p = vec2<i32>(gid.xy) + origin;
+    // No return before the barrier that depends on the invocation.
+    let outside = any(vec2<f32>(p) >= full)
+        || (LAYERS && any(vec2<f32>(p) + 0.5 >= (vec2<f32>(hi) + 1.0) / scale + 1.0));
+
+    // SHARED: the samples from the workgroup's first pixel's first to its last pixel's last,
+    // clamped as each pixel clamps them, each read once.
+    var first = vec2<i32>(0);
+    var span = vec2<i32>(0);
+    if (SHARED) {
+        let p0 = vec2<i32>(wid.xy) * GROUP_EDGE + origin;
+        first = clamp(vec2<i32>(floor(reduced_position(p0, scale))), lo, hi);
+        let last = clamp(vec2<i32>(floor(reduced_position(p0 + GROUP_EDGE - 1, scale))) + 1, lo, hi);
+        span = min(last - first + 1, vec2<i32>(SPAN_EDGE));
+        for (var i = i32(lid); i < span.x * span.y; i += GROUP_EDGE * GROUP_EDGE) {
+            let q = first + vec2<i32>(i % span.x, i / span.x);
+            span_colour[i] = reduced_sample(q);
+            if (!LAYERS) {
+                span_distance[i] = reduced_distance(q);
+            }
+        }
+        workgroupBarrier();
+    }
+    if (outside) {
         return;
     }
-    // The output pixel's centre in reduced pixels, relative to the reduced pixel centres.
-    let r = (vec2<f32>(p) + 0.5) * scale - 0.5;
+
+    let r = reduced_position(p, scale);
     let base = vec2<i32>(floor(r));
     let f = r - floor(r);
 
@@ -76,18 +137,31 @@ fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
     for (var k = 0; k < 4; k++) {
         let o = vec2<i32>(k & 1, k >> 1);
         let q = clamp(base + o, lo, hi);
-        let s = reduced_sample(q);
+        // With SHARED, where sample `q` lies in the workgroup's span.
+        var at = 0;
+        var s: vec4<f32>;
+        if (SHARED) {
+            at = (q.y - first.y) * span.x + q.x - first.x;
+            s = span_colour[at];
+        } else {
+            s = reduced_sample(q);
+        }
         if (!(s.a > 0.0)) {
             continue;
         }
         let w_bilinear = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1);
         var w = w_bilinear + 1.0e-6;
         if (!LAYERS) {
-            let dq = textureLoad(reduced_depth, q, 0).r;
-            if (!ppr_is_valid_depth(dq)) {
+            var dq: f32;
+            if (SHARED) {
+                dq = span_distance[at];
+            } else {
+                dq = reduced_distance(q);
+            }
+            if (dq < 0.0) {
                 continue;
             }
-            let rel = abs(distance_at(vec2<f32>(q) + 0.5, dq, frame.resolution.xy) - own) / own;
+            let rel = abs(dq - own) / own;
             // Full weight within 1 % of the pixel's distance, none beyond 2 %.
             w *= saturate(2.0 - rel * 100.0);
             if (rel < best_rel) {

@@ -197,6 +197,11 @@ pub struct DebugOptions {
     /// demo and the kitchen (H100, whole frames). Without that binding the merged layout
     /// waited on a second barrier and lost 0.001-0.002 ms.
     pub layered_reflection_own_pass: bool,
+    /// The reduced tiers' upsample reads each workgroup's reduced samples (colour, and
+    /// their camera distances) into workgroup memory once, and each pixel its four from
+    /// there, instead of each pixel reading its own four from the textures and computing
+    /// their distances (`UpsampleVariant::shared`; bench only, the same image bit for bit).
+    pub shared_upsample: bool,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s

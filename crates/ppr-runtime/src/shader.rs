@@ -78,8 +78,9 @@ pub const CHECKS_ENV: &str = "PPR_SHADER_CHECKS";
 ///   construction (counted loops, and walks of a complete binary tree in heap order,
 ///   whose node index only moves forward);
 /// - integer-division guards: every divisor is a positive constant, a tile count of a
-///   non-empty viewport, or, in the encoding, positive by its own test (`o.y > 0`,
-///   `den >= 65536`), and no signed division divides by -1.
+///   non-empty viewport, the upsample's span of reduced samples (at least one), or, in the
+///   encoding, positive by its own test (`o.y > 0`, `den >= 65536`), and no signed
+///   division divides by -1.
 ///
 /// With [`CHECKS_ENV`] set to `checked`, every check.
 pub fn runtime_checks() -> wgpu::ShaderRuntimeChecks {

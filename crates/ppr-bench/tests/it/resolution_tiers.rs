@@ -1,17 +1,19 @@
 //! The reduced-resolution tiers on the software adapter (issue 13): against the exact
 //! reference over the on-screen reflector pixels of the box room, at 320×180, the half and
 //! quarter tiers stay within a stated distance of full-resolution PPR and well above
-//! writing nothing.
+//! writing nothing; and the upsample's shared-memory variant gives its per-pixel image bit
+//! for bit.
 
 use image::Rgba32FImage;
 use ppr_bench::TechniqueSpec;
 use ppr_bench::mirror_room::one_frame::render_scene_frame;
 use ppr_bench::mirror_room::{MirrorRoom, bench_scene};
 use ppr_bench::quality::Quality;
-use ppr_bench::scene::SceneOptions;
-use ppr_runtime::PlanParams;
+use ppr_bench::scene::{BenchScene, SceneOptions};
+use ppr_runtime::{Choice, PlanParams};
 use ppr_testbed::GpuContext;
 use ppr_testbed::image_io::ToneMap;
+use ppr_testbed::synthetic::{FloorMirrorParams, SyntheticScene};
 
 const SIZE: [u32; 2] = [320, 180];
 
@@ -69,5 +71,90 @@ fn reduced_tiers_stay_close_to_full_resolution() {
             quarter.psnr_on,
             nothing.psnr_on
         );
+    }
+}
+
+/// The first pixel, row by row, where `a` and `b` differ in any channel's bits, with both
+/// values and how many pixels differ.
+fn first_difference(a: &Rgba32FImage, b: &Rgba32FImage) -> Option<String> {
+    assert_eq!(a.dimensions(), b.dimensions());
+    let same = |p: &image::Rgba<f32>, q: &image::Rgba<f32>| {
+        p.0.iter().zip(q.0).all(|(u, v)| u.to_bits() == v.to_bits())
+    };
+    let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| !same(p, q)).count();
+    a.enumerate_pixels().zip(b.pixels()).find_map(|((x, y, p), q)| {
+        (!same(p, q))
+            .then(|| format!("pixel ({x}, {y}): {:?} against {:?} ({differing} pixels differ)", p.0, q.0))
+    })
+}
+
+/// Pixels with a reflection (alpha above 0).
+fn written(image: &Rgba32FImage) -> usize {
+    image.pixels().filter(|p| p.0[3] > 0.0).count()
+}
+
+/// `upsample=shared` (`DebugOptions::shared_upsample`) gives the per-pixel upsample's image
+/// bit for bit, every pixel and channel: the half and quarter tiers, with direct and
+/// indirect dispatch (`INDIRECT`), on the box room's cameras at 320×180 (reduced 160×90 and
+/// 80×45, exact divisions) and 325×183 (163×92 and 82×46: scales that are no 1/2 or 1/4,
+/// and the last tiles of each row and column partial, their samples clamped at the right
+/// and bottom edges). The box room has no glass or water (no layers); the floor mirror with
+/// a glass pane has one, so its frames run the layer output's upsample (`LAYERS`) too.
+#[test]
+fn shared_upsample_gives_the_per_pixel_image() {
+    let gpu = GpuContext::new_headless().expect("a wgpu adapter (llvmpipe without a GPU)");
+    let room = bench_scene(MirrorRoom::BoxesInBox { boxes: 2 }, &SceneOptions::default());
+    let pane = SyntheticScene::floor_mirror(&FloorMirrorParams { wall_pane: true, ..Default::default() });
+    let pane = BenchScene::from_parts(
+        "floor mirror with a glass pane",
+        pane.level,
+        pane.reflectors,
+        &SceneOptions::default(),
+        &mut Vec::new(),
+    );
+    let per_pixel: Vec<String> = ["half", "quarter"]
+        .iter()
+        .flat_map(|tier| ["", ",indirect=on"].map(|dispatch| format!("ppr:fade=0,tier={tier}{dispatch}")))
+        .collect();
+    let specs: Vec<TechniqueSpec> = per_pixel
+        .iter()
+        .cloned()
+        .chain(per_pixel.iter().map(|s| format!("{s},upsample=shared")))
+        .map(|t| t.parse().expect("spec"))
+        .collect();
+    let n = per_pixel.len();
+    let params = PlanParams::default();
+    for size in [[320, 180], [325, 183]] {
+        for (scene, min_written, layered) in [(&room, 20_000, false), (&pane, 3_000, true)] {
+            for cam in &scene.cameras {
+                let what = format!("{} {} {size:?}", scene.name, cam.name);
+                let f = render_scene_frame(&gpu, scene, &cam.camera, size, &specs, &params).expect("frame");
+                for (own, shared) in f.techniques[..n].iter().zip(&f.techniques[n..]) {
+                    assert_eq!(shared.label, format!("{} upsample=shared", own.label));
+                    let count = written(&own.image);
+                    eprintln!("{what}, {}: {count} pixels with a reflection", own.label);
+                    assert!(count >= min_written, "{what}, {}: {count} pixels with a reflection", own.label);
+                    if let Some(d) = first_difference(&own.image, &shared.image) {
+                        panic!("{what}, {} against {}: {d}", own.label, shared.label);
+                    }
+                }
+                if layered {
+                    // The pane's layer output is part of the image: without layers it differs.
+                    let off = PlanParams { layers: Choice::Off, ..params };
+                    let flat =
+                        render_scene_frame(&gpu, scene, &cam.camera, size, &specs[..n], &off).expect("frame");
+                    for (layered, flat) in f.techniques.iter().zip(&flat.techniques) {
+                        let layer_pixels =
+                            layered.image.pixels().zip(flat.image.pixels()).filter(|(a, b)| a != b);
+                        let layer_pixels = layer_pixels.count();
+                        assert!(
+                            layer_pixels >= 500,
+                            "{what}, {}: {layer_pixels} pixels from layers",
+                            layered.label
+                        );
+                    }
+                }
+            }
+        }
     }
 }

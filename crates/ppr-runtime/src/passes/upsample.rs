@@ -22,10 +22,43 @@ pub struct UpsampleBindings<'a> {
     pub tile_flags: &'a wgpu::Buffer,
 }
 
+/// Which of the upsample's pipelines records a dispatch (the shader's override constants).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UpsampleVariant {
+    /// Reduced tiles not cleared this frame read as empty (`INDIRECT`: indirect dispatch).
+    pub indirect: bool,
+    /// The layer output: plain bilinear over the layer rectangle (`LAYERS`).
+    pub layers: bool,
+    /// Each workgroup reads the reduced samples its pixels need into workgroup memory
+    /// first, instead of each pixel reading its own four (`SHARED`; bench only, the same
+    /// image: `DebugOptions::shared_upsample`).
+    pub shared: bool,
+}
+
+impl UpsampleVariant {
+    /// The pass builds one pipeline per variant.
+    const COUNT: usize = 8;
+
+    /// The variant's pipeline: bit 0 `indirect`, 1 `layers`, 2 `shared`.
+    fn index(self) -> usize {
+        usize::from(self.indirect) | usize::from(self.layers) << 1 | usize::from(self.shared) << 2
+    }
+
+    /// The variant of pipeline `index` ([`Self::index`]'s inverse).
+    fn from_index(index: usize) -> Self {
+        Self { indirect: index & 1 != 0, layers: index & 2 != 0, shared: index & 4 != 0 }
+    }
+
+    /// The shader's override constants for this variant.
+    pub(crate) fn constants(self) -> [(&'static str, f64); 3] {
+        [("INDIRECT", flag(self.indirect)), ("LAYERS", flag(self.layers)), ("SHARED", flag(self.shared))]
+    }
+}
+
 /// The upsample pass.
 pub struct UpsamplePass {
-    /// Pipelines by (indirect, layers).
-    pipelines: [[wgpu::ComputePipeline; 2]; 2],
+    /// Pipelines by [`UpsampleVariant::index`].
+    pipelines: [wgpu::ComputePipeline; UpsampleVariant::COUNT],
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
 }
@@ -44,13 +77,12 @@ impl UpsamplePass {
             ],
         });
         let module = crate::shader::module_with(device, "ppr upsample", &[crate::shader::VIEW], WGSL);
-        let pipeline = |indirect: bool, layers: bool| {
-            let label = format!("ppr upsample indirect={indirect} layers={layers}");
-            let constants = [("INDIRECT", flag(indirect)), ("LAYERS", flag(layers))];
-            compute_pipeline(device, &label, &layout, &module, "main", &constants)
-        };
-        let pipelines =
-            [[pipeline(false, false), pipeline(false, true)], [pipeline(true, false), pipeline(true, true)]];
+        let pipelines = std::array::from_fn(|index| {
+            let variant = UpsampleVariant::from_index(index);
+            let UpsampleVariant { indirect, layers, shared } = variant;
+            let label = format!("ppr upsample indirect={indirect} layers={layers} shared={shared}");
+            compute_pipeline(device, &label, &layout, &module, "main", &variant.constants())
+        });
         Self { pipelines, layout, bind_groups: BindGroupCache::default() }
     }
 
@@ -74,18 +106,71 @@ impl UpsamplePass {
         )
     }
 
-    /// Records the pass over `pixels` output pixels (the whole output, or with `layers`
-    /// the layer rectangle's pixels at full resolution plus a margin).
+    /// Records the pass over `pixels` output pixels (the whole output, or with
+    /// `variant.layers` the layer rectangle's pixels at full resolution plus a margin).
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         pixels: [u32; 2],
-        indirect: bool,
-        layers: bool,
+        variant: UpsampleVariant,
     ) {
-        pass.set_pipeline(&self.pipelines[usize::from(indirect)][usize::from(layers)]);
+        pass.set_pipeline(&self.pipelines[variant.index()]);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(pixels[0].div_ceil(TILE), pixels[1].div_ceil(TILE), 1);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::UpsampleVariant;
+
+    /// Each variant has a pipeline of its own.
+    #[test]
+    fn every_variant_has_its_own_pipeline() {
+        for index in 0..UpsampleVariant::COUNT {
+            assert_eq!(UpsampleVariant::from_index(index).index(), index);
+        }
+        let all = UpsampleVariant { indirect: true, layers: true, shared: true };
+        assert_eq!(all.index(), UpsampleVariant::COUNT - 1);
+    }
+
+    /// The constants each pipeline sets are the shader's bool overrides, and its workgroup
+    /// is the tile the pass dispatches by: 16 × 16 ([`crate::passes::TILE`]) pixels, whose
+    /// reduced samples (SHARED) fit the workgroup arrays: at most TILE + 1 per axis (a
+    /// scale of at most 1), and one of margin.
+    #[test]
+    fn shader_matches_rust() {
+        use crate::passes::TILE;
+        let source = crate::shader::source_with(&[crate::shader::VIEW], super::WGSL);
+        let module =
+            naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
+        for (name, _) in UpsampleVariant::from_index(0).constants() {
+            let o = module.overrides.iter().find(|(_, o)| o.name.as_deref() == Some(name));
+            let o = o.unwrap_or_else(|| panic!("no override {name}")).1;
+            assert_eq!(module.types[o.ty].inner, naga::TypeInner::Scalar(naga::Scalar::BOOL), "{name}");
+        }
+        assert_eq!(module.overrides.len(), 3, "every override is set");
+        let entry = module.entry_points.iter().find(|e| e.name == "main").expect("upsample main");
+        assert_eq!(entry.workgroup_size, [TILE, TILE, 1]);
+        let constant = |name: &str| {
+            let c = module.constants.iter().find(|(_, c)| c.name.as_deref() == Some(name));
+            let c = c.unwrap_or_else(|| panic!("no constant {name}")).1;
+            match module.global_expressions[c.init] {
+                naga::Expression::Literal(naga::Literal::I32(n)) => n,
+                ref e => panic!("{name} is not an i32 literal: {e:?}"),
+            }
+        };
+        let tile = TILE as i32;
+        assert_eq!((constant("GROUP_EDGE"), constant("SPAN_EDGE")), (tile, tile + 2));
+        for name in ["span_colour", "span_distance"] {
+            let g = module.global_variables.iter().find(|(_, g)| g.name.as_deref() == Some(name));
+            let g = g.unwrap_or_else(|| panic!("no {name}")).1;
+            let naga::TypeInner::Array { size: naga::ArraySize::Constant(n), .. } = module.types[g.ty].inner
+            else {
+                panic!("{name} is not a sized array");
+            };
+            assert_eq!(n.get(), (TILE + 2) * (TILE + 2), "{name}");
+        }
     }
 }

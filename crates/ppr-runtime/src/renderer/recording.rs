@@ -13,7 +13,7 @@ use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
-use crate::passes::upsample::UpsampleBindings;
+use crate::passes::upsample::{UpsampleBindings, UpsampleVariant};
 use crate::plan::FramePlan;
 use crate::reduced_targets::ReducedTargets;
 use crate::timestamps::{
@@ -396,9 +396,11 @@ impl ReflectionRenderer {
             output,
             tile_flags: &b.tile_flags,
         };
+        let variant = UpsampleVariant { shared: self.debug.shared_upsample, ..UpsampleVariant::default() };
         if !plan.visible.is_empty() {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.output.view, inputs.output));
-            self.upsample.encode(&mut pass, &bg, view.full_viewport, plan.indirect, false);
+            let variant = UpsampleVariant { indirect: plan.indirect, ..variant };
+            self.upsample.encode(&mut pass, &bg, view.full_viewport, variant);
         }
         if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.layer_output.view, layer_output));
@@ -408,7 +410,7 @@ impl ReflectionRenderer {
                 let scale = f64::from(view.full_viewport[a]) / f64::from(plan.viewport[a]);
                 (f64::from(rect.max[a] - rect.min[a]) * scale).ceil() as u32 + 2
             });
-            self.upsample.encode(&mut pass, &bg, pixels, false, true);
+            self.upsample.encode(&mut pass, &bg, pixels, UpsampleVariant { layers: true, ..variant });
         }
     }
 }
