@@ -279,6 +279,9 @@ pub enum TestedEntry {
 pub struct FramePlan {
     /// Viewport size in pixels.
     pub viewport: [u32; 2],
+    /// The aspect ratio (width / height) of the camera's projection: the viewport's, or
+    /// in the reduced tiers the full-size output's ([`Self::build_for_output`]).
+    pub aspect: f32,
     /// Indices (into the set) of the shapes the main buffer renders this frame.
     pub visible: Vec<u32>,
     /// Screen rectangle of each visible shape (same order as `visible`).
@@ -354,13 +357,33 @@ pub struct FramePlan {
     pub encoding: EncodingLayout,
 }
 
+/// Width / height of a viewport (of at least one pixel's height).
+pub fn aspect_of([w, h]: [u32; 2]) -> f32 {
+    w as f32 / h.max(1) as f32
+}
+
 impl FramePlan {
     /// Culls the table's shapes for `camera` and decides the passes.
     pub fn build(table: &ShapeTable, camera: &Camera, viewport: [u32; 2], params: &PlanParams) -> Self {
+        Self::build_for_output(table, camera, viewport, viewport, params)
+    }
+
+    /// [`Self::build`] for passes that run at `viewport` but serve an output (and a depth
+    /// buffer) of `output` pixels, as the reduced tiers' do: the camera's projection is
+    /// the output's, of its aspect ratio, whatever the rounding of the reduced size.
+    pub fn build_for_output(
+        table: &ShapeTable,
+        camera: &Camera,
+        viewport: [u32; 2],
+        output: [u32; 2],
+        params: &PlanParams,
+    ) -> Self {
         let [w, h] = viewport;
-        let clip_from_rel = camera.clip_from_relative(w as f32 / h.max(1) as f32);
+        let aspect = aspect_of(output);
+        let clip_from_rel = camera.clip_from_relative(aspect);
         let mut plan = FramePlan {
             viewport,
+            aspect,
             visible: Vec::new(),
             screen_rects: Vec::new(),
             tested: Vec::new(),

@@ -365,7 +365,7 @@ impl ReflectionRenderer {
             params.parallel_trees = Choice::Off;
         }
         let plans = cameras.map(|camera| {
-            let mut plan = FramePlan::build(&self.table, camera, planned, &params);
+            let mut plan = FramePlan::build_for_output(&self.table, camera, planned, viewport, &params);
             if let Some(layout) = self.debug.encoding {
                 plan.encoding = layout;
             }
@@ -482,8 +482,7 @@ impl ReflectionRenderer {
         }
         self.table.gpu_shapes_into(camera.position, &mut memory.shapes);
 
-        let aspect = w as f32 / h.max(1) as f32;
-        let clip_from_rel = camera.clip_from_relative(aspect);
+        let clip_from_rel = camera.clip_from_relative(plan.aspect);
         // Invert in f64: the reversed-Z and infinite projections are badly conditioned.
         let rel_from_clip = DMat4::from_cols_array(&clip_from_rel.to_cols_array().map(f64::from)).inverse();
         let uniforms = FrameUniforms {

@@ -15,14 +15,17 @@ use ppr_testbed::GpuContext;
 use ppr_testbed::image_io::ToneMap;
 use ppr_testbed::synthetic::{FloorMirrorParams, SyntheticScene};
 
-const SIZE: [u32; 2] = [320, 180];
+/// 320×180 (reduced 160×90 and 80×45) and 325×183, which neither tier divides (163×92 and
+/// 82×46: the reduced viewport's aspect is not the output's).
+const SIZES: [[u32; 2]; 2] = [[320, 180], [325, 183]];
 
 /// Bounds (fade off so that only the tier differs), with margin over what llvmpipe gave at
 /// 320×180 when written (on-screen PSNR full 37.1 / 36.9 / 42.4 dB on the three cameras,
 /// half 32.9 / 31.4 / 33.8, quarter 29.6 / 28.0 / 29.2, writing nothing 16.4–18.1; no data
 /// full 0.0 %, half 0.0–0.3 %, quarter 0.04–0.35 %): the half tier within 10 dB of full
 /// resolution and 12 dB above writing nothing, with at most 3 points more on-screen pixels
-/// without data; the quarter tier (80×45 pixels here) at least 8 dB above writing nothing.
+/// without data; the quarter tier (80×45 pixels here) at least 8 dB above writing nothing,
+/// with as few more pixels without data. The same bounds at 325×183.
 /// Each tier must write: a tier that wrote nothing scores the fallback.
 #[test]
 fn reduced_tiers_stay_close_to_full_resolution() {
@@ -32,14 +35,14 @@ fn reduced_tiers_stay_close_to_full_resolution() {
     let specs: Vec<TechniqueSpec> = ["ppr:fade=0", "ppr:fade=0,tier=half", "ppr:fade=0,tier=quarter"]
         .map(|t| t.parse().expect("spec"))
         .to_vec();
-    for cam in &scene.cameras {
-        let f = render_scene_frame(&gpu, &scene, &cam.camera, SIZE, &specs, &PlanParams::default())
+    for (size, cam) in SIZES.iter().flat_map(|&size| scene.cameras.iter().map(move |cam| (size, cam))) {
+        let f = render_scene_frame(&gpu, &scene, &cam.camera, size, &specs, &PlanParams::default())
             .expect("frame");
         let q = |label: &str| &f.techniques.iter().find(|t| t.label == label).expect("ran").quality;
         let (full, half, quarter) = (q(labels[0]), q(labels[1]), q(labels[2]));
-        let none = Rgba32FImage::from_pixel(SIZE[0], SIZE[1], image::Rgba([0.0; 4]));
+        let none = Rgba32FImage::from_pixel(size[0], size[1], image::Rgba([0.0; 4]));
         let nothing = Quality::measure(&f.reference, &none, ToneMap::Clamp).expect("sizes");
-        let what = &cam.name;
+        let what = format!("{} {size:?}", cam.name);
         eprintln!(
             "{what}: on-screen PSNR full {:.2}, half {:.2}, quarter {:.2}, nothing {:.2} dB; \
              no data full {:.2} %, half {:.2} %, quarter {:.2} %",
@@ -63,6 +66,12 @@ fn reduced_tiers_stay_close_to_full_resolution() {
             half.holes_on <= full.holes_on + 0.03,
             "{what}: half leaves {:.2} % without data, full {:.2} %",
             100.0 * half.holes_on,
+            100.0 * full.holes_on
+        );
+        assert!(
+            quarter.holes_on <= full.holes_on + 0.03,
+            "{what}: quarter leaves {:.2} % without data, full {:.2} %",
+            100.0 * quarter.holes_on,
             100.0 * full.holes_on
         );
         assert!(
