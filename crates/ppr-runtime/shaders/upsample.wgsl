@@ -14,7 +14,8 @@
 // quarter tier. With SHARED (bench only, the same image bit for bit) each 16 × 16
 // workgroup first reads every sample its pixels can need once, into workgroup memory
 // (colour and, unless LAYERS, camera distance: the same `reduced_sample` and
-// `reduced_distance` calls), and each pixel reads its four from there.
+// `reduced_distance` calls), and each pixel reads its four from there; a pixel none of
+// whose four holds a reflection writes none without reading its depth.
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var full_depth: texture_2d<f32>;
@@ -121,6 +122,19 @@ fn main(
     let base = vec2<i32>(floor(r));
     let f = r - floor(r);
 
+    // SHARED: a pixel whose four samples hold no reflection has none (what the loop below
+    // would find), without reading its depth.
+    if (SHARED) {
+        var data = false;
+        for (var k = 0; k < 4; k++) {
+            let q = clamp(base + vec2<i32>(k & 1, k >> 1), lo, hi) - first;
+            data = data || span_colour[q.y * span.x + q.x].a > 0.0;
+        }
+        if (!data) {
+            textureStore(output, p, vec4<f32>(0.0));
+            return;
+        }
+    }
     var own = -1.0;
     if (!LAYERS) {
         let d = textureLoad(full_depth, p, 0).r;
