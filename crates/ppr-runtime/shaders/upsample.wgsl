@@ -107,8 +107,10 @@ fn main(
         span = min(last - first + 1, vec2<i32>(SPAN_EDGE));
         for (var i = i32(lid); i < span.x * span.y; i += GROUP_EDGE * GROUP_EDGE) {
             let q = first + vec2<i32>(i % span.x, i / span.x);
-            span_colour[i] = reduced_sample(q);
-            if (!LAYERS) {
+            let colour = reduced_sample(q);
+            span_colour[i] = colour;
+            // A sample without data is never weighed: its depth is not read.
+            if (!LAYERS && colour.a > 0.0) {
                 span_distance[i] = reduced_distance(q);
             }
         }

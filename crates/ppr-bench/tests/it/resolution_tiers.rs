@@ -104,8 +104,8 @@ fn written(image: &Rgba32FImage) -> usize {
 
 /// `upsample=shared` (`DebugOptions::shared_upsample`) gives the per-pixel upsample's image
 /// bit for bit, every pixel and channel: the half and quarter tiers, with direct and
-/// indirect dispatch (`INDIRECT`), on the box room's cameras at 320×180 (reduced 160×90 and
-/// 80×45, exact divisions) and 325×183 (163×92 and 82×46: scales that are no 1/2 or 1/4,
+/// indirect dispatch (`INDIRECT`), without and with a border fade (partial alphas), on
+/// the box room's cameras at 320×180 (reduced 160×90 and 80×45, exact divisions) and 325×183 (163×92 and 82×46: scales that are no 1/2 or 1/4,
 /// and the last tiles of each row and column partial, their samples clamped at the right
 /// and bottom edges). The box room has no glass or water (no layers); the floor mirror with
 /// a glass pane has one, so its frames run the layer output's upsample (`LAYERS`) too.
@@ -121,9 +121,12 @@ fn shared_upsample_gives_the_per_pixel_image() {
         &SceneOptions::default(),
         &mut Vec::new(),
     );
+    // fade=0 (alpha 1 wherever there is data) and a border fade of 0.2 (alphas between
+    // 0 and 1 near the screen's edges, which the shared span's depth reads must not skip).
     let per_pixel: Vec<String> = ["half", "quarter"]
         .iter()
         .flat_map(|tier| ["", ",indirect=on"].map(|dispatch| format!("ppr:fade=0,tier={tier}{dispatch}")))
+        .chain(["ppr:fade=0.2,tier=half".to_string(), "ppr:fade=0.2,tier=quarter,indirect=on".to_string()])
         .collect();
     let specs: Vec<TechniqueSpec> = per_pixel
         .iter()
