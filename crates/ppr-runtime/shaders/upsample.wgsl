@@ -33,10 +33,9 @@ const GROUP_EDGE: i32 = 16;
 // Reduced samples per axis a workgroup's pixels can read (SHARED): with a scale of at most
 // 1 their base indices lie within 15 of each other, plus the neighbour after the last: at
 // most 17, and one more of margin.
+// `span_colour` and `span_distance`, the workgroup arrays, come from upsample_span.wgsl
+// (SHARED pipelines) or upsample_span_stub.wgsl (one element each: the per-pixel ones).
 const SPAN_EDGE: i32 = 18;
-var<workgroup> span_colour: array<vec4<f32>, SPAN_EDGE * SPAN_EDGE>;
-// The samples' camera distances (`reduced_distance`; unused with LAYERS).
-var<workgroup> span_distance: array<f32, SPAN_EDGE * SPAN_EDGE>;
 
 // Camera distance of a pixel centre at a depth, for a viewport of `size` pixels.
 fn distance_at(pixel: vec2<f32>, depth: f32, size: vec2<f32>) -> f32 {

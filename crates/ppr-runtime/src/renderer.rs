@@ -383,6 +383,9 @@ impl ReflectionRenderer {
                 if self.debug.full_stretch_walk {
                     self.layer_reflection.prepare_full_stretch(&self.device);
                 }
+                if self.debug.shared_upsample && reduced_active {
+                    self.upsample.prepare_shared(&self.device);
+                }
             }
             Arc::new(plan)
         });

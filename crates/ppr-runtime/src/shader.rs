@@ -160,7 +160,8 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
-        ("upsample", source_with(&[VIEW], upsample::WGSL)),
+        ("upsample", source_with(&[VIEW, upsample::SPAN_STUB], upsample::WGSL)),
+        ("upsample (shared)", source_with(&[VIEW, upsample::SPAN], upsample::WGSL)),
     ]
 }
 

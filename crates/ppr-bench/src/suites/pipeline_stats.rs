@@ -6,7 +6,7 @@
 
 use std::collections::HashSet;
 
-use ppr_runtime::passes::{Ablation, ProjectionPass, ProjectionVariant, TileClassifyPass};
+use ppr_runtime::passes::{Ablation, ProjectionPass, ProjectionVariant, TileClassifyPass, UpsamplePass};
 use ppr_runtime::pipeline_log::{self, PipelineSource};
 use ppr_runtime::{PlanParams, ReflectionSettings};
 use ppr_testbed::gbuffer_targets::Target;
@@ -29,8 +29,8 @@ pub struct PipelineStatsConfig {
     pub resolution: Resolution,
     pub max_cameras: usize,
     /// Also compile the projection's variants of [`projection_variants`] (its ablations and
-    /// options: which part of the pass takes the registers and the shared memory) and the
-    /// classification without layers.
+    /// options: which part of the pass takes the registers and the shared memory), the
+    /// classification without layers and every upsample variant.
     pub projection_variants: bool,
 }
 
@@ -215,6 +215,9 @@ pub fn log_pipelines(
         // The classification of frames without layers, which the default scenes (whose
         // indirect frames have layers) do not build.
         TileClassifyPass::new(device).prepare_without_layers(device);
+        // The reduced tiers' upsample, each pixel's samples read alone (built with every
+        // renderer) and each workgroup's once (bench only, built on request).
+        UpsamplePass::new(device).prepare_shared(device);
         logged.extend(pipeline_log::take());
     }
     let unknown = pipeline_log::unknown_modules();

@@ -48,6 +48,14 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
     let no_layers = with_prefix("ppr tile classify (no layers)");
     assert_eq!(no_layers.len(), 1, "{labels:?}");
     assert_eq!(constant(no_layers[0], "LAYERS"), Some(0.0));
+    // Every upsample variant: the per-pixel ones the renderer builds, the shared ones built
+    // on request.
+    let upsample = with_prefix("ppr upsample");
+    assert_eq!(upsample.len(), 8, "{labels:?}");
+    for shared in [0.0, 1.0] {
+        let n = upsample.iter().filter(|p| constant(p, "SHARED") == Some(shared)).count();
+        assert_eq!(n, 4, "SHARED={shared}: {labels:?}");
+    }
     let reflection = with_prefix("ppr reflection");
     assert!(!projection.is_empty() && !reflection.is_empty(), "{labels:?}");
     for p in projection.iter().chain(&reflection) {
@@ -77,6 +85,13 @@ fn logged_runtime_pipelines_convert_to_spirv_with_their_layouts() {
 
         let entries: Vec<&str> = module.entry_points.iter().map(|e| e.name.as_str()).collect();
         assert_eq!(entries, [p.entry_point.as_str()], "{}: the entry point alone", p.label);
+        // The upsample's span arrays (18 × 18 colours and distances) only where SHARED reads
+        // them: the per-pixel pipelines, every renderer's, declare one element of each.
+        if p.label.starts_with("ppr upsample") {
+            let bytes = compiled.declared_workgroup_bytes;
+            let shared = constant(p, "SHARED") == Some(1.0);
+            assert_eq!(bytes, if shared { 18 * 18 * 20 } else { 20 }, "{}", p.label);
+        }
     }
 
     // The workgroup memory the code declares: the fused list (256 words) and the box slots

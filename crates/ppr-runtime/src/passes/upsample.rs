@@ -10,6 +10,13 @@ use super::{
 
 pub const WGSL: &str = include_str!("../../shaders/upsample.wgsl");
 
+/// The workgroup arrays of the shared variants (`SPAN_EDGE`² samples).
+pub const SPAN: &str = include_str!("../../shaders/upsample_span.wgsl");
+
+/// The same arrays for the per-pixel variants, which never touch them: one element each,
+/// so that their pipelines declare no workgroup memory to speak of.
+pub const SPAN_STUB: &str = include_str!("../../shaders/upsample_span_stub.wgsl");
+
 /// What the upsample pass reads and writes.
 pub struct UpsampleBindings<'a> {
     /// The reduced plan's uniforms.
@@ -57,8 +64,9 @@ impl UpsampleVariant {
 
 /// The upsample pass.
 pub struct UpsamplePass {
-    /// Pipelines by [`UpsampleVariant::index`].
-    pipelines: [wgpu::ComputePipeline; UpsampleVariant::COUNT],
+    /// Pipelines by [`UpsampleVariant::index`]: the per-pixel ones built with the pass, the
+    /// shared ones (bench only) on request ([`Self::prepare_shared`]).
+    pipelines: [Option<wgpu::ComputePipeline>; UpsampleVariant::COUNT],
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
 }
@@ -76,14 +84,35 @@ impl UpsamplePass {
                 storage_entry(5, true),
             ],
         });
-        let module = crate::shader::module_with(device, "ppr upsample", &[crate::shader::VIEW], WGSL);
-        let pipelines = std::array::from_fn(|index| {
+        let mut pass =
+            Self { pipelines: std::array::from_fn(|_| None), layout, bind_groups: BindGroupCache::default() };
+        pass.build(device, false);
+        pass
+    }
+
+    /// Builds the shared variants' pipelines (`DebugOptions::shared_upsample`), once.
+    pub fn prepare_shared(&mut self, device: &wgpu::Device) {
+        if self.pipelines.iter().any(Option::is_none) {
+            self.build(device, true);
+        }
+    }
+
+    /// Builds the pipelines of the variants with this `shared`, from their own module (the
+    /// per-pixel ones without the span's workgroup arrays).
+    fn build(&mut self, device: &wgpu::Device, shared: bool) {
+        let (label, span) =
+            if shared { ("ppr upsample (shared)", SPAN) } else { ("ppr upsample", SPAN_STUB) };
+        let module = crate::shader::module_with(device, label, &[crate::shader::VIEW, span], WGSL);
+        for (index, slot) in self.pipelines.iter_mut().enumerate() {
             let variant = UpsampleVariant::from_index(index);
+            if variant.shared != shared {
+                continue;
+            }
             let UpsampleVariant { indirect, layers, shared } = variant;
             let label = format!("ppr upsample indirect={indirect} layers={layers} shared={shared}");
-            compute_pipeline(device, &label, &layout, &module, "main", &variant.constants())
-        });
-        Self { pipelines, layout, bind_groups: BindGroupCache::default() }
+            *slot =
+                Some(compute_pipeline(device, &label, &self.layout, &module, "main", &variant.constants()));
+        }
     }
 
     pub fn bind_group(&self, device: &wgpu::Device, b: &UpsampleBindings<'_>) -> wgpu::BindGroup {
@@ -115,7 +144,8 @@ impl UpsamplePass {
         pixels: [u32; 2],
         variant: UpsampleVariant,
     ) {
-        pass.set_pipeline(&self.pipelines[variant.index()]);
+        let pipeline = self.pipelines[variant.index()].as_ref();
+        pass.set_pipeline(pipeline.expect("prepare_shared() before encoding a shared variant"));
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(pixels[0].div_ceil(TILE), pixels[1].div_ceil(TILE), 1);
     }
@@ -142,7 +172,7 @@ mod tests {
     #[test]
     fn shader_matches_rust() {
         use crate::passes::TILE;
-        let source = crate::shader::source_with(&[crate::shader::VIEW], super::WGSL);
+        let source = crate::shader::source_with(&[crate::shader::VIEW, super::SPAN], super::WGSL);
         let module =
             naga::front::wgsl::parse_str(&source).unwrap_or_else(|e| panic!("{}", e.emit_to_string(&source)));
         for (name, _) in UpsampleVariant::from_index(0).constants() {
