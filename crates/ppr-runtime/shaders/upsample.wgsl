@@ -33,9 +33,14 @@ const GROUP_EDGE: i32 = 16;
 // Reduced samples per axis a workgroup's pixels can read (SHARED): with a scale of at most
 // 1 their base indices lie within 15 of each other, plus the neighbour after the last: at
 // most 17, and one more of margin.
+const SPAN_EDGE: i32 = 18;
 // `span_colour` and `span_distance`, the workgroup arrays, come from upsample_span.wgsl
 // (SHARED pipelines) or upsample_span_stub.wgsl (one element each: the per-pixel ones).
-const SPAN_EDGE: i32 = 18;
+
+// Where reduced sample `q` lies in the workgroup's span of `span` samples from `first`.
+fn span_index(q: vec2<i32>, first: vec2<i32>, span: vec2<i32>) -> i32 {
+    return (q.y - first.y) * span.x + q.x - first.x;
+}
 
 // Camera distance of a pixel centre at a depth, for a viewport of `size` pixels.
 fn distance_at(pixel: vec2<f32>, depth: f32, size: vec2<f32>) -> f32 {
@@ -128,8 +133,8 @@ fn main(
     if (SHARED) {
         var data = false;
         for (var k = 0; k < 4; k++) {
-            let q = clamp(base + vec2<i32>(k & 1, k >> 1), lo, hi) - first;
-            data = data || span_colour[q.y * span.x + q.x].a > 0.0;
+            let q = clamp(base + vec2<i32>(k & 1, k >> 1), lo, hi);
+            data = data || span_colour[span_index(q, first, span)].a > 0.0;
         }
         if (!data) {
             textureStore(output, p, vec4<f32>(0.0));
@@ -156,7 +161,7 @@ fn main(
         var at = 0;
         var s: vec4<f32>;
         if (SHARED) {
-            at = (q.y - first.y) * span.x + q.x - first.x;
+            at = span_index(q, first, span);
             s = span_colour[at];
         } else {
             s = reduced_sample(q);
