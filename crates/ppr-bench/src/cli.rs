@@ -289,7 +289,8 @@ pub struct CompareArgs {
     /// leaves out the barriers between them and the upload's copies; the SSR and SSPR
     /// baselines take timing=frame too), ppr:upsample=shared|per-pixel (the reduced tiers'
     /// upsample reads each workgroup's reduced samples once into workgroup memory, or each
-    /// pixel its own, the default; the same image), ssr-brute (thickness=),
+    /// pixel its own, the default; the same image; or store-only|depth-only|no-own-depth,
+    /// probes of its time, not its image), ssr-brute (thickness=),
     /// ssr-low (stride=, refine=, thickness=), ssr-glossy (ssr-low's march and keys, then a
     /// blur of radius spread × roughness² × hit distance: spread= default 4, max-radius= in
     /// pixels default 32, taps= default 24), ssr-hiz (iterations=, thickness=), sspr,

@@ -9,7 +9,7 @@ use ppr_baselines::{
     SsrGlossyTechnique, SsrSettings, SsrTechnique,
 };
 use ppr_format::ReflectorSet;
-use ppr_runtime::{Choice, PlanParams, ReflectionSettings, ResolutionTier};
+use ppr_runtime::{Choice, PlanParams, ReflectionSettings, ResolutionTier, UpsampleProbe};
 use ppr_testbed::{Level, ReflectionTechnique, RenderSettings};
 
 use crate::error::BenchError;
@@ -81,7 +81,8 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// the barriers between passes included; the SSR and SSPR baselines take it too),
 /// `upsample=per-pixel|shared` (the reduced tiers' upsample reads each pixel's reduced
 /// samples itself, the default, or each workgroup's once into workgroup memory: the same
-/// image; `DebugOptions::shared_upsample`) and `bounces=N` (N frames of the same camera,
+/// image; `DebugOptions::shared_upsample`; or a probe of its time, not its image:
+/// `store-only`, `depth-only`, `no-own-depth`, `DebugOptions::upsample_probe`) and `bounces=N` (N frames of the same camera,
 /// each fed the previous one's composited image as its colour input; scored against the
 /// N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
@@ -208,7 +209,7 @@ impl TechniqueSpec {
                     frame_timing(v).map_err(bad)?;
                 }
                 "upsample" => {
-                    shared_upsample(v).map_err(bad)?;
+                    upsample_mode(v).map_err(bad)?;
                 }
                 "bounces" | "reference-bounces" => {
                     parse_bounces(v).map_err(bad)?;
@@ -359,12 +360,18 @@ fn frame_timing(v: &str) -> Result<bool, String> {
 }
 
 /// `upsample=`: whether the reduced tiers' upsample reads each workgroup's reduced samples
-/// once into workgroup memory (`shared`) or each pixel its own (`per-pixel`).
-fn shared_upsample(v: &str) -> Result<bool, String> {
+/// once into workgroup memory (`shared`) or each pixel its own (`per-pixel`), and which
+/// probe of its time replaces it, if any (`store-only`, `depth-only`, `no-own-depth`).
+fn upsample_mode(v: &str) -> Result<(bool, UpsampleProbe), String> {
     match v {
-        "shared" => Ok(true),
-        "per-pixel" => Ok(false),
-        _ => Err(format!("upsample: `{v}` is neither `per-pixel` nor `shared`")),
+        "shared" => Ok((true, UpsampleProbe::None)),
+        "per-pixel" => Ok((false, UpsampleProbe::None)),
+        "store-only" => Ok((false, UpsampleProbe::StoreOnly)),
+        "depth-only" => Ok((false, UpsampleProbe::DepthOnly)),
+        "no-own-depth" => Ok((false, UpsampleProbe::NoOwnDepth)),
+        _ => Err(format!(
+            "upsample: `{v}` is none of `per-pixel`, `shared`, `store-only`, `depth-only`, `no-own-depth`"
+        )),
     }
 }
 
@@ -385,7 +392,9 @@ pub fn build_technique(
             runner.renderer().debug.frame_span = frame_timing(v).map_err(BenchError::Spec)?;
         }
         if let Some(v) = spec.param("upsample") {
-            runner.renderer().debug.shared_upsample = shared_upsample(v).map_err(BenchError::Spec)?;
+            let (shared, probe) = upsample_mode(v).map_err(BenchError::Spec)?;
+            runner.renderer().debug.shared_upsample = shared;
+            runner.renderer().debug.upsample_probe = probe;
         }
         return Ok(Box::new(runner));
     }
@@ -477,9 +486,14 @@ mod tests {
         assert!("exact:timing=frame".parse::<TechniqueSpec>().is_err());
         let shared: TechniqueSpec = "ppr:tier=half,upsample=shared".parse().expect("shared upsample");
         assert_eq!(shared.label(), "ppr tier=half upsample=shared");
-        assert_eq!(shared_upsample(shared.param("upsample").expect("set")), Ok(true));
+        assert_eq!(upsample_mode(shared.param("upsample").expect("set")), Ok((true, UpsampleProbe::None)));
         let own: TechniqueSpec = "ppr-filter:upsample=per-pixel".parse().expect("per-pixel upsample");
-        assert_eq!(shared_upsample(own.param("upsample").expect("set")), Ok(false));
+        assert_eq!(upsample_mode(own.param("upsample").expect("set")), Ok((false, UpsampleProbe::None)));
+        let probe: TechniqueSpec = "ppr:tier=quarter,upsample=depth-only".parse().expect("a probe");
+        assert_eq!(
+            upsample_mode(probe.param("upsample").expect("set")),
+            Ok((false, UpsampleProbe::DepthOnly))
+        );
         let wrong = "ppr:tier=half,upsample=tiled".parse::<TechniqueSpec>().expect_err("not a mode");
         let message = wrong.to_string();
         assert!(

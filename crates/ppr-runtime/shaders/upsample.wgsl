@@ -16,6 +16,11 @@
 // (colour and, unless LAYERS, camera distance: the same `reduced_sample` and
 // `reduced_distance` calls), and each pixel reads its four from there; a pixel none of
 // whose four holds a reflection writes none without reading its depth.
+//
+// PROBE (bench only, `UpsampleProbe`: what the pass's time is made of; not the image):
+// 1 stores nothing but the empty reflection, 2 reads the pixel's depth and stores, 3 is
+// the default with the pixel's own camera distance taken from its four samples' instead
+// of its depth (no full-resolution read).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var full_depth: texture_2d<f32>;
@@ -27,6 +32,7 @@
 override INDIRECT: bool = false;
 override LAYERS: bool = false;
 override SHARED: bool = false;
+override PROBE: u32 = 0u;
 
 // Output pixels per workgroup edge.
 const GROUP_EDGE: i32 = 16;
@@ -123,6 +129,14 @@ fn main(
     if (outside) {
         return;
     }
+    if (PROBE == 1u) {
+        textureStore(output, p, vec4<f32>(0.0));
+        return;
+    }
+    if (PROBE == 2u) {
+        textureStore(output, p, vec4<f32>(textureLoad(full_depth, p, 0).r * 1e-30));
+        return;
+    }
 
     let r = reduced_position(p, scale);
     let base = vec2<i32>(floor(r));
@@ -142,7 +156,31 @@ fn main(
         }
     }
     var own = -1.0;
-    if (!LAYERS) {
+    // PROBE 3: the four samples and their distances, read once.
+    var probe_s: array<vec4<f32>, 4>;
+    var probe_d: array<f32, 4>;
+    if (PROBE == 3u) {
+        // The bilinear mean of the four samples' distances that have data and depth.
+        var sum_d = 0.0;
+        var sum_w = 0.0;
+        for (var k = 0; k < 4; k++) {
+            let o = vec2<i32>(k & 1, k >> 1);
+            let q = clamp(base + o, lo, hi);
+            probe_s[k] = reduced_sample(q);
+            probe_d[k] = select(-1.0, reduced_distance(q), probe_s[k].a > 0.0);
+            let dq = probe_d[k];
+            let w = select(1.0 - f.x, f.x, o.x == 1) * select(1.0 - f.y, f.y, o.y == 1) + 1.0e-6;
+            if (dq >= 0.0) {
+                sum_d += dq * w;
+                sum_w += w;
+            }
+        }
+        if (!(sum_w > 0.0)) {
+            textureStore(output, p, vec4<f32>(0.0));
+            return;
+        }
+        own = sum_d / sum_w;
+    } else if (!LAYERS) {
         let d = textureLoad(full_depth, p, 0).r;
         if (!ppr_is_valid_depth(d)) {
             textureStore(output, p, vec4<f32>(0.0));
@@ -163,6 +201,8 @@ fn main(
         if (SHARED) {
             at = span_index(q, first, span);
             s = span_colour[at];
+        } else if (PROBE == 3u) {
+            s = probe_s[k];
         } else {
             s = reduced_sample(q);
         }
@@ -175,6 +215,8 @@ fn main(
             var dq: f32;
             if (SHARED) {
                 dq = span_distance[at];
+            } else if (PROBE == 3u) {
+                dq = probe_d[k];
             } else {
                 dq = reduced_distance(q);
             }

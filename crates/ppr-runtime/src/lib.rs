@@ -61,6 +61,7 @@ pub use encoding::{CLEAR_VALUE, EncodingLayout};
 pub use passes::layer_reflection::LayerPlacement;
 pub use passes::projection::{Ablation, BoxReduction};
 pub use passes::reflection::{OUTPUT_FORMAT, ReflectionAblation};
+pub use passes::upsample::UpsampleProbe;
 pub use plan::{Choice, FramePlan, PlanParams, ScreenRect, TestedEntry};
 pub use renderer::{DebugOptions, FrameInputs, ReflectionRenderer, RendererDesc, TILE_LOOP_GROUPS};
 pub use settings::{ReflectionSettings, ResolutionTier, WriteMode};

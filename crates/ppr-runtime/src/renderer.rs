@@ -202,6 +202,9 @@ pub struct DebugOptions {
     /// there, instead of each pixel reading its own four from the textures and computing
     /// their distances (`UpsampleVariant::shared`; bench only, the same image bit for bit).
     pub shared_upsample: bool,
+    /// The reduced tiers' upsample replaced by a probe of its time (bench only, not the
+    /// image: `UpsampleProbe`), on the output's dispatch (the layer output's stays).
+    pub upsample_probe: crate::passes::upsample::UpsampleProbe,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -385,6 +388,9 @@ impl ReflectionRenderer {
                 }
                 if self.debug.shared_upsample && reduced_active {
                     self.upsample.prepare_shared(&self.device);
+                }
+                if reduced_active {
+                    self.upsample.prepare_probe(&self.device, self.debug.upsample_probe);
                 }
             }
             Arc::new(plan)

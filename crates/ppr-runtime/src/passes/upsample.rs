@@ -62,11 +62,46 @@ impl UpsampleVariant {
     }
 }
 
+/// What a probe of the upsample's time records instead of the upsample (the shader's
+/// `PROBE`; bench only, `DebugOptions::upsample_probe`): not the image, the parts of the
+/// pass's time.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum UpsampleProbe {
+    /// The upsample itself.
+    #[default]
+    None,
+    /// Only the store of an empty reflection, every pixel.
+    StoreOnly,
+    /// The pixel's depth read, and the store.
+    DepthOnly,
+    /// The upsample with the pixel's camera distance from its four samples', not from its
+    /// depth: no full-resolution read (a different image at silhouettes).
+    NoOwnDepth,
+}
+
+impl UpsampleProbe {
+    /// Every probe that records something else than the upsample.
+    pub const ALL: [Self; 3] = [Self::StoreOnly, Self::DepthOnly, Self::NoOwnDepth];
+
+    /// The shader's `PROBE`.
+    fn code(self) -> u32 {
+        match self {
+            Self::None => 0,
+            Self::StoreOnly => 1,
+            Self::DepthOnly => 2,
+            Self::NoOwnDepth => 3,
+        }
+    }
+}
+
 /// The upsample pass.
 pub struct UpsamplePass {
     /// Pipelines by [`UpsampleVariant::index`]: the per-pixel ones built with the pass, the
     /// shared ones (bench only) on request ([`Self::prepare_shared`]).
     pipelines: [Option<wgpu::ComputePipeline>; UpsampleVariant::COUNT],
+    /// The probes' pipelines (per-pixel, not layers), by probe and `indirect`, on request
+    /// ([`Self::prepare_probe`]).
+    probes: Vec<(UpsampleProbe, bool, wgpu::ComputePipeline)>,
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
 }
@@ -84,8 +119,12 @@ impl UpsamplePass {
                 storage_entry(5, true),
             ],
         });
-        let mut pass =
-            Self { pipelines: std::array::from_fn(|_| None), layout, bind_groups: BindGroupCache::default() };
+        let mut pass = Self {
+            pipelines: std::array::from_fn(|_| None),
+            probes: Vec::new(),
+            layout,
+            bind_groups: BindGroupCache::default(),
+        };
         pass.build(device, false);
         pass
     }
@@ -94,6 +133,30 @@ impl UpsamplePass {
     pub fn prepare_shared(&mut self, device: &wgpu::Device) {
         if self.pipelines.iter().any(Option::is_none) {
             self.build(device, true);
+        }
+    }
+
+    /// Builds the pipelines of `probe` (`DebugOptions::upsample_probe`), once.
+    pub fn prepare_probe(&mut self, device: &wgpu::Device, probe: UpsampleProbe) {
+        if probe == UpsampleProbe::None || self.probes.iter().any(|p| p.0 == probe) {
+            return;
+        }
+        let module = crate::shader::module_with(
+            device,
+            "ppr upsample (probe)",
+            &[crate::shader::VIEW, SPAN_STUB],
+            WGSL,
+        );
+        for indirect in [false, true] {
+            let variant = UpsampleVariant { indirect, ..UpsampleVariant::default() };
+            let mut constants = variant.constants().to_vec();
+            constants.push(("PROBE", f64::from(probe.code())));
+            let label = format!("ppr upsample probe {probe:?} indirect={indirect}");
+            self.probes.push((
+                probe,
+                indirect,
+                compute_pipeline(device, &label, &self.layout, &module, "main", &constants),
+            ));
         }
     }
 
@@ -143,9 +206,16 @@ impl UpsamplePass {
         bind_group: &wgpu::BindGroup,
         pixels: [u32; 2],
         variant: UpsampleVariant,
+        probe: UpsampleProbe,
     ) {
-        let pipeline = self.pipelines[variant.index()].as_ref();
-        pass.set_pipeline(pipeline.expect("prepare_shared() before encoding a shared variant"));
+        let pipeline = if probe == UpsampleProbe::None || variant.layers || variant.shared {
+            self.pipelines[variant.index()].as_ref()
+        } else {
+            self.probes.iter().find(|p| p.0 == probe && p.1 == variant.indirect).map(|p| &p.2)
+        };
+        pass.set_pipeline(
+            pipeline.expect("prepare_shared() / prepare_probe() before encoding their variants"),
+        );
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(pixels[0].div_ceil(TILE), pixels[1].div_ceil(TILE), 1);
     }
@@ -180,7 +250,11 @@ mod tests {
             let o = o.unwrap_or_else(|| panic!("no override {name}")).1;
             assert_eq!(module.types[o.ty].inner, naga::TypeInner::Scalar(naga::Scalar::BOOL), "{name}");
         }
-        assert_eq!(module.overrides.len(), 3, "every override is set");
+        // PROBE, the one more, is set by the probes' pipelines alone.
+        let probe =
+            module.overrides.iter().find(|(_, o)| o.name.as_deref() == Some("PROBE")).expect("PROBE").1;
+        assert_eq!(module.types[probe.ty].inner, naga::TypeInner::Scalar(naga::Scalar::U32));
+        assert_eq!(module.overrides.len(), 4, "every override is set");
         let entry = module.entry_points.iter().find(|e| e.name == "main").expect("upsample main");
         assert_eq!(entry.workgroup_size, [TILE, TILE, 1]);
         let constant = |name: &str| {

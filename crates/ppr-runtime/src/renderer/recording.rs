@@ -13,7 +13,7 @@ use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
-use crate::passes::upsample::{UpsampleBindings, UpsampleVariant};
+use crate::passes::upsample::{UpsampleBindings, UpsampleProbe, UpsampleVariant};
 use crate::plan::FramePlan;
 use crate::reduced_targets::ReducedTargets;
 use crate::timestamps::{
@@ -400,7 +400,7 @@ impl ReflectionRenderer {
         if !plan.visible.is_empty() {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.output.view, inputs.output));
             let variant = UpsampleVariant { indirect: plan.indirect, ..variant };
-            self.upsample.encode(&mut pass, &bg, view.full_viewport, variant);
+            self.upsample.encode(&mut pass, &bg, view.full_viewport, variant, self.debug.upsample_probe);
         }
         if let (false, Some(layer_output)) = (plan.layers.is_empty(), inputs.layer_output) {
             let bg = self.upsample.bind_group(&self.device, &bindings(&r.layer_output.view, layer_output));
@@ -410,7 +410,8 @@ impl ReflectionRenderer {
                 let scale = f64::from(view.full_viewport[a]) / f64::from(plan.viewport[a]);
                 (f64::from(rect.max[a] - rect.min[a]) * scale).ceil() as u32 + 2
             });
-            self.upsample.encode(&mut pass, &bg, pixels, UpsampleVariant { layers: true, ..variant });
+            let layers = UpsampleVariant { layers: true, ..variant };
+            self.upsample.encode(&mut pass, &bg, pixels, layers, UpsampleProbe::None);
         }
     }
 }
