@@ -63,10 +63,11 @@ pub struct PlanParams {
     /// may reflect into it, and each 16 × 16 tile tests only its super-tile's list (the
     /// per-tile test is otherwise O(tiles × shapes)).
     pub super_tiles: Choice,
-    /// With `Auto`, super-tile lists are built from this many visible shapes on. Provisional:
-    /// measured only on Mesa's llvmpipe at 640×360 (docs/perf/scaling.md, "Super-tile
-    /// lists"), where they are never slower than flat tile lists from 512 shapes on in all
-    /// three generated families; not yet timed on a GPU.
+    /// With `Auto`, super-tile lists are built from this many tested entries on. Measured on
+    /// an H100 at 3840×2160 (docs/perf/scaling.md, thirtieth session): every shape tested
+    /// alone, they are slower than flat tile lists at 512 and 640 in all four generated
+    /// families (the stairway 0.496 against 0.448 ms at 512, 0.555 against 0.514 at 640)
+    /// and faster on the stairway from 768 on (0.635 against 0.689; the facade from 1 024).
     pub super_tiles_min_shapes: usize,
     /// With tile culling, the projection builds each block's list itself, in workgroup
     /// memory from the positions it loads anyway, instead of a block-list pass before it
@@ -151,11 +152,12 @@ pub struct PlanParams {
     /// parallel rule, the occluder lists or [`crate::DebugOptions::writes`].
     pub parallel_trees: Choice,
     /// With `Auto`, a family's visible shapes (those not merged into a plane group) become
-    /// a tree from this many on. Measured on the H200 at 3840×2160 (docs/perf/scaling.md):
-    /// on the stairway the tree is slower than tile lists at 512 treads (0.83 against
-    /// 0.76 ms) and faster from 1 000 (1.02 against 1.08; at 10 000, 2.5 against 15.2);
-    /// on collision-world, whose families are walls of separate rooms, trees of 16 and
-    /// more members doubled the projection.
+    /// a tree from this many on. Measured on an H100 at 3840×2160 (docs/perf/scaling.md,
+    /// thirtieth session): on the stairway the tree is slower than the plan without it at
+    /// 512 and 640 treads (0.547 against 0.493 ms, 0.584 against 0.554), even at 768
+    /// (0.639 against 0.640) and faster from 896 (0.665 against 0.705; at 10 000, 1.68
+    /// against 12.1); on collision-world, whose families are walls of separate rooms,
+    /// trees of 16 and more members doubled the projection.
     pub parallel_tree_min_shapes: usize,
     /// Give the projection pass the shape tests in a uniform buffer (at most
     /// [`UNIFORM_TESTS_CAPACITY`] visible shapes and layers) instead of a storage buffer:
@@ -219,7 +221,7 @@ impl Default for PlanParams {
             tile_culling: Choice::Auto,
             tile_culling_min_shapes: 16,
             super_tiles: Choice::Auto,
-            super_tiles_min_shapes: 512,
+            super_tiles_min_shapes: 768,
             fused_lists: Choice::Auto,
             fused_tile_culling_min_shapes: 8,
             parallel_rule: Choice::Auto,
@@ -237,7 +239,7 @@ impl Default for PlanParams {
             plane_groups: Choice::Auto,
             plane_group_min_shapes: 4,
             parallel_trees: Choice::Auto,
-            parallel_tree_min_shapes: 1000,
+            parallel_tree_min_shapes: 768,
             subgroup_cull: Choice::Auto,
             subgroup_cull_min_shapes: 16,
             subgroup_tile_culling_min_shapes: 128,

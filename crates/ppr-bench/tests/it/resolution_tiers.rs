@@ -170,3 +170,34 @@ fn shared_upsample_gives_the_per_pixel_image() {
         }
     }
 }
+
+/// The upsample's time probes (`upsample=store-only|depth-only|no-own-depth`,
+/// `DebugOptions::upsample_probe`) record what they name: the first two no reflection at all
+/// (the depth probe's value, depth × 1e-30, is below the output's half floats), the third
+/// the upsample with each pixel's distance from its samples', whose image is the default's
+/// but at silhouettes: reflections on about as many pixels, nearly all the same colour.
+#[test]
+fn upsample_probes_record_what_they_name() {
+    let gpu = GpuContext::new_headless().expect("a wgpu adapter (llvmpipe without a GPU)");
+    let room = bench_scene(MirrorRoom::BoxesInBox { boxes: 2 }, &SceneOptions::default());
+    let specs: Vec<TechniqueSpec> =
+        ["", ",upsample=store-only", ",upsample=depth-only", ",upsample=no-own-depth"]
+            .iter()
+            .map(|probe| format!("ppr:fade=0,tier=quarter{probe}").parse().expect("spec"))
+            .collect();
+    let cam = &room.cameras[0];
+    let f = render_scene_frame(&gpu, &room, &cam.camera, [320, 180], &specs, &PlanParams::default())
+        .expect("frame");
+    let [own, store, depth, no_own] = &f.techniques[..] else { panic!("four techniques") };
+    let count = written(&own.image);
+    assert!(count >= 20_000, "{}: {count} pixels with a reflection", own.label);
+    assert_eq!(written(&store.image), 0, "{}", store.label);
+    assert_eq!(written(&depth.image), 0, "{}", depth.label);
+    let approx = written(&no_own.image);
+    assert!(approx.abs_diff(count) * 20 <= count, "{}: {approx} pixels against {count}", no_own.label);
+    let close =
+        |p: &image::Rgba<f32>, q: &image::Rgba<f32>| p.0.iter().zip(q.0).all(|(u, v)| (u - v).abs() <= 0.02);
+    let unlike = own.image.pixels().zip(no_own.image.pixels()).filter(|(p, q)| !close(p, q)).count();
+    assert!(unlike * 20 <= count, "{}: {unlike} pixels unlike the default's", no_own.label);
+    assert!(unlike > 0 || approx != count, "{}: the very same image", no_own.label);
+}
