@@ -96,7 +96,7 @@ pub struct PlanParams {
     pub indirect: Choice,
     /// With `Auto`, indirect dispatch runs when the visible shapes' screen rectangles cover
     /// at most this share of a screen of 3840×2160 pixels or more; smaller screens take a
-    /// smaller share, none up to 2560×1440 ([`Self::indirect_coverage_limit`]). Measured on
+    /// smaller share, none up to 1920×1080 ([`Self::indirect_coverage_limit`]). Measured on
     /// the H200 at 3840×2160 (docs/perf/scaling.md, seventeenth session): the classification
     /// and the per-tile reflection are faster up to 0.3 (0.127 against 0.129 ms) and slower
     /// from 0.4 (0.140 against 0.129).
@@ -193,20 +193,24 @@ pub const DEFAULT_MAX_ROUGHNESS: f32 = 0.5;
 /// 80 B = 10 KiB, under the 16 KiB uniform binding every wgpu adapter offers.
 pub const UNIFORM_TESTS_CAPACITY: usize = 128;
 
-/// Up to this many pixels (2560×1440) `Auto` never takes indirect dispatch; from
+/// Up to this many pixels (1920×1080) `Auto` never takes indirect dispatch; from
 /// [`INDIRECT_FULL_PIXELS`] (3840×2160) on, up to [`PlanParams::indirect_max_coverage`];
-/// linear in the pixel count between. On the H200 (docs/perf/scaling.md and runtime.md,
-/// seventeenth session) the classification's own cost outweighed what it saved at 1080p
-/// on every frame (one floor mirror at 5 % coverage: 0.0456 against 0.0445 ms; the demo's
-/// overview at 24 %: 0.133 against 0.120; the kitchen's at 4 %, glossy: 0.096 against
-/// 0.082) and at 1440p on the kitchen's (0.105 against 0.099), though not on the floor
-/// mirror up to 10 % (0.064 against 0.066); at 4K it pays up to 30 %.
-const INDIRECT_MIN_PIXELS: f64 = 2560.0 * 1440.0;
+/// linear in the pixel count between (at 2560×1440: up to 7.8 %). On an H100
+/// (docs/perf/scaling.md, thirtieth session) forced indirect dispatch at 1080p gained at
+/// most 0.001 ms on the demo's and the kitchen's overviews (0.1080 against 0.1085 ms,
+/// 0.0733 against 0.0741) and 0.006 on one floor mirror at 5 % coverage (0.036 against
+/// 0.042), was even at 20 % and lost from 30 %: not worth a threshold there. At 1440p it
+/// took 0.004 off the kitchen's overview (4 % coverage: 0.0841 against 0.0874) and the
+/// demo's (24 %, over the limit: 0.1558 against 0.1597) and lost 0.005–0.021 on the four
+/// fuller views; at 4K it pays up to 30 %. (In the seventeenth session, before the
+/// classification moved into the projection's compute pass, it lost at 1440p on the
+/// kitchen's overview, 0.105 against 0.099.)
+const INDIRECT_MIN_PIXELS: f64 = 1920.0 * 1080.0;
 const INDIRECT_FULL_PIXELS: f64 = 3840.0 * 2160.0;
 
 impl PlanParams {
     /// The largest screen coverage at which `Auto` takes indirect dispatch on a viewport of
-    /// `pixels`: none up to 2560×1440, [`Self::indirect_max_coverage`] from 3840×2160 on,
+    /// `pixels`: none up to 1920×1080, [`Self::indirect_max_coverage`] from 3840×2160 on,
     /// linear in the pixel count between.
     pub fn indirect_coverage_limit(&self, pixels: u64) -> f32 {
         let share = ((pixels as f64 - INDIRECT_MIN_PIXELS) / (INDIRECT_FULL_PIXELS - INDIRECT_MIN_PIXELS))
@@ -862,7 +866,7 @@ mod tests {
         let d = PlanParams::default();
         let camera =
             Camera::look_at(DVec3::new(0.0, 4.0, 0.01), DVec3::ZERO, Vec3::NEG_Z, Projection::default());
-        let (mut direct, mut indirect) = (0, 0);
+        let (mut direct, mut indirect, mut qhd_direct, mut qhd_indirect) = (0, 0, 0, 0);
         // One floor mirror seen from above, growing until it fills the screen.
         for half in [0.2, 0.5, 1.0, 1.5, 2.0, 3.0, 5.0] {
             let mut set = ReflectorSet::new("floor");
@@ -878,11 +882,15 @@ mod tests {
             let table = ShapeTable::from_set(&set);
             let p = FramePlan::build(&table, &camera, [3840, 2160], &d);
             assert_eq!(p.indirect, p.coverage <= d.indirect_max_coverage, "half extent {half}: {p}");
-            // At 1440p and below the classification never pays.
-            for size in [[2560, 1440], [1920, 1080], [320, 180]] {
+            // At 1080p and below the classification never pays; at 1440p up to a smaller share.
+            for size in [[1920, 1080], [320, 180]] {
                 let small = FramePlan::build(&table, &camera, size, &d);
                 assert!(!small.indirect, "half extent {half}, {size:?}: {small}");
             }
+            let qhd = FramePlan::build(&table, &camera, [2560, 1440], &d);
+            assert_eq!(qhd.indirect, qhd.coverage <= d.indirect_coverage_limit(2560 * 1440), "{qhd}");
+            qhd_indirect += usize::from(qhd.indirect);
+            qhd_direct += usize::from(!qhd.indirect);
             if p.indirect {
                 indirect += 1;
             } else {
@@ -896,6 +904,7 @@ mod tests {
             direct > 0 && indirect > 0,
             "the sizes span the threshold: {direct} direct, {indirect} indirect"
         );
+        assert!(qhd_direct > 0 && qhd_indirect > 0, "1440p: {qhd_direct} direct, {qhd_indirect} indirect");
     }
 
     #[test]
@@ -904,7 +913,7 @@ mod tests {
         let limit = |w: u64, h: u64| d.indirect_coverage_limit(w * h);
         assert_eq!(limit(320, 180), 0.0);
         assert_eq!(limit(1920, 1080), 0.0);
-        assert_eq!(limit(2560, 1440), 0.0);
+        assert!(limit(2560, 1440) > 0.05 && limit(2560, 1440) < 0.1, "{}", limit(2560, 1440));
         assert_eq!(limit(3840, 2160), d.indirect_max_coverage);
         assert_eq!(limit(7680, 4320), d.indirect_max_coverage);
         let sizes = [(1920, 1080), (2560, 1440), (2880, 1620), (3200, 1800), (3840, 2160), (5120, 2880)];
