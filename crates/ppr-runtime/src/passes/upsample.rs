@@ -80,9 +80,6 @@ pub enum UpsampleProbe {
 }
 
 impl UpsampleProbe {
-    /// Every probe that records something else than the upsample.
-    pub const ALL: [Self; 3] = [Self::StoreOnly, Self::DepthOnly, Self::NoOwnDepth];
-
     /// The shader's `PROBE`.
     fn code(self) -> u32 {
         match self {
