@@ -82,9 +82,9 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// `upsample=per-pixel|shared` (the reduced tiers' upsample reads each pixel's reduced
 /// samples itself, the default, or each workgroup's once into workgroup memory: the same
 /// image; `DebugOptions::shared_upsample`; or a probe of its time, not its image:
-/// `store-only`, `depth-only`, `no-own-depth`, `DebugOptions::upsample_probe`) and `bounces=N` (N frames of the same camera,
-/// each fed the previous one's composited image as its colour input; scored against the
-/// N-bounce reference).
+/// `store-only`, `depth-only`, `no-own-depth`, `DebugOptions::upsample_probe`) and
+/// `bounces=N` (N frames of the same camera, each fed the previous one's composited image
+/// as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
 const PPR_KEYS: [&str; 14] = [
