@@ -9,6 +9,7 @@ const PPR_FLAG_WRITE_LAST: u32 = 16u;
 const PPR_FLAG_WRITE_MAX: u32 = 32u;
 const PPR_FLAG_WATER_STRETCH: u32 = 64u;
 const PPR_FLAG_REPLACE_FAR: u32 = 128u;
+const PPR_FLAG_LAYER_EVERY_TILE: u32 = 256u;
 
 // Reflector kinds (Layer::kind).
 const PPR_KIND_OPAQUE: u32 = 0u;

@@ -6,7 +6,9 @@
 // atlas value with hole filling, the same sampling as the main reflection, and for water
 // optionally the hash-style edge stretch (reuse the nearest valid reflection along the
 // plane's projected normal). Output: colour, alpha the confidence (as the main reflection:
-// 0 where no layer reflection was found).
+// 0 where no layer reflection was found), over the 16 x 16 tiles of the layers' common
+// rectangle that meet some layer's own rectangle (the others are not written; the reduced
+// tiers write them all).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<storage, read> atlas: array<u32>;
@@ -33,16 +35,35 @@ fn read_layer(l: Layer, p: vec2<i32>) -> u32 {
     return atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)];
 }
 
+// Whether the 16 x 16 tile from `lo` meets some layer's rectangle.
+fn tile_meets_a_layer(lo: vec2<u32>) -> bool {
+    let hi = lo + vec2<u32>(16u);
+    for (var i = 0u; i < frame.layer_count; i++) {
+        let l = layers[i];
+        if (all(lo < l.rect_max) && all(hi > l.rect_min)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 @compute @workgroup_size(16, 16)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>) {
+fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(workgroup_id) wid: vec3<u32>) {
+    // Tiles of the layers' common rectangle that meet no layer's own are not written (the
+    // rectangles of a pond and a far window span much more of the screen together than
+    // apart: on the demo's overview at 4K, 4.7 M pixels against 0.5 M). A uniform branch.
+    // The reduced tiers write them all (PPR_FLAG_LAYER_EVERY_TILE): their upsample reads
+    // the whole rectangle.
+    if ((frame.flags & PPR_FLAG_LAYER_EVERY_TILE) == 0u && !tile_meets_a_layer(frame.layer_origin + wid.xy * 16u)) {
+        return;
+    }
     let pixel = frame.layer_origin + gid.xy;
     if (any(pixel >= frame.size) || any(gid.xy >= frame.layer_extent)) {
         return;
     }
     let vpos = vec2<i32>(pixel);
-    // Pixels of the layers' common rectangle outside every layer's own leave before the
-    // two unprojections below (the rectangles of a pond and a far window span much more
-    // of the screen together than apart).
+    // Pixels of such a tile outside every layer's rectangle store no reflection, before
+    // the two unprojections below.
     var in_some_rect = false;
     for (var i = 0u; i < frame.layer_count; i++) {
         let l = layers[i];

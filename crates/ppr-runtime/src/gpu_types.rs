@@ -21,6 +21,10 @@ pub const FLAG_WATER_STRETCH: u32 = 64;
 /// Hole filling also replaces a reflection by a neighbour's more than 6 px shorter one
 /// (the seed's rule; [`crate::ReflectionSettings::replace_far_reflections`]).
 pub const FLAG_REPLACE_FAR: u32 = 128;
+/// The layer reflection writes every tile of the layers' common rectangle, also those that
+/// meet no layer's own (the reduced tiers, whose upsample reads the whole rectangle; and
+/// the bench's `layers: every tile`).
+pub const FLAG_LAYER_EVERY_TILE: u32 = 256;
 
 /// Bit of [`GpuShape::flags`]: the shape blocks reflections of the main buffer behind it
 /// (opaque and water shapes do; glass does not).

@@ -342,7 +342,8 @@ pub struct FramePlan {
     pub layers: Vec<LayerAlloc>,
     /// Atlas entries the layers use.
     pub layer_pixels: u32,
-    /// The union of the layers' screen rectangles (what the layer pass covers).
+    /// The union of the layers' screen rectangles (what the layer pass is dispatched over;
+    /// it writes only the 16 × 16 tiles, from its corner, that meet a layer's rectangle).
     pub layer_rect: ScreenRect,
     /// Visible glass panels or water planes that got no layer (over [`MAX_LAYERS`] or the
     /// atlas capacity of two screens).

@@ -11,7 +11,7 @@ use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::frame_upload::{FrameUpload, UploadMemory};
 use crate::glossy::glossy_shapes;
-use crate::gpu_types::{FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
+use crate::gpu_types::{FLAG_LAYER_EVERY_TILE, FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::layer_reflection::LayerPlacement;
 use crate::passes::projection::BoxReduction;
 use crate::passes::reflection::{ReflectionAblation, ReflectionVariant};
@@ -62,8 +62,9 @@ impl Default for RendererDesc {
 ///
 /// Optional:
 /// - `layer_output`: like `output`, for the reflections of glass panels and water planes
-///   (the nearest one the view ray hits in front of the depth buffer); written over the
-///   plan's `layer_rect` when it has layers. With [`PlanParams::layers`] at `Auto`, a
+///   (the nearest one the view ray hits in front of the depth buffer); written when the
+///   plan has layers, over each layer's rectangle (`plan.layers[i].rect`, and the rest of
+///   the 16 × 16 tiles of `layer_rect` that meet one), nowhere else. With [`PlanParams::layers`] at `Auto`, a
 ///   renderer whose last frame with layers had no layer output plans no layers until an
 ///   `encode` gives one (only that first frame computes them for nothing); passing one
 ///   only when the plan has layers keeps them; `Off` never plans them.
@@ -136,6 +137,10 @@ pub struct DebugOptions {
     /// The water edge stretch reads all its steps, also those past the layer's rectangle
     /// (the walk before the eighteenth session; bench only, the same image).
     pub full_stretch_walk: bool,
+    /// The layer reflection writes every 16 × 16 tile of the layers' common rectangle, also
+    /// those that meet no layer's own (the pass before the thirty-first session; bench
+    /// only, the same image inside the layers' rectangles).
+    pub layer_every_tile: bool,
     /// How the block lists the projection builds reduce the box of the block's positions
     /// (bench only, the same lists; `ProjectionVariant::box_reduction`).
     pub box_reduction: BoxReduction,
@@ -415,7 +420,7 @@ impl ReflectionRenderer {
             .zip(&plans)
             .map(|(camera, plan)| PreparedView {
                 plan: Arc::clone(plan),
-                upload: self.upload(camera, plan, recycled.pop().unwrap_or_default()),
+                upload: self.upload(camera, plan, reduced_active, recycled.pop().unwrap_or_default()),
                 full_viewport: viewport,
                 reduced_active,
             })
@@ -482,8 +487,15 @@ impl ReflectionRenderer {
     }
 
     /// What `encode` copies into the frame buffers for this view (`None` for an empty plan:
-    /// nothing is encoded), in `memory` (the last frame's, refilled).
-    fn upload(&self, camera: &Camera, plan: &FramePlan, mut memory: UploadMemory) -> Option<FrameUpload> {
+    /// nothing is encoded), in `memory` (the last frame's, refilled); `reduced`: the plan
+    /// is a reduced tier's.
+    fn upload(
+        &self,
+        camera: &Camera,
+        plan: &FramePlan,
+        reduced: bool,
+        mut memory: UploadMemory,
+    ) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
         let b = self.buffers.as_ref().expect("prepare_views allocates the buffers");
         if plan.is_empty() {
@@ -502,7 +514,8 @@ impl ReflectionRenderer {
             visible_count: plan.visible.len() as u32,
             flags: self.settings.flags()
                 | self.debug.write_mode.flags()
-                | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 },
+                | if plan.occluder_tests { FLAG_OCCLUDER_TESTS } else { 0 }
+                | if reduced || self.debug.layer_every_tile { FLAG_LAYER_EVERY_TILE } else { 0 },
             far_depth: camera.projection.far_depth(),
             plane_epsilon: PLANE_EPSILON,
             layer_count: plan.layers.len() as u32,

@@ -60,8 +60,9 @@ pub const GLOSSY_PROBE_ROUGHNESS: f64 = 0.2;
 /// The projection variants of `--projection-profile`: (name, source boxes, ablation); the
 /// `reflection: …` rows ablate the reflection pass instead, the `reflection: mirrors …`
 /// rows without the glossy blur (one pixel per invocation, or two by two with `quads`); the
-/// `layers: …` rows change the layer pass (the water edge stretch off, or walking all its
-/// steps as before the eighteenth session).
+/// `layers: …` rows change the layer pass (the water edge stretch off, walking all its
+/// steps as before the eighteenth session, or writing every tile of the layers' common
+/// rectangle as before the thirty-first; `every tile` rows that last).
 fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
     vec![
         ("empty", Choice::Off, Ablation::Empty),
@@ -109,11 +110,14 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("occlusion last", Choice::Auto, Ablation::None),
         ("layers: no water stretch", Choice::Auto, Ablation::None),
         ("layers: full stretch walk", Choice::Auto, Ablation::None),
+        ("layers: every tile", Choice::Auto, Ablation::None),
+        ("layers: own pass, every tile", Choice::Auto, Ablation::None),
         ("layers: own pass", Choice::Auto, Ablation::None),
         ("layers: after reflection", Choice::Auto, Ablation::None),
         ("classify own pass", Choice::Auto, Ablation::None),
         ("frame span", Choice::Auto, Ablation::None),
         ("frame span, layers own pass", Choice::Auto, Ablation::None),
+        ("frame span, layers every tile", Choice::Auto, Ablation::None),
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
         ("frame span, classify own pass", Choice::Auto, Ablation::None),
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
@@ -351,7 +355,10 @@ pub fn run_runtime(
                     block_lists_box_only: name.ends_with("lists box only"),
                     no_inside_entries: name.ends_with("no inside entries"),
                     full_stretch_walk: name == "layers: full stretch walk",
-                    layer_placement: if name.ends_with("layers own pass") || name == "layers: own pass" {
+                    layer_every_tile: name.ends_with("every tile"),
+                    layer_placement: if name.ends_with("layers own pass")
+                        || name.starts_with("layers: own pass")
+                    {
                         LayerPlacement::OwnPass
                     } else if name.ends_with("after reflection") {
                         LayerPlacement::AfterReflection

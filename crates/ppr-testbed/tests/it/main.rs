@@ -8,6 +8,7 @@ mod demo_level_tests;
 mod glossy_reference_tests;
 mod gltf_tests;
 mod image_tests;
+mod layer_tiles_tests;
 mod ppr_tests;
 mod reference_tests;
 mod render_tests;
