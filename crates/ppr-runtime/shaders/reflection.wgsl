@@ -51,13 +51,15 @@ fn read_value(p: vec2<i32>) -> u32 {
     if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(frame.size))) {
         return PPR_CLEAR_VALUE;
     }
+    let value = intermediate[u32(p.x) + u32(p.y) * frame.size.x];
     if (INDIRECT) {
+        // Both loads issued before either is used: the value of a tile not cleared this
+        // frame is read and dropped, not waited for behind its tile's flag.
         let tiles_x = (frame.size.x + 15u) / 16u;
-        if (tile_flags[u32(p.x) / 16u + u32(p.y) / 16u * tiles_x] == 0u) {
-            return PPR_CLEAR_VALUE;
-        }
+        let cleared = tile_flags[u32(p.x) / 16u + u32(p.y) / 16u * tiles_x] != 0u;
+        return select(PPR_CLEAR_VALUE, value, cleared);
     }
-    return intermediate[u32(p.x) + u32(p.y) * frame.size.x];
+    return value;
 }
 
 // Clears the pixel's value in the next encode's intermediate buffer, and the atlas values
