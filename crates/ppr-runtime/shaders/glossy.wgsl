@@ -84,19 +84,18 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     if (!ppr_glossy_candidate(c)) {
         return sharp;
     }
-    // Both depths loaded together (one trip to memory, not two; a mirror pixel in a glossy
-    // reflector's rectangle reads the second for nothing).
     let d_here = valid_depth_at(vpos);
-    let d_src = valid_depth_at(vec2<i32>(floor(src)));
     if (d_here < 0.0) {
         return sharp;
     }
+    // Mirrors leave here, before the reflected point's depth is read.
     let p = ppr_unproject(c, d_here);
     let roughness = ppr_glossy_roughness(p, c);
     // max_taps 0: the lookup only (the bench's cost profile).
     if (!(roughness > 0.0) || glossy.max_taps == 0u) {
         return sharp;
     }
+    let d_src = valid_depth_at(vec2<i32>(floor(src)));
     if (d_src < 0.0) {
         return sharp;
     }
