@@ -8,6 +8,8 @@
 # Twenty-ninth session (H200, four calls): profile 424 s (cut at the old 330 s limit the
 # first time), collision 71, compare 255, scalecounts 95, generated over 200 (cut).
 # Thirtieth session (H100): scaling 251 s (its full threshold and coverage sweeps).
+# Thirty-first session (H100, three calls): profile 188-201 s, collision 78, compare 230,
+# scalecounts 99.
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).
