@@ -63,8 +63,10 @@ impl Default for RendererDesc {
 /// Optional:
 /// - `layer_output`: like `output`, for the reflections of glass panels and water planes
 ///   (the nearest one the view ray hits in front of the depth buffer); written when the
-///   plan has layers, over each layer's rectangle (`plan.layers[i].rect`, and the rest of
-///   the 16 × 16 tiles of `layer_rect` that meet one), nowhere else. With [`PlanParams::layers`] at `Auto`, a
+///   plan has layers, over each layer's rectangle (`plan.layers[i].rect`); elsewhere in the
+///   plan's `layer_rect` left as it was at full resolution (but for the rest of the 16 × 16
+///   tiles that meet a layer's rectangle) or written with no reflection (the reduced
+///   tiers), and outside `layer_rect` not written. With [`PlanParams::layers`] at `Auto`, a
 ///   renderer whose last frame with layers had no layer output plans no layers until an
 ///   `encode` gives one (only that first frame computes them for nothing); passing one
 ///   only when the plan has layers keeps them; `Off` never plans them.
