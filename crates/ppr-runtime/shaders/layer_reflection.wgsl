@@ -8,7 +8,9 @@
 // plane's projected normal). Output: colour, alpha the confidence (as the main reflection:
 // 0 where no layer reflection was found), over the 16 x 16 tiles of the layers' common
 // rectangle that meet some layer's own rectangle (the others are not written; the reduced
-// tiers write them all).
+// tiers write them all). One workgroup a tile: a grid over the common rectangle with
+// PPR_FLAG_LAYER_EVERY_TILE, else a list of the tiles each layer's rectangle meets, layer
+// after layer (listed_tile; FramePlan::layer_tiles on the CPU sizes the dispatch).
 
 @group(0) @binding(0) var<uniform> frame: FrameUniforms;
 @group(0) @binding(1) var<storage, read> atlas: array<u32>;
@@ -35,30 +37,47 @@ fn read_layer(l: Layer, p: vec2<i32>) -> u32 {
     return atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)];
 }
 
-// Whether the 16 x 16 tile from `lo` meets some layer's rectangle.
-fn tile_meets_a_layer(lo: vec2<u32>) -> bool {
-    let hi = lo + vec2<u32>(16u);
+// The tile (in tiles from frame.layer_origin) of entry `index` of the list of the tiles
+// each layer's rectangle meets, layer after layer (a tile two rectangles meet is listed
+// twice, and shaded alike by both workgroups); w 0 past the list's end.
+fn listed_tile(index: u32) -> vec3<u32> {
+    var rest = index;
     for (var i = 0u; i < frame.layer_count; i++) {
         let l = layers[i];
-        if (all(lo < l.rect_max) && all(hi > l.rect_min)) {
-            return true;
+        let lo = (l.rect_min - frame.layer_origin) / 16u;
+        let span = (l.rect_max - frame.layer_origin + 15u) / 16u - lo;
+        let n = span.x * span.y;
+        if (rest < n) {
+            return vec3<u32>(lo + vec2<u32>(rest % span.x, rest / span.x), 1u);
         }
+        rest -= n;
     }
-    return false;
+    return vec3<u32>(0u);
 }
 
 @compute @workgroup_size(16, 16)
-fn main(@builtin(global_invocation_id) gid: vec3<u32>, @builtin(workgroup_id) wid: vec3<u32>) {
-    // Tiles of the layers' common rectangle that meet no layer's own are not written (the
-    // rectangles of a pond and a far window span much more of the screen together than
-    // apart: on the demo's overview at 4K, 4.7 M pixels against 0.5 M). A uniform branch.
-    // The reduced tiers write them all (PPR_FLAG_LAYER_EVERY_TILE): their upsample reads
-    // the whole rectangle.
-    if ((frame.flags & PPR_FLAG_LAYER_EVERY_TILE) == 0u && !tile_meets_a_layer(frame.layer_origin + wid.xy * 16u)) {
-        return;
+fn main(
+    @builtin(local_invocation_id) lid: vec3<u32>,
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) groups: vec3<u32>,
+) {
+    // Tiles of the layers' common rectangle that meet no layer's own are not dispatched
+    // (the rectangles of a pond and a far window span much more of the screen together
+    // than apart: on the demo's overview at 4K, 4.7 M pixels against 0.5 M): the
+    // workgroups take the list of the tiles that do. The reduced tiers shade them all
+    // (PPR_FLAG_LAYER_EVERY_TILE, a grid over the common rectangle): their upsample reads
+    // the whole rectangle. Uniform branches.
+    var tile = wid.xy;
+    if ((frame.flags & PPR_FLAG_LAYER_EVERY_TILE) == 0u) {
+        let listed = listed_tile(wid.x + wid.y * groups.x);
+        if (listed.z == 0u) {
+            return;
+        }
+        tile = listed.xy;
     }
-    let pixel = frame.layer_origin + gid.xy;
-    if (any(pixel >= frame.size) || any(gid.xy >= frame.layer_extent)) {
+    let local = tile * 16u + lid.xy;
+    let pixel = frame.layer_origin + local;
+    if (any(pixel >= frame.size) || any(local >= frame.layer_extent)) {
         return;
     }
     let vpos = vec2<i32>(pixel);

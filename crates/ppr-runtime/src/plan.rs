@@ -710,6 +710,21 @@ impl FramePlan {
     pub fn tile_count(&self) -> u32 {
         self.viewport[0].div_ceil(16) * self.viewport[1].div_ceil(16)
     }
+
+    /// The layer pass's workgroups: the 16 × 16 tiles, from [`Self::layer_rect`]'s corner,
+    /// that each layer's rectangle meets, layer after layer (a tile two rectangles meet
+    /// counts twice). `layer_reflection.wgsl`'s `listed_tile` walks them in this order.
+    pub fn layer_tiles(&self) -> u32 {
+        let origin = self.layer_rect.min;
+        self.layers
+            .iter()
+            .map(|l| {
+                let span =
+                    |a: usize| (l.rect.max[a] - origin[a]).div_ceil(16) - (l.rect.min[a] - origin[a]) / 16;
+                span(0) * span(1)
+            })
+            .sum()
+    }
 }
 
 /// Whether all corners lie outside one of the clip volume's planes (conservative).
@@ -833,7 +848,7 @@ mod tests {
     use glam::{DVec2, DVec3, Vec3};
     use ppr_format::{Reflector, ReflectorKind, ReflectorSet};
 
-    use super::{Choice, FramePlan, PlanParams};
+    use super::{Choice, FramePlan, LayerAlloc, PlanParams, ScreenRect};
     use crate::camera::{Camera, Projection};
     use crate::shapes::ShapeTable;
 
@@ -981,5 +996,27 @@ mod tests {
         // The grid's mirrors share one plane; taken as a parallel tree, after the encoding.
         let p = plan(20, &PlanParams { parallel_trees: Choice::On, plane_groups: Choice::Off, ..d });
         assert!(!p.trees.is_empty() && !p.occlusion_first, "{p}");
+    }
+
+    #[test]
+    fn layer_tiles_count_each_layers_tiles_from_the_common_corner() {
+        let camera = Camera::look_at(DVec3::new(0.0, 1.0, 2.0), DVec3::ZERO, Vec3::Y, Projection::default());
+        let mut p = FramePlan::build(&ShapeTable::default(), &camera, [256, 128], &PlanParams::default());
+        assert_eq!(p.layer_tiles(), 0);
+        let layer = |min: [u32; 2], max: [u32; 2]| LayerAlloc {
+            shape: 0,
+            kind: ReflectorKind::Water,
+            rect: ScreenRect { min, max },
+            offset: 0,
+        };
+        // From the common corner (10, 5): the first spans x 0..40 (3 tiles) and y 0..20 (2),
+        // the second x 90..91 (1 tile, the sixth) and y 15..16 (the first); the tile
+        // columns of the grid over the common rectangle, not the screen's.
+        p.layers = vec![layer([10, 5], [50, 25]), layer([100, 20], [101, 21])];
+        p.layer_rect = ScreenRect { min: [10, 5], max: [101, 25] };
+        assert_eq!(p.layer_tiles(), 3 * 2 + 1);
+        // A layer inside the first's tiles counts again (both workgroups shade it alike).
+        p.layers.push(layer([20, 6], [25, 9]));
+        assert_eq!(p.layer_tiles(), 3 * 2 + 1 + 1);
     }
 }

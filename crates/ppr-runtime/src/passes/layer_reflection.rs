@@ -26,6 +26,37 @@ pub enum LayerPlacement {
     OwnPass,
 }
 
+/// What the layer pass's workgroups cover.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayerGroups {
+    /// A grid over the layers' common rectangle of this many pixels, one workgroup a tile
+    /// (the frame's flags hold `FLAG_LAYER_EVERY_TILE`).
+    EveryTile([u32; 2]),
+    /// This many tiles, [`crate::plan::FramePlan::layer_tiles`]: the tiles each layer's own
+    /// rectangle meets, layer after layer. Over the common rectangle of a pond and a far
+    /// window most tiles meet neither, and a grid's workgroups that return at once still
+    /// cost their launch and their reads of the layers (the demo's 4K overview: 18 400
+    /// workgroups for about 2 000 such tiles).
+    LayerTiles(u32),
+}
+
+/// Most workgroups along x in a layer-tile dispatch (wgpu's default limit is 65 535).
+const LAYER_TILE_GROUPS_X: u32 = 32_768;
+
+impl LayerGroups {
+    /// The dispatch's workgroup counts (x, y).
+    pub fn workgroups(self) -> [u32; 2] {
+        match self {
+            Self::EveryTile(extent) => [extent[0].div_ceil(TILE), extent[1].div_ceil(TILE)],
+            Self::LayerTiles(0) => [0, 0],
+            Self::LayerTiles(n) => {
+                let x = n.min(LAYER_TILE_GROUPS_X);
+                [x, n.div_ceil(x)]
+            }
+        }
+    }
+}
+
 /// Buffers and views the layer pass reads and writes.
 pub struct LayerBindings<'a> {
     pub uniforms: BufferPart<'a>,
@@ -40,6 +71,11 @@ pub struct LayerBindings<'a> {
     /// pass, the barrier wgpu puts before this dispatch also readies the intermediate
     /// buffer for the reflection, which then runs beside it without a barrier of its own.
     pub intermediate: &'a wgpu::Buffer,
+    /// The classification's active tiles and tile flags, which the shader does not read
+    /// either: bound (read-only) for the same reason, on frames with indirect dispatch,
+    /// whose reflection reads them after the classification wrote them.
+    pub active_tiles: &'a wgpu::Buffer,
+    pub tile_flags: &'a wgpu::Buffer,
 }
 
 /// The layer reflection pass.
@@ -91,6 +127,8 @@ impl LayerReflectionPass {
                     count: None,
                 },
                 storage_entry(8, true),
+                storage_entry(9, true),
+                storage_entry(10, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -148,21 +186,26 @@ impl LayerReflectionPass {
                         resource: wgpu::BindingResource::TextureView(b.output),
                     },
                     wgpu::BindGroupEntry { binding: 8, resource: b.intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 9, resource: b.active_tiles.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 10, resource: b.tile_flags.as_entire_binding() },
                 ],
             },
         )
     }
 
-    /// Records the pass over the layers' screen rectangle (`extent` pixels); with
-    /// `full_stretch` (bench only, the same image) the pipeline of
-    /// [`Self::prepare_full_stretch`].
+    /// Records the pass over `groups`; with `full_stretch` (bench only, the same image) the
+    /// pipeline of [`Self::prepare_full_stretch`].
     pub fn encode(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
-        extent: [u32; 2],
+        groups: LayerGroups,
         full_stretch: bool,
     ) {
+        let [x, y] = groups.workgroups();
+        if x == 0 || y == 0 {
+            return;
+        }
         let pipeline = if full_stretch {
             self.full_stretch.as_ref().expect("prepare_full_stretch() before a full-walk encode")
         } else {
@@ -170,6 +213,22 @@ impl LayerReflectionPass {
         };
         pass.set_pipeline(pipeline);
         pass.set_bind_group(0, bind_group, &[]);
-        pass.dispatch_workgroups(extent[0].div_ceil(TILE), extent[1].div_ceil(TILE), 1);
+        pass.dispatch_workgroups(x, y, 1);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{LAYER_TILE_GROUPS_X, LayerGroups};
+
+    #[test]
+    fn layer_dispatches_cover_their_tiles() {
+        assert_eq!(LayerGroups::EveryTile([33, 16]).workgroups(), [3, 1]);
+        assert_eq!(LayerGroups::LayerTiles(0).workgroups(), [0, 0]);
+        assert_eq!(LayerGroups::LayerTiles(7).workgroups(), [7, 1]);
+        // Past the x limit, rows of it: the shader skips the entries past the list's end.
+        let n = 2 * LAYER_TILE_GROUPS_X + 5;
+        let [x, y] = LayerGroups::LayerTiles(n).workgroups();
+        assert!(x <= LAYER_TILE_GROUPS_X && x * y >= n && x * (y - 1) < n, "{x} x {y}");
     }
 }

@@ -29,6 +29,13 @@ pub struct ReflectionBindings<'a> {
     /// `FrameBuffers`), cleared by the direct-dispatch pipelines.
     pub next_intermediate: &'a wgpu::Buffer,
     pub next_atlas: &'a wgpu::Buffer,
+    /// A storage part of the upload buffer (which `uniforms` and `glossy` are parts of),
+    /// which the shader does not read: bound (read-only) so that the reflection uses the
+    /// upload buffer as the layer pass before it in the same compute pass does (uniform and
+    /// storage). wgpu puts a barrier before a dispatch wherever a buffer's use changes, even
+    /// between two reads; without this binding the reflection waited there for the layer
+    /// pass to end instead of running beside it.
+    pub upload_storage: BufferPart<'a>,
 }
 
 /// Which reflection pipeline a frame runs (beside direct or indirect dispatch).
@@ -174,6 +181,7 @@ impl ReflectionPass {
                 uniform_entry(9),
                 storage_entry(10, false),
                 storage_entry(11, false),
+                storage_entry(12, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -284,6 +292,7 @@ impl ReflectionPass {
                     wgpu::BindGroupEntry { binding: 9, resource: b.glossy.binding() },
                     wgpu::BindGroupEntry { binding: 10, resource: b.next_intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 11, resource: b.next_atlas.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 12, resource: b.upload_storage.binding() },
                 ],
             },
         )

@@ -8,7 +8,7 @@ use crate::pass_layout::PassLayout;
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
-use crate::passes::layer_reflection::{LayerBindings, LayerPlacement};
+use crate::passes::layer_reflection::{LayerBindings, LayerGroups, LayerPlacement};
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
@@ -75,9 +75,16 @@ impl<'a> FrameRecorder<'a> {
 
     fn record_layers(&self, pass: &mut wgpu::ComputePass<'_>) {
         let Some(bg) = &self.layers else { return };
-        let rect = self.plan.layer_rect;
-        let extent = [rect.max[0] - rect.min[0], rect.max[1] - rect.min[1]];
-        self.r.layer_reflection.encode(pass, bg, extent, self.r.debug.full_stretch_walk);
+        // The reduced tiers (and the bench's `layer_every_tile`) shade every tile of the
+        // layers' common rectangle (PPR_FLAG_LAYER_EVERY_TILE), the others only the tiles
+        // their layers' own rectangles meet.
+        let groups = if self.layout.reduced || self.r.debug.layer_every_tile {
+            let rect = self.plan.layer_rect;
+            LayerGroups::EveryTile([rect.max[0] - rect.min[0], rect.max[1] - rect.min[1]])
+        } else {
+            LayerGroups::LayerTiles(self.plan.layer_tiles())
+        };
+        self.r.layer_reflection.encode(pass, bg, groups, self.r.debug.full_stretch_walk);
         self.count(1);
     }
 
@@ -272,6 +279,8 @@ impl ReflectionRenderer {
                     color,
                     output: layer_output,
                     intermediate,
+                    active_tiles: &b.active_tiles,
+                    tile_flags: &b.tile_flags,
                 },
             )
         });
@@ -290,6 +299,7 @@ impl ReflectionRenderer {
                     glossy: b.part(UploadTarget::Glossy),
                     next_intermediate: &b.intermediate[1 - slot],
                     next_atlas: &b.atlas[1 - slot],
+                    upload_storage: b.part(UploadTarget::Shapes),
                 },
             );
             let variant = self.reflection_variant(
