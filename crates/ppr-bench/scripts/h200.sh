@@ -10,6 +10,7 @@
 # Thirtieth session (H100): scaling 251 s (its full threshold and coverage sweeps).
 # Thirty-first session (H100, three calls): profile 188-201 s, collision 78, compare 230,
 # scalecounts 99.
+# Thirty-second session (H100, one call for these suites): profile 206 s, compare 241.
 # Before it, h200_candidates.sh times the bench options not yet timed (run it first and
 # set the defaults from it). `runtime` now also reports each frame's CPU time of prepare +
 # encode (`cpu_ms`, the host CPU's: docs/perf/cpu.md).

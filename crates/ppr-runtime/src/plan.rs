@@ -342,8 +342,9 @@ pub struct FramePlan {
     pub layers: Vec<LayerAlloc>,
     /// Atlas entries the layers use.
     pub layer_pixels: u32,
-    /// The union of the layers' screen rectangles (what the layer pass is dispatched over;
-    /// it writes only the 16 × 16 tiles, from its corner, that meet a layer's rectangle).
+    /// The union of the layers' screen rectangles: the layer pass writes the 16 × 16 tiles,
+    /// from its corner, that meet a layer's rectangle ([`Self::layer_tiles`], one workgroup
+    /// each), and nothing else of it.
     pub layer_rect: ScreenRect,
     /// Visible glass panels or water planes that got no layer (over [`MAX_LAYERS`] or the
     /// atlas capacity of two screens).

@@ -139,9 +139,10 @@ pub struct DebugOptions {
     /// The water edge stretch reads all its steps, also those past the layer's rectangle
     /// (the walk before the eighteenth session; bench only, the same image).
     pub full_stretch_walk: bool,
-    /// The layer reflection writes every 16 × 16 tile of the layers' common rectangle, also
-    /// those that meet no layer's own (the pass before the thirty-first session; bench
-    /// only, the same image inside the layers' rectangles).
+    /// The layer reflection is dispatched over every 16 × 16 tile of the layers' common
+    /// rectangle and writes them all, also those that meet no layer's own (the pass before
+    /// the thirty-first session, as the reduced tiers run it; bench only, the same image
+    /// inside the layers' rectangles).
     pub layer_every_tile: bool,
     /// How the block lists the projection builds reduce the box of the block's positions
     /// (bench only, the same lists; `ProjectionVariant::box_reduction`).
