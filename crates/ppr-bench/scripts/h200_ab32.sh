@@ -1,14 +1,20 @@
 #!/usr/bin/env bash
-# The thirty-second session's first A/B: two binaries carried gzipped as
-# .gpu/ppr-bench-{a,b}.gz (a: main at 7f165e2; b: the glossy taps with one transcendental
-# each, a turn and an inverse square root instead of a division, a square root, a sine and
-# a cosine), each timing the demo's and the kitchen's default frames at 1080p and 4K
-# (passes and whole frames), in the order a b a b. Same setup as h200.sh. Expected: 4 x 35 s.
+# The thirty-second session's A/B calls: `bash h200_ab32.sh X Y [ROW...]` times two binaries
+# carried gzipped as .gpu/ppr-bench-X.gz and .gpu/ppr-bench-Y.gz, each over the demo's and
+# the kitchen's default frames at 1080p and 4K (passes and whole frames: the `frame span`
+# rows, and every ROW given), in the order X Y X Y, 20 frames. Same setup as h200.sh.
+# Expected: 4 x 20-25 s. The three calls (runtime.md, "The thirty-second session"):
+#   h200_ab32.sh a b "reflection: no glossy"   a: 7f165e2, b: the glossy taps (f092563)
+#   h200_ab32.sh b c "layers: own pass"        c: b + the layer pass over its tiles
+#   h200_ab32.sh c d "layers: own pass"        d: c + no barrier before the reflection (7a25077)
 source crates/ppr-bench/scripts/h200_env.sh
-for v in a b; do gunzip -c .gpu/ppr-bench-$v.gz > .gpu/ppr-bench-$v && chmod +x .gpu/ppr-bench-$v; done
+X=$1 Y=$2
+shift 2
+ROWS=(--profile-row "frame span")
+for row in "$@"; do ROWS+=(--profile-row "$row"); done
+for v in "$X" "$Y"; do gunzip -c .gpu/ppr-bench-$v.gz > .gpu/ppr-bench-$v && chmod +x .gpu/ppr-bench-$v; done
 for round in 1 2; do
-  for v in a b; do
-    step ab_${v}_$round 80 .gpu/ppr-bench-$v runtime $C --projection-profile --profile-row "frame span" \
-      --profile-row "reflection: no glossy" --frames 20 --out $R/ab_${v}_$round
+  for v in "$X" "$Y"; do
+    step ab_${v}_$round 80 .gpu/ppr-bench-$v runtime $C --projection-profile "${ROWS[@]}" --frames 20 --out $R/ab_${v}_$round
   done
 done
