@@ -7,6 +7,9 @@
 #   h200_ab32.sh a b "reflection: no glossy"   a: 7f165e2, b: the glossy taps (f092563)
 #   h200_ab32.sh b c "layers: own pass"        c: b + the layer pass over its tiles
 #   h200_ab32.sh c d "layers: own pass"        d: c + no barrier before the reflection (7a25077)
+#   h200_ab32.sh d e "layers: own pass"        e: d + the layers' tests sorted out with the
+#                                               fused block lists
+# With STATS=1 in the environment, also the driver's counts of Y's pipelines (pipeline-stats).
 source crates/ppr-bench/scripts/h200_env.sh
 X=$1 Y=$2
 shift 2
@@ -18,3 +21,6 @@ for round in 1 2; do
     step ab_${v}_$round 80 .gpu/ppr-bench-$v runtime $C --projection-profile "${ROWS[@]}" --frames 20 --out $R/ab_${v}_$round
   done
 done
+if [ "${STATS:-0}" = 1 ]; then
+  step stats 90 .gpu/ppr-bench-$Y pipeline-stats $C --out $R/stats
+fi

@@ -10,6 +10,17 @@ fn fused_list_entry(i: u32) -> u32 {
     return fused_list[i];
 }
 
+// Layers a block tests at most (MAX_LAYERS in plan.rs).
+const FUSED_LAYER_CAPACITY: u32 = 64u;
+// Per layer (LAYERS), what the block's box says of its test: 0 the block cannot reflect
+// into it (its source box or its pyramid missed), 1 test it, 2 test its plane only (the
+// box lies inside its pyramid's sides, as a list entry's INSIDE_ENTRY).
+var<workgroup> fused_layers: array<u32, FUSED_LAYER_CAPACITY>;
+
+fn fused_layer_entry(l: u32) -> u32 {
+    return fused_layers[l];
+}
+
 // FUSED_LISTS: the block's list of candidates, built into `fused_list` from the box of the
 // block's positions (`q`, every thread's), exactly as block_lists.wgsl builds it: the
 // candidates are the super-tile's list (SUPER_TILES, when it did not overflow) or every
@@ -86,7 +97,21 @@ fn block_list_in_workgroup(lid: u32, q: Quad, wid: vec3<u32>, lo: vec2<u32>, hi:
         }
         written += r.y;
     }
-    // The list is complete before any thread reads it.
+    // The layers' tests (after the visible shapes'), one invocation each, against the same
+    // box: a layer's test then runs only in the blocks that may reflect into it, as a
+    // listed shape's (the layer loop tested every block its source box met).
+    if (LAYERS && lid < min(frame.layer_count, FUSED_LAYER_CAPACITY)) {
+        let k = frame.tested_count + lid;
+        var e = 0u;
+        if (!empty && block_meets_source_box(k, lo, hi)) {
+            let t = shape_test(k);
+            if (box_may_reflect(t, box.lo, box.hi)) {
+                e = select(1u, 2u, box_inside_sides(t, box.lo, box.hi));
+            }
+        }
+        fused_layers[lid] = e;
+    }
+    // The list (and the layers' entries) complete before any thread reads them.
     workgroupBarrier();
     return written;
 }

@@ -858,13 +858,22 @@ fn main(
     if (ABLATION == 3u && dot(tested, vec4<f32>(1.0)) == 1234.5) {
         atomicStore(&intermediate[0], 0u);
     }
-    // Layer reflectors (few): their tests follow the visible shapes'.
+    // Layer reflectors (few): their tests follow the visible shapes'. With fused lists the
+    // block's box was tested against each layer's pyramid with the list (fused_layer_entry:
+    // skip, test, or its plane only); else the block's source box decides.
     for (var l = 0u; LAYERS && l < frame.layer_count; l++) {
         let k = frame.tested_count + l;
-        if (!block_meets_source_box(k, lo, hi)) {
+        var inside = false;
+        if (fused && l < FUSED_LAYER_CAPACITY) {
+            let e = fused_layer_entry(l);
+            if (e == 0u) {
+                continue;
+            }
+            inside = e == 2u;
+        } else if (!block_meets_source_box(k, lo, hi)) {
             continue;
         }
-        let dist = quad_test(q, shape_test(k), false);
+        let dist = quad_test(q, shape_test(k), inside);
         for (var j = 0u; any(dist >= vec4<f32>(0.0)) && j < 4u; j++) {
             let d = lane_f32(dist, j);
             if (d >= 0.0) {

@@ -5,6 +5,7 @@ mod common;
 mod composite_tests;
 mod cpu_trace;
 mod demo_level_tests;
+mod fused_layer_tests;
 mod glossy_reference_tests;
 mod gltf_tests;
 mod image_tests;
