@@ -4,8 +4,7 @@
 //! a glass pane), the reflection and the layer output are bit for bit those of the separate
 //! lists, whose projection tests every layer wherever its source box meets the block.
 
-use ppr_format::ValidatedSet;
-use ppr_runtime::{Choice, FrameInputs, ReflectionRenderer, RendererDesc};
+use ppr_runtime::{Choice, ReflectionRenderer};
 use ppr_testbed::camera_spec::{ProjectionChoice, pick_camera};
 use ppr_testbed::gbuffer_targets::Target;
 use ppr_testbed::readback::read_rgba_f32;
@@ -13,6 +12,7 @@ use ppr_testbed::{Level, LevelRenderer};
 
 use crate::common::{gpu, timed};
 use crate::demo_level_tests::{asset, demo_reflectors};
+use crate::layer_tiles_tests::frame_with_layers;
 
 #[test]
 fn fused_lists_cull_the_layers_without_changing_a_pixel() {
@@ -23,30 +23,19 @@ fn fused_lists_cull_the_layers_without_changing_a_pixel() {
         let _guard = g.lock();
         let (device, queue) = (&g.ctx.device, &g.ctx.queue);
         let size = [320, 180];
-        let usage = wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC;
         let mut scene = LevelRenderer::new(device, queue, &level, &set);
         for name in ["cam_overview", "cam_mirror", "cam_steps"] {
             let camera = pick_camera(&level, Some(name), ProjectionChoice::default()).expect("camera");
             scene.render(device, queue, &camera, size);
             let gbuffer = scene.gbuffer();
             let run = |fused: bool| {
-                let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-                ppr.set_reflectors(&ValidatedSet::new(set.clone()).expect("valid set"));
-                ppr.plan_params.tile_culling = Choice::On;
-                // Forced both ways: `Auto` leaves fused lists off on the software adapter.
-                ppr.plan_params.fused_lists = if fused { Choice::On } else { Choice::Off };
-                let plan = ppr.prepare(&camera, size);
-                let target = |label| Target::new(device, label, size, ppr_runtime::OUTPUT_FORMAT, usage);
-                let (output, layer) = (target("fused layers: output"), target("fused layers: layer output"));
-                let mut encoder = device.create_command_encoder(&Default::default());
-                let frame = FrameInputs {
-                    layer_output: Some(&layer.view),
-                    ..FrameInputs::new(&gbuffer.color.view, &gbuffer.depth.view, &output.view)
+                let configure = |ppr: &mut ReflectionRenderer| {
+                    ppr.plan_params.tile_culling = Choice::On;
+                    // Forced both ways: `Auto` leaves fused lists off on the software adapter.
+                    ppr.plan_params.fused_lists = if fused { Choice::On } else { Choice::Off };
                 };
-                ppr.encode(&mut encoder, &frame);
-                queue.submit([encoder.finish()]);
+                let (plan, output, layer) =
+                    frame_with_layers(device, queue, &set, (&camera, gbuffer, size), configure, None);
                 let read = |t: &Target| read_rgba_f32(device, queue, &t.texture).expect("read back");
                 (plan, read(&output), read(&layer))
             };

@@ -2,10 +2,14 @@
 //! meet a layer's own (the demo's overview: a glass pane in the middle, two water planes
 //! at the sides), the same values there as when it wrote every tile, and nothing elsewhere.
 
-use ppr_format::ValidatedSet;
-use ppr_runtime::{DebugOptions, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc, ScreenRect};
+use std::sync::Arc;
+
+use ppr_format::{ReflectorSet, ValidatedSet};
+use ppr_runtime::{
+    Camera, DebugOptions, FrameInputs, FramePlan, ReflectionRenderer, RendererDesc, ScreenRect,
+};
 use ppr_testbed::camera_spec::{ProjectionChoice, pick_camera};
-use ppr_testbed::gbuffer_targets::Target;
+use ppr_testbed::gbuffer_targets::{GBuffer, Target};
 use ppr_testbed::readback::read_rgba_f32;
 use ppr_testbed::{Level, LevelRenderer};
 
@@ -28,6 +32,45 @@ fn inside(r: &ScreenRect, x: u32, y: u32) -> bool {
     x >= r.min[0] && x < r.max[0] && y >= r.min[1] && y < r.max[1]
 }
 
+/// One frame of a new reflection renderer for `set` (configured by `configure`) over
+/// `gbuffer`, with a layer output: its plan, output and layer output (the layer output
+/// holding `layer_texels` before the frame, where given: RGBA half floats).
+pub fn frame_with_layers(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    set: &ReflectorSet,
+    (camera, gbuffer, size): (&Camera, &GBuffer, [u32; 2]),
+    configure: impl FnOnce(&mut ReflectionRenderer),
+    layer_texels: Option<&[u8]>,
+) -> (Arc<FramePlan>, Target, Target) {
+    let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
+    ppr.set_reflectors(&ValidatedSet::new(set.clone()).expect("valid set"));
+    configure(&mut ppr);
+    let plan = ppr.prepare(camera, size);
+    let usage = wgpu::TextureUsages::STORAGE_BINDING
+        | wgpu::TextureUsages::TEXTURE_BINDING
+        | wgpu::TextureUsages::COPY_SRC
+        | wgpu::TextureUsages::COPY_DST;
+    let target = |label| Target::new(device, label, size, ppr_runtime::OUTPUT_FORMAT, usage);
+    let (output, layer) = (target("ppr output"), target("ppr layer output"));
+    if let Some(texels) = layer_texels {
+        queue.write_texture(
+            layer.texture.as_image_copy(),
+            texels,
+            wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(size[0] * 8), rows_per_image: None },
+            layer.texture.size(),
+        );
+    }
+    let mut encoder = device.create_command_encoder(&Default::default());
+    let frame = FrameInputs {
+        layer_output: Some(&layer.view),
+        ..FrameInputs::new(&gbuffer.color.view, &gbuffer.depth.view, &output.view)
+    };
+    ppr.encode(&mut encoder, &frame);
+    queue.submit([encoder.finish()]);
+    (plan, output, layer)
+}
+
 #[test]
 fn the_layer_pass_writes_only_the_tiles_that_meet_a_layer() {
     timed("the_layer_pass_writes_only_the_tiles_that_meet_a_layer", || {
@@ -42,10 +85,6 @@ fn the_layer_pass_writes_only_the_tiles_that_meet_a_layer() {
         scene.render(device, queue, &camera, size);
         let gbuffer = scene.gbuffer();
 
-        let usage = wgpu::TextureUsages::STORAGE_BINDING
-            | wgpu::TextureUsages::TEXTURE_BINDING
-            | wgpu::TextureUsages::COPY_SRC
-            | wgpu::TextureUsages::COPY_DST;
         let stale: Vec<u8> = STALE
             .map(|c| half::f16::from_f32(c).to_bits())
             .into_iter()
@@ -55,29 +94,11 @@ fn the_layer_pass_writes_only_the_tiles_that_meet_a_layer() {
             .collect();
         // Each run's layer output starts as an earlier frame's, every texel STALE.
         let run = |every_tile: bool| {
-            let mut ppr = ReflectionRenderer::new(device, queue, &RendererDesc::default());
-            ppr.set_reflectors(&ValidatedSet::new(set.clone()).expect("valid set"));
-            ppr.debug = DebugOptions { layer_every_tile: every_tile, ..DebugOptions::default() };
-            let plan = ppr.prepare(&camera, size);
-            let target = |label| Target::new(device, label, size, ppr_runtime::OUTPUT_FORMAT, usage);
-            let (output, layer) = (target("layer tiles: output"), target("layer tiles: layer output"));
-            queue.write_texture(
-                layer.texture.as_image_copy(),
-                &stale,
-                wgpu::TexelCopyBufferLayout {
-                    offset: 0,
-                    bytes_per_row: Some(size[0] * 8),
-                    rows_per_image: None,
-                },
-                layer.texture.size(),
-            );
-            let mut encoder = device.create_command_encoder(&Default::default());
-            let frame = FrameInputs {
-                layer_output: Some(&layer.view),
-                ..FrameInputs::new(&gbuffer.color.view, &gbuffer.depth.view, &output.view)
+            let configure = |ppr: &mut ReflectionRenderer| {
+                ppr.debug = DebugOptions { layer_every_tile: every_tile, ..DebugOptions::default() };
             };
-            ppr.encode(&mut encoder, &frame);
-            queue.submit([encoder.finish()]);
+            let (plan, _, layer) =
+                frame_with_layers(device, queue, &set, (&camera, gbuffer, size), configure, Some(&stale));
             (plan, read_rgba_f32(device, queue, &layer.texture).expect("read back"))
         };
         let (plan, tiles) = run(false);
