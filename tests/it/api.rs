@@ -455,64 +455,44 @@ fn pond_views() -> (ppr_format::ValidatedSet, [Camera; 2], Vec<GpuFrame>) {
 
 #[test]
 fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
-    // Direct dispatch: a frame's reflection pass clears the intermediate buffer and atlas
-    // that the next encode takes (two slots, by turns), so that only the first frame has a
-    // clear pass. Two views in the order A B A B B A A B put each view into both slots, so
-    // that a slot left uncleared would hold the other view's values; every frame must match
-    // a renderer that clears in the pass every frame, bit for bit (output, layer output and
-    // intermediate buffer), a water layer included.
+    // A frame clears the intermediate buffer and atlas that the next encode takes (two
+    // slots, by turns): with direct dispatch its reflection pass, with indirect dispatch
+    // its classification (which the projection then need not wait for), so that only the
+    // first frame has a clear pass. Two views in the order A B A B B A A B put each view
+    // into both slots, so that a slot left uncleared would hold the other view's values;
+    // every frame must match a renderer that clears in the pass every frame, bit for bit
+    // (output, layer output and intermediate buffer), a water layer included.
     let (set, cams, frames) = pond_views();
-    let mut turns = renderer();
-    let mut every_frame = renderer();
-    every_frame.debug.clear_pass_every_frame = true;
-    for r in [&mut turns, &mut every_frame] {
-        r.plan_params.indirect = Choice::Off;
-        r.set_reflectors(&set);
-    }
-    // The first two frames may clear in the pass (the second where its layer needs a
-    // larger atlas than the first's: new buffers); from the third on, none.
-    for (k, v) in [0, 1, 0, 1, 1, 0, 0, 1].into_iter().enumerate() {
-        let a = run(&mut turns, &frames[v], &cams[v]);
-        let cleared_in_pass = turns.passes_recorded()[CLEAR];
-        let b = run(&mut every_frame, &frames[v], &cams[v]);
-        assert!(!a.plan.visible.is_empty() && !a.plan.layers.is_empty() && !a.plan.indirect, "{}", a.plan);
-        assert!(a.pixels.iter().filter(|p| p.w > 0.0).count() > 500, "frame {k}: reflections found");
-        assert!(a.layer_pixels.iter().any(|p| p.w > 0.0), "frame {k}: the water layer reflects");
-        if k != 1 {
-            assert_eq!(cleared_in_pass, k == 0, "frame {k}: only the first frames clear in the pass");
+    for indirect in [Choice::Off, Choice::On] {
+        let mut turns = renderer();
+        let mut every_frame = renderer();
+        every_frame.debug.clear_pass_every_frame = true;
+        for r in [&mut turns, &mut every_frame] {
+            r.plan_params.indirect = indirect;
+            r.set_reflectors(&set);
         }
-        assert!(every_frame.passes_recorded()[CLEAR]);
-        assert!(a.intermediate == b.intermediate, "frame {k} (view {v}): intermediate buffer");
-        assert!(bits(&a.pixels) == bits(&b.pixels), "frame {k} (view {v}): output");
-        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "frame {k} (view {v}): layer output");
-    }
-    // After `forget_cleared` (an encoder dropped unsubmitted) the next frame clears again.
-    turns.forget_cleared();
-    run(&mut turns, &frames[0], &cams[0]);
-    assert!(turns.passes_recorded()[CLEAR], "a forgotten clear is done in the pass");
-}
-
-#[test]
-fn indirect_frames_clear_in_the_classification_alone() {
-    // Indirect dispatch: the classification clears the active tiles and the layers' atlas,
-    // so that no frame has a clear pass, the first included; every frame matches a renderer
-    // whose clear pass does both (`tile_clear_pass`), output and layer output bit for bit.
-    let (set, cams, frames) = pond_views();
-    let mut classified = renderer();
-    let mut separate = renderer();
-    separate.debug.tile_clear_pass = true;
-    for r in [&mut classified, &mut separate] {
-        r.plan_params.indirect = Choice::On;
-        r.set_reflectors(&set);
-    }
-    for (k, v) in [0, 1, 1, 0].into_iter().enumerate() {
-        let a = run(&mut classified, &frames[v], &cams[v]);
-        assert!(!classified.passes_recorded()[CLEAR], "frame {k}: no clear pass");
-        let b = run(&mut separate, &frames[v], &cams[v]);
-        assert!(separate.passes_recorded()[CLEAR]);
-        assert!(!a.plan.layers.is_empty() && a.plan.indirect, "{}", a.plan);
-        assert!(a.layer_pixels.iter().any(|p| p.w > 0.0), "frame {k}: the water layer reflects");
-        assert!(bits(&a.pixels) == bits(&b.pixels), "frame {k} (view {v}): output");
-        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "frame {k} (view {v}): layer output");
+        // The first two frames may clear in the pass (the second where its layer needs a
+        // larger atlas than the first's: new buffers); from the third on, none.
+        for (k, v) in [0, 1, 0, 1, 1, 0, 0, 1].into_iter().enumerate() {
+            let what = format!("{indirect:?}, frame {k} (view {v})");
+            let a = run(&mut turns, &frames[v], &cams[v]);
+            let cleared_in_pass = turns.passes_recorded()[CLEAR];
+            let b = run(&mut every_frame, &frames[v], &cams[v]);
+            assert!(!a.plan.visible.is_empty() && !a.plan.layers.is_empty(), "{}", a.plan);
+            assert_eq!(a.plan.indirect, indirect == Choice::On, "{}", a.plan);
+            assert!(a.pixels.iter().filter(|p| p.w > 0.0).count() > 500, "{what}: reflections found");
+            assert!(a.layer_pixels.iter().any(|p| p.w > 0.0), "{what}: the water layer reflects");
+            if k != 1 {
+                assert_eq!(cleared_in_pass, k == 0, "{what}: only the first frames clear in the pass");
+            }
+            assert!(every_frame.passes_recorded()[CLEAR]);
+            assert!(a.intermediate == b.intermediate, "{what}: intermediate buffer");
+            assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
+            assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+        }
+        // After `forget_cleared` (an encoder dropped unsubmitted) the next frame clears again.
+        turns.forget_cleared();
+        run(&mut turns, &frames[0], &cams[0]);
+        assert!(turns.passes_recorded()[CLEAR], "{indirect:?}: a forgotten clear is done in the pass");
     }
 }

@@ -235,6 +235,9 @@ fn passes_recorded_in_fewer_compute_passes_give_the_same_images() {
             r.debug.reflection_own_pass = reflection_own_pass;
             r.debug.layered_reflection_own_pass = layered_own_pass;
             r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
+            // The second frame: the first finds its slot dirty and clears it in a clear
+            // pass, which puts the classification in a pass of its own.
+            run(&mut r, &gpu, &cam);
             let out = run(&mut r, &gpu, &cam);
             assert_eq!((out.plan.layers.len(), out.plan.visible.len()), (2, 1), "{}", out.plan);
             assert_eq!(out.plan.indirect, indirect == Choice::On);

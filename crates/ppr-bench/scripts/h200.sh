@@ -40,7 +40,7 @@ SETTLED=()
 for row in "culling on, empty, lists box only" "culling on, separate lists" \
     "culling on, empty, separate lists" "separate lists" "culling on, no inside entries" \
     "culling on, prefetch" "culling on, empty, prefetch" "occluder lists" "storage tests" \
-    "spread quads" "tile clear pass" "occupancy pad 16 KiB" "occupancy pad 32 KiB" \
+    "spread quads" "occupancy pad 16 KiB" "occupancy pad 32 KiB" \
     "occupancy pad 38 KiB" "clear pass every frame" "layers: no water stretch" \
     "layers: full stretch walk" "layers: after reflection" "classify own pass" \
     "frame span, layers own pass" "frame span, layers after reflection" \

@@ -9,8 +9,8 @@
 // buffer and atlas that the next encode uses (the renderer's two slots, used by turns), so
 // that the next frame needs no clear pass.
 //
-// Variants: INDIRECT (one workgroup per active tile; tiles not cleared this frame read as
-// empty), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
+// Variants: INDIRECT (the active tiles only, walked by a fixed number of workgroups or one
+// workgroup each), NORMAL_MAPS (bonus slides: perturb the reflection with the surface normal,
 // project, fetch; a 4-tap march toward the reflecting pixel rejects disoccluded samples;
 // the flat reflection is the fallback), GLOSSY (glossy.wgsl: reflectors with roughness
 // blur their reflection by a footprint set by roughness and reflection distance).
@@ -21,7 +21,6 @@
 @group(0) @binding(3) var linear_sampler: sampler;
 @group(0) @binding(4) var output: texture_storage_2d<rgba16float, write>;
 @group(0) @binding(5) var<storage, read> active_tiles: ActiveTileList;
-@group(0) @binding(6) var<storage, read> tile_flags: array<u32>;
 @group(0) @binding(7) var depth_tex: texture_2d<f32>;
 // World-space (= camera-relative) shading normals, xyz.
 @group(0) @binding(8) var normal_tex: texture_2d<f32>;
@@ -45,21 +44,15 @@ override TILE_LOOP: bool = false;
 // colour read, no blur); 3 stores the sharp colour (no glossy blur).
 override ABLATION: u32 = 0u;
 
-// Reads the intermediate buffer; outside the viewport, and (with indirect dispatch) in
-// a tile that was not cleared this frame, reads as "no data".
+// Reads the intermediate buffer; outside the viewport it reads as "no data". The whole
+// buffer was clear before the projection (the last encode's reflection or classification
+// cleared it), so with indirect dispatch too a neighbour in an inactive tile holds what the
+// projection wrote there, as in direct dispatch.
 fn read_value(p: vec2<i32>) -> u32 {
     if (any(p < vec2<i32>(0)) || any(p >= vec2<i32>(frame.size))) {
         return PPR_CLEAR_VALUE;
     }
-    let value = intermediate[u32(p.x) + u32(p.y) * frame.size.x];
-    if (INDIRECT) {
-        // Both loads issued before either is used: the value of a tile not cleared this
-        // frame is read and dropped, not waited for behind its tile's flag.
-        let tiles_x = (frame.size.x + 15u) / 16u;
-        let cleared = tile_flags[u32(p.x) / 16u + u32(p.y) / 16u * tiles_x] != 0u;
-        return select(PPR_CLEAR_VALUE, value, cleared);
-    }
-    return value;
+    return intermediate[u32(p.x) + u32(p.y) * frame.size.x];
 }
 
 // Clears the pixel's value in the next encode's intermediate buffer, and the atlas values

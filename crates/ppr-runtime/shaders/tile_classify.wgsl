@@ -1,18 +1,19 @@
 // Tile classification: finds the 16x16 tiles where some pixel lies on a visible reflector
-// (or on a layer reflector, through which one may be seen) and appends them to the active-tile list, so that the clear and the reflection passes
-// run (indirectly) only there. Per 32x32 block of 2x2 tiles, the visible shapes and the
-// layers whose screen rectangle touches the block are first gathered in workgroup memory
-// (one thread per shape); where some visible shape is listed, each pixel then tests whether
-// it lies on one of them, until its tile is found active. The pixels of the active tiles
-// are then cleared for the projection, and the layers' atlas whole (with CLEAR_TILES;
-// otherwise the clear pass does both, over the active-tile list and the atlas, one pass
-// more).
-// The blocks that find active tiles also raise the indirect dispatch arguments
+// (or on a layer reflector, through which one may be seen) and appends them to the
+// active-tile list, so that the reflection pass runs only there. Per 32x32 block of 2x2
+// tiles, the visible shapes and the layers whose screen rectangle touches the block are
+// first gathered in workgroup memory (one thread per shape); where some visible shape is
+// listed, each pixel then tests whether it lies on one of them, until its tile is found
+// active. The blocks that find active tiles also raise the indirect dispatch arguments
 // (append_active_tiles).
+// It also clears the next encode's intermediate buffer and atlas (the renderer's other
+// slot, which this encode does not touch): every pixel of its block, and the atlas whole
+// over all blocks. The projection then needs nothing from this pass (its slot was cleared
+// by the encode before), so the two share a compute pass with no barrier between them;
+// the reflection reads the active tiles only.
 
-override CLEAR_TILES: bool = true;
-// The frame has layer reflectors (false: the layer list, its tests and the atlas clear
-// compiled out; their registers slowed the scan of 10 000 visible shapes).
+// The frame has layer reflectors (false: the layer list and its tests compiled out; their
+// registers slowed the scan of 10 000 visible shapes).
 override LAYERS: bool = true;
 
 const TILE_SIZE: u32 = 16u;
@@ -51,10 +52,9 @@ struct ActiveTileCounter {
 // Layer reflectors (glass, water): a reflector seen through one has the layer's depth, so
 // a pixel on a layer also makes its tile active.
 @group(0) @binding(8) var<storage, read> layers: array<Layer>;
-// The intermediate buffer, cleared over the active tiles with CLEAR_TILES.
-@group(0) @binding(9) var<storage, read_write> intermediate: array<u32>;
-// The layers' atlas, cleared up to the last layer's region with CLEAR_TILES.
-@group(0) @binding(10) var<storage, read_write> atlas: array<u32>;
+// The next encode's intermediate buffer and layers' atlas, cleared whole.
+@group(0) @binding(9) var<storage, read_write> next_intermediate: array<u32>;
+@group(0) @binding(10) var<storage, read_write> next_atlas: array<u32>;
 
 var<workgroup> list: array<u32, LIST_CAPACITY>;
 var<workgroup> list_len: atomic<u32>;
@@ -96,18 +96,19 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
     return false;
 }
 
-// Clears the layers' regions of the atlas (they follow each other from offset 0), each
-// thread of the dispatch a value in turn.
-fn clear_atlas(lid: u32, wid: vec2<u32>, groups: vec2<u32>) {
-    if (!LAYERS || frame.layer_count == 0u) {
-        return;
+// Clears the next encode's buffers: the block's pixels of the intermediate buffer, and the
+// atlas whole (the next encode's layers may differ from this one's), each thread of the
+// dispatch a value in turn.
+fn clear_next(lid: u32, local: vec2<u32>, wid: vec2<u32>, groups: vec2<u32>) {
+    for (var q = 0u; q < 4u; q++) {
+        let pixel = wid * BLOCK_SIZE + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local;
+        if (all(pixel < frame.size)) {
+            next_intermediate[pixel.x + pixel.y * frame.size.x] = PPR_CLEAR_VALUE;
+        }
     }
-    let last = layers[frame.layer_count - 1u];
-    let extent = last.rect_max - last.rect_min;
-    let total = last.offset + extent.x * extent.y;
     let threads = groups.x * groups.y * GROUP_THREADS;
-    for (var i = (wid.x + wid.y * groups.x) * GROUP_THREADS + lid; i < total; i += threads) {
-        atlas[i] = PPR_CLEAR_VALUE;
+    for (var i = (wid.x + wid.y * groups.x) * GROUP_THREADS + lid; i < arrayLength(&next_atlas); i += threads) {
+        next_atlas[i] = PPR_CLEAR_VALUE;
     }
 }
 
@@ -121,9 +122,7 @@ fn classify(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) groups: vec3<u32>,
 ) {
-    if (CLEAR_TILES) {
-        clear_atlas(lid, wid.xy, groups.xy);
-    }
+    clear_next(lid, local.xy, wid.xy, groups.xy);
     if (lid == 0u) {
         atomicStore(&list_len, 0u);
         if (LAYERS) {
@@ -176,12 +175,6 @@ fn classify(
         }
     }
     workgroupBarrier();
-    for (var q = 0u; CLEAR_TILES && q < 4u; q++) {
-        let pixel = block_lo + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local.xy;
-        if (all(pixel < frame.size) && atomicLoad(&shows_reflector[q]) != 0u) {
-            intermediate[pixel.x + pixel.y * frame.size.x] = PPR_CLEAR_VALUE;
-        }
-    }
     if (lid < 4u) {
         let t = wid.xy * 2u + vec2<u32>(lid & 1u, lid >> 1u);
         let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;

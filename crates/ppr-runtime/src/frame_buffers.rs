@@ -29,6 +29,11 @@ pub(crate) struct FrameBuffers {
     pub dispatch_args: wgpu::Buffer,
     pub tile_flags: wgpu::Buffer,
     pub debug_writes: wgpu::Buffer,
+    /// 16 bytes no pass reads or writes: bound where a layout asks for a writable buffer
+    /// that the frame's pipeline leaves alone (the indirect reflection's next-slot
+    /// bindings), so that wgpu puts no barrier before that dispatch for a buffer an earlier
+    /// one wrote.
+    pub placeholder: wgpu::Buffer,
     /// Atlas of the layer reflectors' regions (grown on demand), one per slot as the
     /// intermediate buffer.
     pub atlas: [wgpu::Buffer; 2],
@@ -117,6 +122,7 @@ impl FrameBuffers {
             ),
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
+            placeholder: buffer("ppr placeholder", 16, storage),
             atlas: ["ppr layer atlas 0", "ppr layer atlas 1"]
                 .map(|label| buffer(label, 4 * atlas_capacity(layer_pixels, pixels), readable)),
             super_lists: buffer(

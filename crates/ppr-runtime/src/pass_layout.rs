@@ -20,11 +20,9 @@ pub(crate) struct PassLayout {
     pub classify: bool,
     /// ... in the projection's compute pass (else in one of its own before the clear).
     pub classify_with_projection: bool,
-    /// The clear pass clears the intermediate buffer (a slot left dirty, or indirect
-    /// frames' active tiles with the bench's tile clear pass).
+    /// The clear pass clears the intermediate buffer (a slot the last encode left dirty).
     pub clear_main: bool,
-    /// The clear pass clears the layers' atlas (a dirty slot that no classification
-    /// clears).
+    /// The clear pass clears the layers' atlas (the same).
     pub clear_atlas: bool,
     /// The layer reflection runs (the plan has layers and the frame gave a layer output).
     pub layers: bool,
@@ -50,15 +48,13 @@ impl PassLayout {
     ) -> Self {
         let has_main = !plan.visible.is_empty();
         let classify = plan.indirect && has_main;
-        // Direct frames clear in the clear pass unless the slot is clean; indirect ones
-        // clear their active tiles in the classification, unless the bench moves that here.
-        let clear_main = has_main && (!plan.indirect || debug.tile_clear_pass) && (plan.indirect || !clean);
-        // The classification clears the atlas where it runs (unless the bench moves its
-        // clears to the clear pass).
-        let classified = classify && !debug.tile_clear_pass;
-        let clear_atlas = !plan.layers.is_empty() && !clean && !classified;
-        // In the projection's compute pass (wgpu's barrier between the two dispatches)
-        // unless a clear pass comes between them.
+        // A slot is clean where the last encode cleared it for this one (a direct frame's
+        // reflection, an indirect frame's classification, each clearing the other slot);
+        // else the clear pass clears it whole.
+        let clear_main = has_main && !clean;
+        let clear_atlas = !plan.layers.is_empty() && !clean;
+        // In the projection's compute pass (no barrier between the two dispatches: the
+        // classification clears the other slot) unless a clear pass comes between them.
         let classify_with_projection = !(debug.classify_own_pass || clear_main || clear_atlas);
         let layers = !plan.layers.is_empty() && layer_output;
         let placement = debug.layer_placement;
@@ -180,19 +176,17 @@ mod tests {
     #[test]
     fn indirect_frames_classify_in_the_projections_pass_unless_a_clear_pass_comes_between() {
         let debug = DebugOptions::default();
-        // Indirect frames clear their active tiles in the classification, clean or not.
-        for clean in [true, false] {
-            let layout = PassLayout::new(&plan(3, true, false), &debug, clean, false, false);
-            assert!(layout.classify && layout.classify_with_projection && !layout.clears(), "clean {clean}");
-            assert_eq!(timed(&layout), [PROJECTION_REFLECTION as usize]);
-        }
-        let tile_clear = DebugOptions { tile_clear_pass: true, ..debug };
-        let layout = PassLayout::new(&plan(3, true, false), &tile_clear, true, false, false);
-        assert!(layout.clear_main && !layout.classify_with_projection);
+        // On a clean slot (the last encode's classification or reflection cleared it) the
+        // classification shares the projection's pass.
+        let layout = PassLayout::new(&plan(3, true, false), &debug, true, false, false);
+        assert!(layout.classify && layout.classify_with_projection && !layout.clears());
+        assert_eq!(timed(&layout), [PROJECTION_REFLECTION as usize]);
+        // A dirty slot is cleared whole first, its atlas too where the frame has layers.
+        let layout = PassLayout::new(&plan(3, true, false), &debug, false, false, false);
+        assert!(layout.clear_main && !layout.clear_atlas && !layout.classify_with_projection);
         assert_eq!(timed(&layout), [CLASSIFY, CLEAR, PROJECTION_REFLECTION as usize]);
-        // A dirty atlas that no classification clears has the clear pass too.
-        let layout = PassLayout::new(&plan(3, true, true), &tile_clear, false, true, false);
-        assert!(layout.clear_atlas);
+        let layout = PassLayout::new(&plan(3, true, true), &debug, false, true, false);
+        assert!(layout.clear_main && layout.clear_atlas);
         let own = DebugOptions { classify_own_pass: true, ..debug };
         let layout = PassLayout::new(&plan(3, true, false), &own, true, false, false);
         assert_eq!(timed(&layout), [CLASSIFY, PROJECTION_REFLECTION as usize]);
@@ -245,7 +239,7 @@ mod tests {
         for bits in 0..1u32 << 9 {
             let b = |i: u32| bits & (1 << i) != 0;
             let debug = DebugOptions {
-                tile_clear_pass: b(0),
+                clear_pass_every_frame: b(0),
                 classify_own_pass: b(1),
                 reflection_own_pass: b(2),
                 layered_reflection_own_pass: b(3),

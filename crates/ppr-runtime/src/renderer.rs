@@ -114,10 +114,6 @@ pub struct DebugOptions {
     /// The projection's threads take one pixel in each 16 × 16 quarter of their block
     /// (the layout before the compact one; bench only, the same image).
     pub spread_quads: bool,
-    /// With indirect dispatch, the active tiles are cleared by the clear pass over the
-    /// active-tile list instead of by the classification (the layout of the eighth session;
-    /// bench only, the same image).
-    pub tile_clear_pass: bool,
     /// The block-list pass stops after each block's box of positions (bench only, to time
     /// the rest of it; the projection then reads no lists: never a correct image).
     pub block_lists_box_only: bool,
@@ -383,9 +379,7 @@ impl ReflectionRenderer {
             if !plan.is_empty() {
                 self.projection.prepare_variant(&self.device, self.variant(&plan));
                 self.reflection.prepare_variant(&self.device, self.reflection_variant(false, false));
-                if self.debug.tile_clear_pass {
-                    self.classify.prepare_separate_clear(&self.device);
-                } else if plan.indirect && plan.layers.is_empty() {
+                if plan.indirect && plan.layers.is_empty() {
                     self.classify.prepare_without_layers(&self.device);
                 }
                 if self.debug.block_lists_box_only {

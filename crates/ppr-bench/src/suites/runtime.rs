@@ -101,7 +101,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("subgroup culling only", Choice::Auto, Ablation::None),
         ("subgroup culling only, no inside entries", Choice::Auto, Ablation::None),
         ("subgroup culling only, tests only", Choice::Auto, Ablation::TestsOnly),
-        ("tile clear pass", Choice::Auto, Ablation::None),
         ("occupancy pad 16 KiB", Choice::Auto, Ablation::None),
         ("occupancy pad 32 KiB", Choice::Auto, Ablation::None),
         ("occupancy pad 38 KiB", Choice::Auto, Ablation::None),
@@ -348,7 +347,6 @@ pub fn run_runtime(
                 let debug = DebugOptions {
                     projection_ablation: ablation,
                     spread_quads,
-                    tile_clear_pass: name == "tile clear pass",
                     clear_pass_every_frame: name.ends_with("clear pass every frame"),
                     reflection_tile_loop: name.rsplit_once("tile loop ").and_then(|(_, n)| n.parse().ok()),
                     reflection_indirect_dispatch: name.ends_with("indirect dispatch"),

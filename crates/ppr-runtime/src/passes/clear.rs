@@ -1,24 +1,21 @@
-//! Clear pass: fills the intermediate buffer with the clear value, everywhere (four u32
-//! per thread) or only in the active tiles (indirect, one workgroup per tile).
+//! Clear pass: fills the intermediate buffer (or the atlas) with the clear value, four u32
+//! per thread, where the last encode did not leave it cleared.
 
 use super::bind_group_cache::BindGroupCache;
-use super::{BufferPart, compute_pipeline, storage_entry, uniform_entry};
+use super::{compute_pipeline, storage_entry};
 
 pub const WGSL: &str = include_str!("../../shaders/clear.wgsl");
 /// Threads per workgroup of `clear_all`, as in `clear.wgsl`.
 const GROUP: u32 = 256;
 
-/// Buffers the clear pass reads and writes.
+/// The buffer the clear pass writes.
 pub struct ClearBindings<'a> {
     pub intermediate: &'a wgpu::Buffer,
-    pub uniforms: BufferPart<'a>,
-    pub active_tiles: &'a wgpu::Buffer,
 }
 
 /// The clear pass.
 pub struct ClearPass {
     all: wgpu::ComputePipeline,
-    tiles: wgpu::ComputePipeline,
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
 }
@@ -27,12 +24,11 @@ impl ClearPass {
     pub fn new(device: &wgpu::Device) -> Self {
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ppr clear"),
-            entries: &[storage_entry(0, false), uniform_entry(1), storage_entry(2, true)],
+            entries: &[storage_entry(0, false)],
         });
         let module = crate::shader::module(device, "ppr clear", WGSL);
         Self {
             all: compute_pipeline(device, "ppr clear", &layout, &module, "clear_all", &[]),
-            tiles: compute_pipeline(device, "ppr clear tiles", &layout, &module, "clear_tiles", &[]),
             layout,
             bind_groups: BindGroupCache::default(),
         }
@@ -44,11 +40,7 @@ impl ClearPass {
             &wgpu::BindGroupDescriptor {
                 label: Some("ppr clear"),
                 layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: b.uniforms.binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: b.active_tiles.as_entire_binding() },
-                ],
+                entries: &[wgpu::BindGroupEntry { binding: 0, resource: b.intermediate.as_entire_binding() }],
             },
         )
     }
@@ -65,17 +57,5 @@ impl ClearPass {
         pass.set_pipeline(&self.all);
         pass.set_bind_group(0, bind_group, &[]);
         pass.dispatch_workgroups(x, groups.div_ceil(x), 1);
-    }
-
-    /// Records the clear of the active tiles (indirect arguments from the classify pass).
-    pub fn encode_tiles(
-        &self,
-        pass: &mut wgpu::ComputePass<'_>,
-        bind_group: &wgpu::BindGroup,
-        args: &wgpu::Buffer,
-    ) {
-        pass.set_pipeline(&self.tiles);
-        pass.set_bind_group(0, bind_group, &[]);
-        pass.dispatch_workgroups_indirect(args, 0);
     }
 }

@@ -71,11 +71,10 @@ pub struct LayerBindings<'a> {
     /// pass, the barrier wgpu puts before this dispatch also readies the intermediate
     /// buffer for the reflection, which then runs beside it without a barrier of its own.
     pub intermediate: &'a wgpu::Buffer,
-    /// The classification's active tiles and tile flags, which the shader does not read
-    /// either: bound (read-only) for the same reason, on frames with indirect dispatch,
-    /// whose reflection reads them after the classification wrote them.
+    /// The classification's active tiles, which the shader does not read either: bound
+    /// (read-only) for the same reason, on frames with indirect dispatch, whose reflection
+    /// reads them after the classification wrote them.
     pub active_tiles: &'a wgpu::Buffer,
-    pub tile_flags: &'a wgpu::Buffer,
 }
 
 /// The layer reflection pass.
@@ -128,7 +127,6 @@ impl LayerReflectionPass {
                 },
                 storage_entry(8, true),
                 storage_entry(9, true),
-                storage_entry(10, true),
             ],
         });
         let module = crate::shader::module_with(
@@ -187,7 +185,6 @@ impl LayerReflectionPass {
                     },
                     wgpu::BindGroupEntry { binding: 8, resource: b.intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 9, resource: b.active_tiles.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 10, resource: b.tile_flags.as_entire_binding() },
                 ],
             },
         )

@@ -19,7 +19,6 @@ pub struct ReflectionBindings<'a> {
     pub color: &'a wgpu::TextureView,
     pub output: &'a wgpu::TextureView,
     pub active_tiles: &'a wgpu::Buffer,
-    pub tile_flags: &'a wgpu::Buffer,
     pub depth: &'a wgpu::TextureView,
     /// Shading normals (world space, xyz); any float texture when normal maps are off.
     pub normals: &'a wgpu::TextureView,
@@ -175,7 +174,6 @@ impl ReflectionPass {
                     count: None,
                 },
                 storage_entry(5, true),
-                storage_entry(6, true),
                 loaded_texture_entry(7),
                 loaded_texture_entry(8),
                 uniform_entry(9),
@@ -280,7 +278,6 @@ impl ReflectionPass {
                         resource: wgpu::BindingResource::TextureView(b.output),
                     },
                     wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 6, resource: b.tile_flags.as_entire_binding() },
                     wgpu::BindGroupEntry {
                         binding: 7,
                         resource: wgpu::BindingResource::TextureView(b.depth),

@@ -1,6 +1,6 @@
-//! Tile classification: the list of tiles that show a visible reflector, the clear of their
-//! pixels in the intermediate buffer (and of the layers' atlas), and the indirect dispatch
-//! arguments of the reflection pass over them.
+//! Tile classification: the list of tiles that show a visible reflector and the indirect
+//! dispatch arguments of the reflection pass over them; and the clear of the next encode's
+//! intermediate buffer and atlas.
 
 use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
@@ -23,24 +23,21 @@ pub struct ClassifyBindings<'a> {
     pub tile_flags: &'a wgpu::Buffer,
     /// Layer reflectors of the frame (glass, water): reflectors seen through them count.
     pub layers: BufferPart<'a>,
-    /// Cleared over the active tiles (unless the clear pass does it, [`TileClassifyPass::encode`]).
-    pub intermediate: &'a wgpu::Buffer,
-    /// The layers' atlas, cleared over the frame's layer regions (unless the clear pass
-    /// does it).
-    pub atlas: &'a wgpu::Buffer,
+    /// The next encode's intermediate buffer and atlas (the renderer's other slot), cleared
+    /// whole: this encode's own slot was cleared by the encode before, so the projection,
+    /// which writes it, need not wait for the classification.
+    pub next_intermediate: &'a wgpu::Buffer,
+    pub next_atlas: &'a wgpu::Buffer,
 }
 
 /// The tile classification pass (one dispatch: its blocks append their active tiles and
 /// raise the indirect arguments).
 pub struct TileClassifyPass {
-    /// With the clear of the active tiles, for frames with layers.
+    /// For frames with layers.
     classify: wgpu::ComputePipeline,
-    /// The same for frames without layers (their layer list and atlas clear compiled
-    /// out), built on request ([`Self::prepare_without_layers`]).
+    /// The same for frames without layers (their layer list compiled out), built on
+    /// request ([`Self::prepare_without_layers`]).
     without_layers: Option<wgpu::ComputePipeline>,
-    /// Bench only, built on request ([`Self::prepare_separate_clear`]): without the clear
-    /// (layers compiled in).
-    separate_clear: Option<wgpu::ComputePipeline>,
     module: wgpu::ShaderModule,
     layout: wgpu::BindGroupLayout,
     bind_groups: BindGroupCache,
@@ -68,26 +65,14 @@ impl TileClassifyPass {
         Self {
             classify: compute_pipeline(device, "ppr tile classify", &layout, &module, "classify", &[]),
             without_layers: None,
-            separate_clear: None,
             module,
             layout,
             bind_groups: BindGroupCache::default(),
         }
     }
 
-    /// Builds the classification that leaves the clear to the clear pass (bench only; the
-    /// renderer asks for it when `DebugOptions::tile_clear_pass` is set).
-    pub fn prepare_separate_clear(&mut self, device: &wgpu::Device) {
-        if self.separate_clear.is_none() {
-            let constants = [("CLEAR_TILES", flag(false))];
-            let label = "ppr tile classify (separate clear)";
-            self.separate_clear =
-                Some(compute_pipeline(device, label, &self.layout, &self.module, "classify", &constants));
-        }
-    }
-
-    /// Builds the classification for frames without layers (`LAYERS` off: the layer list,
-    /// its tests and the atlas clear compiled out). The layer code raised the kernel's
+    /// Builds the classification for frames without layers (`LAYERS` off: the layer list
+    /// and its tests compiled out). The layer code raised the kernel's
     /// registers and slowed the classification of 10 000 shapes by 0.006-0.009 ms on the
     /// H200 (docs/perf/runtime.md, twenty-fifth session).
     pub fn prepare_without_layers(&mut self, device: &wgpu::Device) {
@@ -118,15 +103,14 @@ impl TileClassifyPass {
                     wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 8, resource: b.layers.binding() },
-                    wgpu::BindGroupEntry { binding: 9, resource: b.intermediate.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 10, resource: b.atlas.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 9, resource: b.next_intermediate.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 10, resource: b.next_atlas.as_entire_binding() },
                 ],
             },
         )
     }
 
-    /// Records the classification of every tile, with `clear_tiles` the clear of the active
-    /// tiles' pixels (else the clear pass must do it, after [`Self::prepare_separate_clear`]),
+    /// Records the classification of every tile, the clear of the next encode's buffers
     /// and the indirect arguments (one dispatch). The active-tile count and the arguments
     /// must be zero beforehand: the renderer clears them in the encoder before every
     /// classification (not once per `prepare`: a second encode would append). `layers`:
@@ -137,15 +121,12 @@ impl TileClassifyPass {
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
         viewport: [u32; 2],
-        clear_tiles: bool,
         layers: bool,
     ) {
         // One workgroup per 2 × 2 tiles.
         let (x, y) = block_groups(viewport);
         pass.set_bind_group(0, bind_group, &[]);
-        let classify = if !clear_tiles {
-            self.separate_clear.as_ref().expect("prepare_separate_clear() before encode()")
-        } else if layers {
+        let classify = if layers {
             &self.classify
         } else {
             self.without_layers.as_ref().expect("prepare_without_layers() before encode()")

@@ -68,8 +68,12 @@ impl<'a> FrameRecorder<'a> {
 
     fn record_classify(&self, pass: &mut wgpu::ComputePass<'_>) {
         let Some(bg) = &self.classify else { return };
-        let clears = !self.r.debug.tile_clear_pass;
-        self.r.classify.encode(pass, bg, self.plan.viewport, clears, !self.plan.layers.is_empty());
+        self.r.classify.encode(pass, bg, self.plan.viewport, !self.plan.layers.is_empty());
+        // It clears the other slot whole for the next encode (unless the bench asks for a
+        // clear pass every frame).
+        if !self.r.debug.clear_pass_every_frame {
+            self.b.mark_clean(1 - self.slot);
+        }
         self.count(1);
     }
 
@@ -111,23 +115,14 @@ impl<'a> FrameRecorder<'a> {
         }
     }
 
-    /// The clear pass: the intermediate buffer (its active tiles in indirect frames) and
-    /// the atlas, as the layout says.
+    /// The clear pass: the intermediate buffer and the atlas, as the layout says.
     fn record_clear(&self, encoder: &mut wgpu::CommandEncoder) {
-        let (b, device) = (self.b, &self.r.device);
-        let bindings = |intermediate| ClearBindings {
-            intermediate,
-            uniforms: b.part(UploadTarget::Uniforms),
-            active_tiles: &b.active_tiles,
-        };
+        let device = &self.r.device;
+        let bindings = |intermediate| ClearBindings { intermediate };
         let mut pass = self.begin(encoder, "ppr clear", CLEAR);
         if self.layout.clear_main {
             let bg = self.r.clear.bind_group(device, &bindings(self.intermediate()));
-            if self.plan.indirect {
-                self.r.clear.encode_tiles(&mut pass, &bg, &b.dispatch_args);
-            } else {
-                self.r.clear.encode_all(&mut pass, &bg, (self.intermediate().size() / 16) as u32);
-            }
+            self.r.clear.encode_all(&mut pass, &bg, (self.intermediate().size() / 16) as u32);
             self.count(1);
         }
         if self.layout.clear_atlas {
@@ -262,8 +257,8 @@ impl ReflectionRenderer {
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
                     layers: b.part(UploadTarget::Layers),
-                    intermediate,
-                    atlas,
+                    next_intermediate: &b.intermediate[1 - slot],
+                    next_atlas: &b.atlas[1 - slot],
                 },
             )
         });
@@ -280,7 +275,6 @@ impl ReflectionRenderer {
                     output: layer_output,
                     intermediate,
                     active_tiles: &b.active_tiles,
-                    tile_flags: &b.tile_flags,
                 },
             )
         });
@@ -293,12 +287,16 @@ impl ReflectionRenderer {
                     color,
                     output,
                     active_tiles: &b.active_tiles,
-                    tile_flags: &b.tile_flags,
                     depth,
                     normals: normals.unwrap_or(color),
                     glossy: b.part(UploadTarget::Glossy),
-                    next_intermediate: &b.intermediate[1 - slot],
-                    next_atlas: &b.atlas[1 - slot],
+                    // Indirect frames' reflection clears nothing (their classification
+                    // cleared the other slot, which this dispatch then must not bind as
+                    // writable: a buffer written by one dispatch and bound writable by the
+                    // next gets a barrier between them, here between the layers and the
+                    // reflection).
+                    next_intermediate: if plan.indirect { &b.placeholder } else { &b.intermediate[1 - slot] },
+                    next_atlas: if plan.indirect { &b.placeholder } else { &b.atlas[1 - slot] },
                     upload_storage: b.part(UploadTarget::Shapes),
                 },
             );
