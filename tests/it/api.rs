@@ -6,29 +6,7 @@ use ppr_runtime::{Camera, Choice, FrameInputs, Projection, ReflectionRenderer};
 
 use ppr_tests::gpu::{gpu, read_buffer};
 use ppr_tests::harness::{GpuFrame, read_rgba16f, renderer, run};
-use ppr_tests::scene::{Albedo, AnalyticScene};
-
-const SIZE: [u32; 2] = [128, 96];
-
-/// A floor mirror in a small room (tiles active over the lower part of the screen only).
-fn scene() -> AnalyticScene {
-    let mut s = AnalyticScene::default();
-    s.quad(
-        DVec3::new(0.0, -0.001, -4.0),
-        DVec3::X,
-        DVec3::NEG_Z,
-        [8.0, 8.0],
-        Albedo::Solid(Vec3::splat(0.25)),
-    );
-    s.quad(DVec3::new(0.0, 2.5, -8.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.25));
-    s.cuboid(DVec3::new(-1.2, 0.0, -4.6), DVec3::new(-0.2, 1.0, -3.8), Vec3::new(0.9, 0.15, 0.1));
-    s.mirror("floor mirror", DVec3::new(0.0, 0.0, -3.0), DVec3::X, DVec3::NEG_Z, [1.5, 1.2]);
-    s
-}
-
-fn camera(eye: DVec3) -> Camera {
-    Camera::look_at(eye, DVec3::new(0.0, 0.5, -5.0), Vec3::Y, Projection::default())
-}
+use ppr_tests::views::{SIZE, pond_views, room, room_camera, two_views_of};
 
 /// Records `r`'s last prepared frame with `frame`'s colour and depth into `output`.
 fn encode_into(
@@ -59,8 +37,8 @@ fn bits(pixels: &[Vec4]) -> Vec<u32> {
 
 #[test]
 fn a_second_encode_per_prepare_gives_the_same_output_as_the_first() {
-    let s = scene();
-    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let s = room();
+    let cam = room_camera(DVec3::new(0.3, 1.6, 2.0));
     let gpu_frame = GpuFrame::upload(&s.render(&cam, SIZE));
     let g = gpu();
     for indirect in [Choice::On, Choice::Off] {
@@ -118,14 +96,7 @@ fn fresh_output() -> wgpu::Texture {
 
 /// The scene's set, two cameras on it and their frames (a split screen's two views).
 fn two_views() -> (ppr_format::ReflectorSet, [Camera; 2], Vec<GpuFrame>) {
-    two_views_of(&scene())
-}
-
-/// `s`'s set, two cameras on it and their frames.
-fn two_views_of(s: &AnalyticScene) -> (ppr_format::ReflectorSet, [Camera; 2], Vec<GpuFrame>) {
-    let cams = [camera(DVec3::new(0.3, 1.6, 2.0)), camera(DVec3::new(-1.5, 2.4, 1.0))];
-    let frames = cams.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
-    (s.reflector_set(), cams, frames)
+    two_views_of(&room())
 }
 
 #[test]
@@ -190,7 +161,7 @@ fn views_prepared_before_one_submit_each_get_their_own_camera() {
 fn a_set_that_breaks_an_invariant_never_reaches_the_renderer() {
     // The renderer takes only a ValidatedSet: the broken set is refused when validated,
     // naming the field, and the renderer keeps what it had.
-    let s = scene();
+    let s = room();
     let mut bad = s.reflector_set();
     bad.reflectors[0].occluders = vec![7];
     let mut r = renderer();
@@ -199,7 +170,7 @@ fn a_set_that_breaks_an_invariant_never_reaches_the_renderer() {
     eprintln!("{err}");
     assert_eq!(field.as_deref(), Some("reflectors[0].occluders[0]"), "{err}");
     // The renderer keeps what it had (nothing) and still renders frames.
-    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let cam = room_camera(DVec3::new(0.3, 1.6, 2.0));
     assert!(r.prepare(&cam, SIZE).is_empty());
     // A valid set afterwards renders.
     r.set_reflectors(&ppr_tests::harness::validated(&s.reflector_set()));
@@ -210,8 +181,8 @@ fn a_set_that_breaks_an_invariant_never_reaches_the_renderer() {
 fn a_camera_from_the_games_matrices_renders_as_the_camera_it_describes() {
     // A game hands its view and projection matrices; without jitter the frame is the
     // fov-built camera's, bit for bit; a TAA jitter of half a pixel moves the reflection.
-    let s = scene();
-    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let s = room();
+    let cam = room_camera(DVec3::new(0.3, 1.6, 2.0));
     let frame = s.render(&cam, SIZE);
     let gpu = GpuFrame::upload(&frame);
     let set = s.reflector_set();
@@ -244,7 +215,7 @@ fn a_camera_from_the_games_matrices_renders_as_the_camera_it_describes() {
 fn an_empty_plan_reports_no_timings_without_waiting() {
     // Looking away from the only mirror: nothing visible, nothing recorded, no times (not
     // zeros, and not a wait for a frame that timed nothing).
-    let s = scene();
+    let s = room();
     let away = Camera::look_at(
         DVec3::new(0.0, 1.6, -3.0),
         DVec3::new(0.0, 1.6, 5.0),
@@ -260,7 +231,7 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
     assert_eq!(r.passes_recorded(), [false; 9]);
     assert!(r.read_timings().is_none(), "an empty plan has no pass times");
     // A frame that ran passes still reports them where the adapter has timestamps.
-    let cam = camera(DVec3::new(0.3, 1.6, 2.0));
+    let cam = room_camera(DVec3::new(0.3, 1.6, 2.0));
     let gpu = GpuFrame::upload(&s.render(&cam, SIZE));
     run(&mut r, &gpu, &cam);
     if r.has_timestamps() {
@@ -288,11 +259,11 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
 fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
     // One renderer, both eyes planned by one prepare_stereo and recorded by one
     // encode_stereo into the two layers of an array texture; a glossy floor mirror.
-    let mut s = scene();
+    let mut s = room();
     s.roughen("floor mirror", 0.25);
     let set = ppr_tests::harness::validated(&s.reflector_set());
     let head = DVec3::new(0.3, 1.6, 2.0);
-    let eyes = [-0.032, 0.032].map(|dx| camera(head + DVec3::new(dx, 0.0, 0.0)));
+    let eyes = [-0.032, 0.032].map(|dx| room_camera(head + DVec3::new(dx, 0.0, 0.0)));
     let frames: Vec<GpuFrame> = eyes.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
     let g = gpu();
     for indirect in [Choice::Off, Choice::On] {
@@ -378,7 +349,7 @@ fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
 }
 
 #[test]
-fn frames_reuse_their_upload_staging_buffers() {
+fn frames_reuse_their_upload_buffers() {
     // Each encode writes its view's upload into a staging buffer that comes back once the
     // encoder's commands have run: frames submitted one after the other reuse one, and an
     // encoder dropped without a submit loses its buffer but breaks nothing.
@@ -397,9 +368,9 @@ fn frames_reuse_their_upload_staging_buffers() {
         }
     }
     assert!(
-        r.upload_staging_buffers_created() <= 2,
+        r.upload_buffers_created() <= 2,
         "8 frames, each waited for, created {} staging buffers",
-        r.upload_staging_buffers_created()
+        r.upload_buffers_created()
     );
     // An encoder recorded and dropped: its staging buffer never comes back.
     let g = gpu();
@@ -443,15 +414,6 @@ fn a_small_level_s_upload_is_one_copy() {
 
 /// The clear pass's index in `ReflectionRenderer::passes_recorded`.
 const CLEAR: usize = 1;
-
-/// The scene with a water layer beside its floor mirror: its validated set, two cameras
-/// and their frames.
-fn pond_views() -> (ppr_format::ValidatedSet, [Camera; 2], Vec<GpuFrame>) {
-    let mut s = scene();
-    s.water("pond", DVec3::new(1.6, 0.002, -5.5), DVec3::X, DVec3::NEG_Z, [1.0, 0.8]);
-    let (set, cams, frames) = two_views_of(&s);
-    (ppr_tests::harness::validated(&set), cams, frames)
-}
 
 #[test]
 fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {

@@ -17,8 +17,8 @@ pub fn use_backends(backends: wgpu::Backends) {
     let _ = BACKENDS.set(backends);
 }
 
-/// The shared test device (created once per test binary), with timestamps and subgroups
-/// where the adapter has them.
+/// The shared test device (created once per test binary), with timestamps, subgroups and
+/// bindable mapped buffers where the adapter has them.
 pub fn gpu() -> &'static TestGpu {
     static GPU: OnceLock<TestGpu> = OnceLock::new();
     GPU.get_or_init(|| {
@@ -34,7 +34,12 @@ pub fn gpu() -> &'static TestGpu {
             );
         let info = adapter.get_info();
         eprintln!("test adapter: {} ({:?}, {:?})", info.name, info.backend, info.device_type);
-        let features = adapter.features() & (wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::SUBGROUP);
+        // Where the adapter maps bindable buffers (Vulkan, not GL), the renderer binds the
+        // frame upload it writes instead of copying it (`it/bound_upload.rs`).
+        let wanted = wgpu::Features::TIMESTAMP_QUERY
+            | wgpu::Features::SUBGROUP
+            | wgpu::Features::MAPPABLE_PRIMARY_BUFFERS;
+        let features = adapter.features() & wanted;
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("ppr-runtime tests"),
             required_features: features,

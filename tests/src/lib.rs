@@ -10,3 +10,4 @@ pub mod harness;
 pub mod masks;
 pub mod random_scenes;
 pub mod scene;
+pub mod views;

@@ -1,7 +1,10 @@
-//! The runtime's subgroup paths on an adapter that has subgroups: Mesa's lavapipe through
-//! Vulkan without a GPU (`.ci/run` installs Debian's mesa-vulkan-drivers when missing). The
-//! `it` binary runs the same tests on llvmpipe through GL, without subgroup operations.
+//! The runtime's Vulkan-only paths on Mesa's lavapipe without a GPU (`.ci/run` installs
+//! Debian's mesa-vulkan-drivers when missing): subgroup culling (the `it` binary runs the
+//! same tests on llvmpipe through GL, without subgroup operations) and the frame upload
+//! bound where it is written (GL has no mappable bindable buffers).
 
+#[path = "../it/bound_upload.rs"]
+mod bound_upload;
 #[path = "../it/subgroup_cull.rs"]
 mod subgroup_cull;
 

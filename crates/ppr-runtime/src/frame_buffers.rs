@@ -1,6 +1,6 @@
 //! The GPU buffers of a frame, sized for a viewport and a reflector set.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use wgpu::util::DeviceExt;
 
@@ -14,6 +14,7 @@ use crate::plan::{MAX_LAYERS, UNIFORM_TESTS_CAPACITY};
 use crate::plane_groups::plane_group_words_offset;
 use crate::shapes::ShapeTable;
 use crate::upload_layout::{UploadLayout, UploadTarget};
+use crate::upload_ring::UploadRing;
 
 /// Buffers reallocated only when the viewport or the set changes.
 pub(crate) struct FrameBuffers {
@@ -21,6 +22,10 @@ pub(crate) struct FrameBuffers {
     /// a range of it ([`Self::part`]), so that a frame fills them with one copy or a few.
     pub upload: wgpu::Buffer,
     pub upload_layout: UploadLayout,
+    /// On devices with `MAPPABLE_PRIMARY_BUFFERS`: buffers laid out as [`Self::upload`]
+    /// (the plane groups' static words in place), which an encode writes its parts into
+    /// and binds instead of copying them into [`Self::upload`].
+    pub bindable_uploads: Option<RefCell<UploadRing>>,
     pub occluders: wgpu::Buffer,
     /// Two intermediate buffers used by turns ([`Self::take_slot`]): a direct-dispatch
     /// reflection pass clears the one the next encode uses, which then needs no clear pass.
@@ -100,9 +105,18 @@ impl FrameBuffers {
             },
             (UNIFORM_TESTS_CAPACITY * std::mem::size_of::<GpuShapeTest>()) as u64,
         );
+        let bindable_uploads =
+            device.features().contains(wgpu::Features::MAPPABLE_PRIMARY_BUFFERS).then(|| {
+                let fixed = (
+                    upload_layout.range(UploadTarget::PlaneGroups).start,
+                    bytemuck::cast_slice(&group_words).to_vec(),
+                );
+                RefCell::new(UploadRing::bindable(device, upload_layout.size(), fixed))
+            });
         Self {
             upload: upload_buffer(device, &group_words, &upload_layout),
             upload_layout,
+            bindable_uploads,
             occluders: device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("ppr occluder lists"),
                 contents: bytemuck::cast_slice(&occluders),
@@ -143,22 +157,10 @@ impl FrameBuffers {
         }
     }
 
-    /// `target`'s range of [`Self::upload`], to bind.
-    pub fn part(&self, target: UploadTarget) -> BufferPart<'_> {
-        self.range_of(self.upload_layout.range(target))
-    }
-
-    /// The loop's tests as a uniform array: the first bytes of the tests' part.
-    pub fn uniform_tests(&self) -> BufferPart<'_> {
-        self.range_of(self.upload_layout.uniform_tests())
-    }
-
-    fn range_of(&self, range: std::ops::Range<u64>) -> BufferPart<'_> {
-        BufferPart {
-            buffer: &self.upload,
-            offset: range.start,
-            size: wgpu::BufferSize::new(range.end - range.start),
-        }
+    /// The upload's parts in `upload`: [`Self::upload`], or a buffer of
+    /// [`Self::bindable_uploads`].
+    pub fn parts<'a>(&'a self, upload: &'a wgpu::Buffer) -> UploadParts<'a> {
+        UploadParts { buffer: upload, layout: &self.upload_layout }
     }
 
     /// The slot (of [`Self::intermediate`] and [`Self::atlas`]) an encode uses, and whether
@@ -205,6 +207,34 @@ impl FrameBuffers {
             && (!plan.tile_culling
                 || plan.fused_lists
                 || self.block_lists.size() >= block_lists_size(plan.viewport))
+    }
+}
+
+/// The frame upload's parts as one encode binds them: ranges of the buffer its upload is
+/// in, laid out by the frame buffers' [`UploadLayout`].
+#[derive(Clone, Copy)]
+pub(crate) struct UploadParts<'a> {
+    buffer: &'a wgpu::Buffer,
+    layout: &'a UploadLayout,
+}
+
+impl<'a> UploadParts<'a> {
+    /// `target`'s range, to bind.
+    pub fn part(&self, target: UploadTarget) -> BufferPart<'a> {
+        self.range_of(self.layout.range(target))
+    }
+
+    /// The loop's tests as a uniform array: the first bytes of the tests' part.
+    pub fn uniform_tests(&self) -> BufferPart<'a> {
+        self.range_of(self.layout.uniform_tests())
+    }
+
+    fn range_of(&self, range: std::ops::Range<u64>) -> BufferPart<'a> {
+        BufferPart {
+            buffer: self.buffer,
+            offset: range.start,
+            size: wgpu::BufferSize::new(range.end - range.start),
+        }
     }
 }
 

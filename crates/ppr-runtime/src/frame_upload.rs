@@ -4,7 +4,9 @@
 //! frame. `encode` writes the parts into a staging buffer (`upload_ring.rs`: reused frame
 //! after frame) as they lie in the frame buffers' upload buffer (`upload_layout.rs`) and
 //! records one copy from there per run of parts that lie close together: one copy for a
-//! level of a few hundred shapes.
+//! level of a few hundred shapes. On devices with `MAPPABLE_PRIMARY_BUFFERS` it writes
+//! them instead into a mapped buffer laid out as the upload buffer, which the passes bind
+//! in its place: no copy, and no barrier between a copy and the first pass.
 //!
 //! Why not `queue.write_buffer` into the frame buffers: those writes all land at the next
 //! submit, before any command of it, so two views prepared and encoded before one submit
@@ -14,7 +16,7 @@
 use crate::frame_buffers::FrameBuffers;
 use crate::gpu_types::GpuShape;
 use crate::shape_tests::FrameTests;
-use crate::upload_layout::{UploadTarget, copy_runs};
+use crate::upload_layout::{UploadLayout, UploadTarget, copy_runs};
 use crate::upload_ring::UploadRing;
 
 /// Gap between two parts up to which one copy takes both (and the gap): a copy command
@@ -90,6 +92,36 @@ impl FrameUpload {
         }
     }
 
+    /// Each part's bytes and its offset in the upload buffer (which must be the one the
+    /// frame was prepared for: every part fits its range), in order of offset.
+    fn placed(&self, layout: &UploadLayout) -> Vec<(u64, &[u8])> {
+        let mut placed: Vec<(u64, &[u8])> = self
+            .parts
+            .iter()
+            .map(|&(target, part)| {
+                let (range, data) = (layout.range(target), self.bytes_of(part));
+                debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
+                debug_assert!(data.len() as u64 <= range.end - range.start, "{target:?} fits its part");
+                (range.start, data)
+            })
+            .collect();
+        placed.sort_by_key(|&(offset, _)| offset);
+        placed
+    }
+
+    /// Writes the parts, each at its offset, into a buffer of `buffers`' bindable ring
+    /// (`FrameBuffers::bindable_uploads`, which must exist), to bind in place of `buffers`'
+    /// upload buffer by the commands recorded in `encoder` (none is recorded here).
+    pub fn stage_bindable(&self, encoder: &wgpu::CommandEncoder, buffers: &FrameBuffers) -> wgpu::Buffer {
+        let layout = &buffers.upload_layout;
+        let ring = buffers.bindable_uploads.as_ref().expect("a device that maps bindable buffers");
+        let placed = self.placed(layout);
+        // (A mapped range is never empty: at least one word, written or not.)
+        let end = placed.last().map_or(0, |&(offset, data)| offset + data.len() as u64);
+        let end = end.max(wgpu::COPY_BUFFER_ALIGNMENT);
+        ring.borrow_mut().stage(encoder, end, &placed)
+    }
+
     /// Writes the parts into a staging buffer of `ring` and records the copies from
     /// there into `buffers`' upload buffer (which must be the one the frame was prepared
     /// for: every part fits its range): one per run of parts apart by at most `max_gap`
@@ -104,19 +136,7 @@ impl FrameUpload {
         if self.parts.is_empty() {
             return 0;
         }
-        let layout = &buffers.upload_layout;
-        // Each part's bytes and where they go.
-        let mut placed: Vec<(u64, &[u8])> = self
-            .parts
-            .iter()
-            .map(|&(target, part)| {
-                let (range, data) = (layout.range(target), self.bytes_of(part));
-                debug_assert_eq!(data.len() as u64 % wgpu::COPY_BUFFER_ALIGNMENT, 0, "{target:?}");
-                debug_assert!(data.len() as u64 <= range.end - range.start, "{target:?} fits its part");
-                (range.start, data)
-            })
-            .collect();
-        placed.sort_by_key(|&(offset, _)| offset);
+        let placed = self.placed(&buffers.upload_layout);
         let ranges: Vec<_> = placed.iter().map(|&(o, d)| o..o + d.len() as u64).collect();
         let runs = copy_runs(&ranges, max_gap);
         // The runs one after the other in the staging buffer, each with its gaps.

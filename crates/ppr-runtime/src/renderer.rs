@@ -193,6 +193,11 @@ pub struct DebugOptions {
     /// kitchen and 0.035 off the 10 000-tread stairway's (H100, whole frames;
     /// docs/perf/runtime.md).
     pub separate_upload_copies: bool,
+    /// On devices with `MAPPABLE_PRIMARY_BUFFERS`: copy the frame upload from a staging
+    /// buffer into the frame buffers' upload buffer, as on every device before the
+    /// thirty-third session (bench only, the same frame), instead of writing it into a
+    /// mapped buffer that the passes bind themselves (`FrameBuffers::bindable_uploads`).
+    pub copied_upload: bool,
     /// On frames whose layer dispatch goes with the reflection: record the two in a compute
     /// pass of their own after the projection's (the twenty-sixth session's layout; bench
     /// only, the same image), instead of in the projection's pass with the layers first
@@ -273,8 +278,9 @@ pub struct ReflectionRenderer {
     pub(crate) dispatches: Cell<u32>,
     /// Copy commands of the last encode's upload.
     upload_copies: Cell<usize>,
-    /// Where `encode` writes each view's upload for its copies: staging buffers that come
-    /// back once their encoder's commands are submitted and done.
+    /// Where `encode` writes each view's upload for its copies (devices without
+    /// `MAPPABLE_PRIMARY_BUFFERS`, or `DebugOptions::copied_upload`): staging buffers that
+    /// come back once their encoder's commands are submitted and done.
     upload_ring: RefCell<UploadRing>,
     /// Whether the frames want layers: the last `encode` that gave a layer output, or had
     /// layers without one (`None` before either).
@@ -309,7 +315,7 @@ impl ReflectionRenderer {
             timer: if desc.timestamps { PassTimer::new(device, queue) } else { None },
             dispatches: Cell::new(0),
             upload_copies: Cell::new(0),
-            upload_ring: RefCell::new(UploadRing::new(device)),
+            upload_ring: RefCell::new(UploadRing::staging(device)),
             layer_output_given: Cell::new(None),
             recorded: Cell::new([false; TIMED_PASSES as usize]),
         }
@@ -432,11 +438,17 @@ impl ReflectionRenderer {
         self.upload_copies.get()
     }
 
-    /// How many staging buffers `encode` has created for the frame uploads (they are
-    /// reused once their frame's commands have run: tests and diagnostics).
+    /// How many buffers `encode` has created for the frame uploads: staging buffers, and
+    /// the current frame buffers' bound ones (they are reused once their frame's commands
+    /// have run: tests and diagnostics).
     #[doc(hidden)]
-    pub fn upload_staging_buffers_created(&self) -> usize {
-        self.upload_ring.borrow().created()
+    pub fn upload_buffers_created(&self) -> usize {
+        let bound = self
+            .buffers
+            .as_ref()
+            .and_then(|b| b.bindable_uploads.as_ref())
+            .map_or(0, |r| r.borrow().created());
+        self.upload_ring.borrow().created() + bound
     }
 
     /// The plan of the last [`Self::prepare`].

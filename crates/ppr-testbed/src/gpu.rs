@@ -23,10 +23,12 @@ pub struct GpuContext {
 }
 
 /// Optional features requested when the adapter has them (never required): timestamps,
-/// and subgroups for the projection's subgroup culling.
+/// subgroups for the projection's subgroup culling, and mapped buffers the passes may bind
+/// (the renderer then binds the frame upload where it writes it, without a copy).
 const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
-    .union(wgpu::Features::SUBGROUP);
+    .union(wgpu::Features::SUBGROUP)
+    .union(wgpu::Features::MAPPABLE_PRIMARY_BUFFERS);
 
 impl GpuContext {
     /// Creates a headless context on the adapter wgpu picks (honouring `WGPU_BACKEND`,

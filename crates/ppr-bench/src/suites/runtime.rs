@@ -122,6 +122,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, classify own pass, layers own pass", Choice::Auto, Ablation::None),
         ("frame span, reflection own pass", Choice::Auto, Ablation::None),
         ("frame span, separate upload copies", Choice::Auto, Ablation::None),
+        ("frame span, copied upload", Choice::Auto, Ablation::None),
         ("frame span, layered reflection own pass", Choice::Auto, Ablation::None),
         ("layered reflection own pass", Choice::Auto, Ablation::None),
         ("reflection own pass", Choice::Auto, Ablation::None),
@@ -369,6 +370,8 @@ pub fn run_runtime(
                         || name == "reflection own pass",
                     layered_reflection_own_pass: name.ends_with("layered reflection own pass"),
                     separate_upload_copies: name.ends_with("separate upload copies"),
+                    copied_upload: name.ends_with("copied upload")
+                        || name.ends_with("separate upload copies"),
                     box_reduction: if name.ends_with("subgroup box") {
                         BoxReduction::SubgroupSlots
                     } else if name.ends_with("subgroup box atomics") {

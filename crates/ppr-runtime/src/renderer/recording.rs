@@ -2,7 +2,7 @@
 //! recorded as its `PassLayout` lays them out.
 
 use super::{FrameInputs, PreparedView, ReflectionRenderer};
-use crate::frame_buffers::FrameBuffers;
+use crate::frame_buffers::{FrameBuffers, UploadParts};
 use crate::frame_upload::MAX_COPY_GAP;
 use crate::pass_layout::PassLayout;
 use crate::passes::block_lists::BlockListBindings;
@@ -28,6 +28,8 @@ struct FrameRecorder<'a> {
     r: &'a ReflectionRenderer,
     plan: &'a FramePlan,
     b: &'a FrameBuffers,
+    /// The upload's parts where this encode's passes read them.
+    parts: UploadParts<'a>,
     layout: PassLayout,
     /// Each pass's own timestamps (not while the bench times the frame's span).
     timer: Option<&'a PassTimer>,
@@ -135,24 +137,24 @@ impl<'a> FrameRecorder<'a> {
     /// The projection's compute pass: the classification and the lists before it where
     /// they go there, the reflection after it where it goes there.
     fn record_projection_pass(&self, encoder: &mut wgpu::CommandEncoder) {
-        let (r, b, plan, depth) = (self.r, self.b, self.plan, self.depth);
+        let (r, b, plan, depth, parts) = (self.r, self.b, self.plan, self.depth, self.parts);
         let bg = r.projection.bind_group(
             &r.device,
             &ProjectionBindings {
-                uniforms: b.part(UploadTarget::Uniforms),
+                uniforms: parts.part(UploadTarget::Uniforms),
                 depth,
-                shapes: b.part(UploadTarget::Shapes),
-                tests: b.part(UploadTarget::Tests),
+                shapes: parts.part(UploadTarget::Shapes),
+                tests: parts.part(UploadTarget::Tests),
                 occluders: &b.occluders,
                 intermediate: self.intermediate(),
                 debug_writes: &b.debug_writes,
-                layers: b.part(UploadTarget::Layers),
+                layers: parts.part(UploadTarget::Layers),
                 atlas: self.atlas(),
                 super_lists: &b.super_lists,
-                source_boxes: b.part(UploadTarget::SourceRects),
+                source_boxes: parts.part(UploadTarget::SourceRects),
                 block_lists: &b.block_lists,
-                uniform_tests: b.uniform_tests(),
-                plane_groups: b.part(UploadTarget::PlaneGroups),
+                uniform_tests: parts.uniform_tests(),
+                plane_groups: parts.part(UploadTarget::PlaneGroups),
             },
         );
         let with_reflection = self.layout.reflection_with_projection;
@@ -168,10 +170,10 @@ impl<'a> FrameRecorder<'a> {
             let lists = r.super_tile_lists.bind_group(
                 &r.device,
                 &SuperTileBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     depth,
-                    tests: b.part(UploadTarget::Tests),
-                    source_boxes: b.part(UploadTarget::SourceRects),
+                    tests: parts.part(UploadTarget::Tests),
+                    source_boxes: parts.part(UploadTarget::SourceRects),
                     super_lists: &b.super_lists,
                 },
             );
@@ -182,10 +184,10 @@ impl<'a> FrameRecorder<'a> {
             let lists = r.block_lists.bind_group(
                 &r.device,
                 &BlockListBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     depth,
-                    tests: b.part(UploadTarget::Tests),
-                    source_boxes: b.part(UploadTarget::SourceRects),
+                    tests: parts.part(UploadTarget::Tests),
+                    source_boxes: parts.part(UploadTarget::SourceRects),
                     super_lists: &b.super_lists,
                     block_lists: &b.block_lists,
                 },
@@ -243,20 +245,27 @@ impl ReflectionRenderer {
         let output = reduced.map_or(inputs.output, |r| &r.output.view);
         let layer_output = inputs.layer_output.map(|o| reduced.map_or(o, |r| &r.layer_output.view));
         let normals = if reduced.is_some() { None } else { inputs.normals };
+        // This prepared frame's uniforms, shapes and lists: on a device that maps bindable
+        // buffers, written here into one that the passes bind (no copy, no barrier behind
+        // one); elsewhere copied into the upload buffer below, after the span's start.
+        let upload = view.upload.as_ref().expect("prepare() builds the upload");
+        let bound_upload = b.bindable_uploads.is_some() && !self.debug.copied_upload;
+        let upload_buffer = if bound_upload { upload.stage_bindable(encoder, b) } else { b.upload.clone() };
+        let parts = b.parts(&upload_buffer);
 
         let classify = layout.classify.then(|| {
             self.classify.bind_group(
                 device,
                 &ClassifyBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     depth,
-                    shapes: b.part(UploadTarget::Shapes),
-                    visible: b.part(UploadTarget::Visible),
-                    screen_rects: b.part(UploadTarget::ScreenRects),
+                    shapes: parts.part(UploadTarget::Shapes),
+                    visible: parts.part(UploadTarget::Visible),
+                    screen_rects: parts.part(UploadTarget::ScreenRects),
                     active_tiles: &b.active_tiles,
                     dispatch_args: &b.dispatch_args,
                     tile_flags: &b.tile_flags,
-                    layers: b.part(UploadTarget::Layers),
+                    layers: parts.part(UploadTarget::Layers),
                     next_intermediate: &b.intermediate[1 - slot],
                     next_atlas: &b.atlas[1 - slot],
                 },
@@ -266,10 +275,10 @@ impl ReflectionRenderer {
             self.layer_reflection.bind_group(
                 device,
                 &LayerBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     atlas,
-                    layers: b.part(UploadTarget::Layers),
-                    shapes: b.part(UploadTarget::Shapes),
+                    layers: parts.part(UploadTarget::Layers),
+                    shapes: parts.part(UploadTarget::Shapes),
                     depth,
                     color,
                     output: layer_output,
@@ -282,14 +291,14 @@ impl ReflectionRenderer {
             let bg = self.reflection.bind_group(
                 device,
                 &ReflectionBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     intermediate,
                     color,
                     output,
                     active_tiles: &b.active_tiles,
                     depth,
                     normals: normals.unwrap_or(color),
-                    glossy: b.part(UploadTarget::Glossy),
+                    glossy: parts.part(UploadTarget::Glossy),
                     // Indirect frames' reflection clears nothing (their classification
                     // cleared the other slot, which this dispatch then must not bind as
                     // writable: a buffer written by one dispatch and bound writable by the
@@ -297,7 +306,7 @@ impl ReflectionRenderer {
                     // reflection).
                     next_intermediate: if plan.indirect { &b.placeholder } else { &b.intermediate[1 - slot] },
                     next_atlas: if plan.indirect { &b.placeholder } else { &b.atlas[1 - slot] },
-                    upload_storage: b.part(UploadTarget::Shapes),
+                    upload_storage: parts.part(UploadTarget::Shapes),
                 },
             );
             let variant = self.reflection_variant(
@@ -310,6 +319,7 @@ impl ReflectionRenderer {
             r: self,
             plan,
             b,
+            parts,
             layout,
             timer: self.timer.as_ref().filter(|_| !span),
             slot,
@@ -323,20 +333,20 @@ impl ReflectionRenderer {
         if let Some(t) = span_timer {
             t.write_span(encoder, false);
         }
-        // This prepared frame's uniforms, shapes and lists, copied in here (not at the
-        // submit), so that each encode runs with the camera it was prepared for.
-        let copies = view.upload.as_ref().expect("prepare() builds the upload").encode_copies(
-            encoder,
-            b,
-            &mut self.upload_ring.borrow_mut(),
-            (!self.debug.separate_upload_copies).then_some(MAX_COPY_GAP),
-        );
+        // Copied in here (not at the submit), so that each encode runs with the camera it
+        // was prepared for.
+        let copies = if bound_upload {
+            0
+        } else {
+            let max_gap = (!self.debug.separate_upload_copies).then_some(MAX_COPY_GAP);
+            upload.encode_copies(encoder, b, &mut self.upload_ring.borrow_mut(), max_gap)
+        };
         self.upload_copies.set(copies);
         if let Some(r) = reduced {
             let bg = self.downsample.bind_group(
                 device,
                 &DownsampleBindings {
-                    uniforms: b.part(UploadTarget::Uniforms),
+                    uniforms: parts.part(UploadTarget::Uniforms),
                     full_depth: inputs.depth,
                     reduced_depth: &r.depth.view,
                 },
@@ -368,7 +378,7 @@ impl ReflectionRenderer {
             frame.record_layers(&mut pass);
         }
         if let Some(r) = reduced {
-            self.encode_upsample(encoder, view, inputs, r, frame.timer.map(|t| t.writes(UPSAMPLE)));
+            self.encode_upsample(encoder, view, inputs, r, parts, frame.timer.map(|t| t.writes(UPSAMPLE)));
             frame.count(u32::from(layout.has_main) + u32::from(layout.layers));
         }
         if let Some(t) = span_timer {
@@ -388,6 +398,7 @@ impl ReflectionRenderer {
         view: &PreparedView,
         inputs: &FrameInputs<'_>,
         r: &ReducedTargets,
+        parts: UploadParts<'_>,
         timestamp_writes: Option<wgpu::ComputePassTimestampWrites<'_>>,
     ) {
         let b = self.buffers.as_ref().expect("prepare() allocates the buffers");
@@ -397,7 +408,7 @@ impl ReflectionRenderer {
             timestamp_writes,
         });
         let bindings = |reduced_output, output| UpsampleBindings {
-            uniforms: b.part(UploadTarget::Uniforms),
+            uniforms: parts.part(UploadTarget::Uniforms),
             full_depth: inputs.depth,
             reduced_depth: &r.depth.view,
             reduced_output,
