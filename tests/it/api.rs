@@ -26,9 +26,14 @@ fn encode_into(
 
 /// The active-tile count the classification left in the renderer's buffer.
 fn active_tile_count(r: &ReflectionRenderer) -> u32 {
+    active_tile_header(r)[0]
+}
+
+/// The last frame's active-tile count and indirect dispatch arguments (x, y, z).
+fn active_tile_header(r: &ReflectionRenderer) -> [u32; 4] {
     let words: Vec<u32> =
         bytemuck::pod_collect_to_vec(&read_buffer(r.active_tiles_buffer().expect("prepared")));
-    words[0]
+    [words[0], words[1], words[2], words[3]]
 }
 
 fn bits(pixels: &[Vec4]) -> Vec<u32> {
@@ -416,6 +421,41 @@ fn a_small_level_s_upload_is_one_copy() {
 const CLEAR: usize = 1;
 
 #[test]
+fn direct_and_indirect_frames_by_turns_find_their_buffers_cleared() {
+    // A slot's active-tile count is zeroed by the indirect frame before, which a direct
+    // frame between them (the plan switches with the reflectors' screen coverage) does not
+    // do: each frame must still match a renderer that clears everything before every frame.
+    let (set, cams, frames) = pond_views();
+    let mut turns = renderer();
+    let mut every_frame = renderer();
+    every_frame.debug.clear_pass_every_frame = true;
+    for r in [&mut turns, &mut every_frame] {
+        r.set_reflectors(&set);
+    }
+    let on = Choice::On;
+    let off = Choice::Off;
+    let sequence = [(on, 0), (off, 1), (on, 0), (on, 1), (off, 0), (off, 1), (on, 0), (on, 1), (on, 0)];
+    for (k, (indirect, v)) in sequence.into_iter().enumerate() {
+        let what = format!("frame {k} ({indirect:?}, view {v})");
+        turns.plan_params.indirect = indirect;
+        every_frame.plan_params.indirect = indirect;
+        let a = run(&mut turns, &frames[v], &cams[v]);
+        let b = run(&mut every_frame, &frames[v], &cams[v]);
+        assert_eq!(a.plan.indirect, indirect == on, "{what}");
+        assert!(a.intermediate == b.intermediate, "{what}: intermediate buffer");
+        assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
+        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+        if indirect == on {
+            assert_eq!(
+                active_tile_header(&turns),
+                active_tile_header(&every_frame),
+                "{what}: count and arguments"
+            );
+        }
+    }
+}
+
+#[test]
 fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
     // A frame clears the intermediate buffer and atlas that the next encode takes (two
     // slots, by turns): with direct dispatch its reflection pass, with indirect dispatch
@@ -451,6 +491,17 @@ fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
             assert!(a.intermediate == b.intermediate, "{what}: intermediate buffer");
             assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
             assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+            if indirect == Choice::On {
+                // The list's count and dispatch arguments start from zero (the frame before
+                // zeroed this slot's): the same as those of a list cleared before it.
+                let header = active_tile_header(&turns);
+                assert_eq!(
+                    header,
+                    active_tile_header(&every_frame),
+                    "{what}: active-tile count and arguments"
+                );
+                assert!(header[0] > 0 && header[1] > 0 && header[3] == 1, "{what}: {header:?}");
+            }
         }
         // After `forget_cleared` (an encoder dropped unsubmitted) the next frame clears again.
         turns.forget_cleared();

@@ -59,12 +59,11 @@ struct Layer {
 }
 
 // The tiles that show a visible reflector (written by tile_classify.wgsl, whose own view
-// of the buffer has an atomic count): tile index = x + y * tiles_x.
+// of the buffer has atomics): tile index = x + y * tiles_x. `args` are the indirect
+// dispatch arguments (x, y, z) of one workgroup per tile.
 struct ActiveTileList {
     count: u32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    args: array<u32, 3>,
     tiles: array<u32>,
 }
 

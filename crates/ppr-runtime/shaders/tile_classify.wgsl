@@ -8,7 +8,7 @@
 // (append_active_tiles).
 // It also clears the next encode's intermediate buffer and atlas (the renderer's other
 // slot, which this encode does not touch): every pixel of its block, and the atlas whole
-// over all blocks. The projection then needs nothing from this pass (its slot was cleared
+// over all blocks; and zeroes that slot's active-tile count and dispatch arguments. The projection then needs nothing from this pass (its slot was cleared
 // by the encode before), so the two share a compute pass with no barrier between them;
 // the reflection reads the active tiles only.
 
@@ -29,11 +29,11 @@ const MAX_GROUPS_X: u32 = 65535u;
 // marking a tile active that shows no reflector only costs time).
 const ON_PLANE_EPSILON: f32 = 2e-3;
 
+// common.wgsl's ActiveTileList with atomics.
 struct ActiveTileCounter {
     count: atomic<u32>,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    // The indirect dispatch arguments (x, y, z).
+    args: array<atomic<u32>, 3>,
     // Tile index (x + y * tiles_x) of each active tile.
     tiles: array<u32>,
 }
@@ -45,7 +45,9 @@ struct ActiveTileCounter {
 // Per visible shape: its screen rectangle in pixels (min x, min y, max x, max y), exclusive max.
 @group(0) @binding(4) var<storage, read> screen_rects: array<vec4<u32>>;
 @group(0) @binding(5) var<storage, read_write> active_tiles: ActiveTileCounter;
-@group(0) @binding(6) var<storage, read_write> dispatch_args: array<atomic<u32>, 3>;
+// The next encode's active-tile count and dispatch arguments (the other slot's list),
+// zeroed here: the next classification appends from zero without a clear before it.
+@group(0) @binding(6) var<storage, read_write> next_counters: array<u32, 4>;
 // Per tile: 1 when active, 0 when not (so that reads across a tile border can tell
 // whether the neighbouring tile was cleared this frame).
 @group(0) @binding(7) var<storage, read_write> tile_flags: array<u32>;
@@ -100,6 +102,9 @@ fn shows_a_reflector(pixel: vec2<u32>, depth: f32, listed: u32, layers_listed: u
 // atlas whole (the next encode's layers may differ from this one's), each thread of the
 // dispatch a value in turn.
 fn clear_next(lid: u32, local: vec2<u32>, wid: vec2<u32>, groups: vec2<u32>) {
+    if (all(wid == vec2<u32>(0u)) && lid < 4u) {
+        next_counters[lid] = 0u;
+    }
     for (var q = 0u; q < 4u; q++) {
         let pixel = wid * BLOCK_SIZE + vec2<u32>(q & 1u, q >> 1u) * TILE_SIZE + local;
         if (all(pixel < frame.size)) {
@@ -190,7 +195,7 @@ fn classify(
 // The block's active tiles, appended to the list with one atomic, and the indirect
 // dispatch arguments (x, y, 1) covering the list so far, in rows of MAX_GROUPS_X: each
 // block raises them to its own end of the list with atomicMax, so that once every block
-// has run they cover the whole list (no pass of their own). `dispatch_args` and the count
+// has run they cover the whole list (no pass of their own). The arguments and the count
 // are zero before the pass.
 fn append_active_tiles(block: vec2<u32>) {
     let tiles = (frame.size + TILE_SIZE - 1u) / TILE_SIZE;
@@ -212,10 +217,10 @@ fn append_active_tiles(block: vec2<u32>) {
             slot += 1u;
         }
     }
-    atomicMax(&dispatch_args[0], min(slot, MAX_GROUPS_X));
-    atomicMax(&dispatch_args[1], (slot + MAX_GROUPS_X - 1u) / MAX_GROUPS_X);
+    atomicMax(&active_tiles.args[0], min(slot, MAX_GROUPS_X));
+    atomicMax(&active_tiles.args[1], (slot + MAX_GROUPS_X - 1u) / MAX_GROUPS_X);
     // The block that appended first sets the constant one.
     if (slot == found) {
-        atomicStore(&dispatch_args[2], 1u);
+        atomicStore(&active_tiles.args[2], 1u);
     }
 }

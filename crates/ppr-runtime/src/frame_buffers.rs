@@ -30,8 +30,11 @@ pub(crate) struct FrameBuffers {
     /// Two intermediate buffers used by turns ([`Self::take_slot`]): a direct-dispatch
     /// reflection pass clears the one the next encode uses, which then needs no clear pass.
     pub intermediate: [wgpu::Buffer; 2],
-    pub active_tiles: wgpu::Buffer,
-    pub dispatch_args: wgpu::Buffer,
+    /// The classification's active-tile lists, one per slot as the intermediate buffer:
+    /// the count, the indirect dispatch arguments (x, y, z, from byte 4) and the tile
+    /// indices. An indirect frame's classification zeroes the other slot's count and
+    /// arguments for the next encode ([`Self::take_counters`]).
+    pub active_tiles: [wgpu::Buffer; 2],
     pub tile_flags: wgpu::Buffer,
     pub debug_writes: wgpu::Buffer,
     /// 16 bytes no pass reads or writes: bound where a layout asks for a writable buffer
@@ -54,6 +57,9 @@ pub(crate) struct FrameBuffers {
     /// Per slot: whether its intermediate buffer and atlas hold the clear value everywhere
     /// (a reflection pass cleared them after their last use).
     clean: Cell<[bool; 2]>,
+    /// Per slot: whether its active-tile count and dispatch arguments are zero (an indirect
+    /// frame's classification zeroed them after their last use).
+    counters_clean: Cell<[bool; 2]>,
 }
 
 impl FrameBuffers {
@@ -124,16 +130,10 @@ impl FrameBuffers {
             }),
             intermediate: ["ppr intermediate buffer 0", "ppr intermediate buffer 1"]
                 .map(|label| buffer(label, (pixels * 4).next_multiple_of(16), readable)),
-            active_tiles: buffer(
-                "ppr active tiles",
-                ACTIVE_TILES_HEADER + 4 * u64::from(plan.tile_count()),
-                readable,
-            ),
-            dispatch_args: buffer(
-                "ppr indirect dispatch args",
-                16,
-                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::INDIRECT | wgpu::BufferUsages::COPY_DST,
-            ),
+            active_tiles: ["ppr active tiles 0", "ppr active tiles 1"].map(|label| {
+                let size = ACTIVE_TILES_HEADER + 4 * u64::from(plan.tile_count());
+                buffer(label, size, readable | wgpu::BufferUsages::INDIRECT)
+            }),
             tile_flags: buffer("ppr tile flags", 4 * u64::from(plan.tile_count()), storage),
             debug_writes: buffer("ppr debug writes", if debug { pixels * 4 } else { 16 }, readable),
             placeholder: buffer("ppr placeholder", 16, storage),
@@ -154,6 +154,7 @@ impl FrameBuffers {
             debug,
             next_slot: Cell::new(0),
             clean: Cell::new([false; 2]),
+            counters_clean: Cell::new([false; 2]),
         }
     }
 
@@ -187,9 +188,29 @@ impl FrameBuffers {
         self.clean.set(clean);
     }
 
-    /// Marks both slots dirty (their next encodes clear them in the clear pass).
+    /// Marks both slots dirty (their next encodes clear them in the clear pass, and their
+    /// counts before the classification).
     pub fn forget_clean(&self) {
         self.clean.set([false; 2]);
+        self.counters_clean.set([false; 2]);
+    }
+
+    /// Whether `slot`'s active-tile count and dispatch arguments are zero, for an encode
+    /// whose classification appends to them (dirty from here on).
+    pub fn take_counters(&self, slot: usize) -> bool {
+        let mut clean = self.counters_clean.get();
+        let was_clean = clean[slot];
+        clean[slot] = false;
+        self.counters_clean.set(clean);
+        was_clean
+    }
+
+    /// Marks `slot`'s active-tile count and dispatch arguments zero: a classification
+    /// recorded after their last use zeroed them.
+    pub fn mark_counters_clean(&self, slot: usize) {
+        let mut clean = self.counters_clean.get();
+        clean[slot] = true;
+        self.counters_clean.set(clean);
     }
 
     /// The slot the last [`Self::take_slot`] returned.

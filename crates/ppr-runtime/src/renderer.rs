@@ -644,10 +644,10 @@ impl ReflectionRenderer {
         self.buffers.as_ref().map(|b| &b.super_lists)
     }
 
-    /// The active-tile list of the last frame (count, 3 × padding, tile indices), for debug
-    /// views and tests.
+    /// The active-tile list of the last frame (count, the indirect dispatch arguments x, y,
+    /// z, tile indices), for debug views and tests.
     pub fn active_tiles_buffer(&self) -> Option<&wgpu::Buffer> {
-        self.buffers.as_ref().map(|b| &b.active_tiles)
+        self.buffers.as_ref().map(|b| &b.active_tiles[b.last_slot()])
     }
 }
 

@@ -1,6 +1,7 @@
 //! Reflection pass: decode, fill holes, filtered and unfiltered samples, anti-bleeding.
 
 use super::bind_group_cache::BindGroupCache;
+use super::tile_classify::ACTIVE_TILES_ARGS;
 use super::{
     BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry,
 };
@@ -315,12 +316,13 @@ impl ReflectionPass {
     }
 
     /// Records the pass over the active tiles (indirect arguments from the classify pass,
-    /// or with the tile loop a direct dispatch of at most `tile_count` workgroups).
+    /// in `active_tiles`' header, or with the tile loop a direct dispatch of at most
+    /// `tile_count` workgroups).
     pub fn encode_tiles(
         &self,
         pass: &mut wgpu::ComputePass<'_>,
         bind_group: &wgpu::BindGroup,
-        args: &wgpu::Buffer,
+        active_tiles: &wgpu::Buffer,
         tile_count: u32,
         variant: ReflectionVariant,
     ) {
@@ -329,7 +331,7 @@ impl ReflectionPass {
         if let Some(groups) = variant.tile_loop {
             pass.dispatch_workgroups(tile_count.min(groups).max(1), 1, 1);
         } else {
-            pass.dispatch_workgroups_indirect(args, 0);
+            pass.dispatch_workgroups_indirect(active_tiles, ACTIVE_TILES_ARGS);
         }
     }
 }

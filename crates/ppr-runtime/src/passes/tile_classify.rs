@@ -1,6 +1,6 @@
 //! Tile classification: the list of tiles that show a visible reflector and the indirect
 //! dispatch arguments of the reflection pass over them; and the clear of the next encode's
-//! intermediate buffer and atlas.
+//! intermediate buffer and atlas, and of its list's count and arguments.
 
 use super::bind_group_cache::BindGroupCache;
 use super::projection::block_groups;
@@ -8,8 +8,12 @@ use super::{BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_en
 
 pub const WGSL: &str = include_str!("../../shaders/tile_classify.wgsl");
 
-/// Bytes before the tile indices in the active-tile buffer (count + padding).
+/// Bytes before the tile indices in an active-tile buffer (the count and the dispatch
+/// arguments).
 pub const ACTIVE_TILES_HEADER: u64 = 16;
+
+/// Byte offset of the indirect dispatch arguments (x, y, z) in an active-tile buffer.
+pub const ACTIVE_TILES_ARGS: u64 = 4;
 
 /// Buffers and views the classification reads and writes.
 pub struct ClassifyBindings<'a> {
@@ -18,8 +22,10 @@ pub struct ClassifyBindings<'a> {
     pub shapes: BufferPart<'a>,
     pub visible: BufferPart<'a>,
     pub screen_rects: BufferPart<'a>,
+    /// This encode's active-tile list (count, dispatch arguments, tiles; zero-counted).
     pub active_tiles: &'a wgpu::Buffer,
-    pub dispatch_args: &'a wgpu::Buffer,
+    /// The next encode's active-tile list: its count and arguments zeroed here.
+    pub next_active_tiles: &'a wgpu::Buffer,
     pub tile_flags: &'a wgpu::Buffer,
     /// Layer reflectors of the frame (glass, water): reflectors seen through them count.
     pub layers: BufferPart<'a>,
@@ -100,7 +106,14 @@ impl TileClassifyPass {
                     wgpu::BindGroupEntry { binding: 3, resource: b.visible.binding() },
                     wgpu::BindGroupEntry { binding: 4, resource: b.screen_rects.binding() },
                     wgpu::BindGroupEntry { binding: 5, resource: b.active_tiles.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 6, resource: b.dispatch_args.as_entire_binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 6,
+                        resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                            buffer: b.next_active_tiles,
+                            offset: 0,
+                            size: wgpu::BufferSize::new(ACTIVE_TILES_HEADER),
+                        }),
+                    },
                     wgpu::BindGroupEntry { binding: 7, resource: b.tile_flags.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 8, resource: b.layers.binding() },
                     wgpu::BindGroupEntry { binding: 9, resource: b.next_intermediate.as_entire_binding() },
@@ -112,8 +125,8 @@ impl TileClassifyPass {
 
     /// Records the classification of every tile, the clear of the next encode's buffers
     /// and the indirect arguments (one dispatch). The active-tile count and the arguments
-    /// must be zero beforehand: the renderer clears them in the encoder before every
-    /// classification (not once per `prepare`: a second encode would append). `layers`:
+    /// must be zero beforehand: the classification before zeroed them, or the renderer
+    /// clears them in the encoder (`FrameBuffers::take_counters`). `layers`:
     /// the frame has layers (without, after [`Self::prepare_without_layers`], the kernel
     /// without their code runs).
     pub fn encode(

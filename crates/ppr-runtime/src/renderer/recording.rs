@@ -72,10 +72,11 @@ impl<'a> FrameRecorder<'a> {
         let Some(bg) = &self.classify else { return };
         self.r.classify.encode(pass, bg, self.plan.viewport, !self.plan.layers.is_empty());
         // It clears the other slot whole for the next encode (unless the bench asks for a
-        // clear pass every frame).
+        // clear pass every frame), and zeroes its active-tile count and arguments.
         if !self.r.debug.clear_pass_every_frame {
             self.b.mark_clean(1 - self.slot);
         }
+        self.b.mark_counters_clean(1 - self.slot);
         self.count(1);
     }
 
@@ -103,8 +104,8 @@ impl<'a> FrameRecorder<'a> {
             self.record_layers(pass);
         }
         if self.plan.indirect {
-            let args = &self.b.dispatch_args;
-            self.r.reflection.encode_tiles(pass, bg, args, self.plan.tile_count(), *variant);
+            let tiles = &self.b.active_tiles[self.slot];
+            self.r.reflection.encode_tiles(pass, bg, tiles, self.plan.tile_count(), *variant);
         } else {
             self.r.reflection.encode(pass, bg, self.plan.viewport, *variant);
         }
@@ -262,8 +263,8 @@ impl ReflectionRenderer {
                     shapes: parts.part(UploadTarget::Shapes),
                     visible: parts.part(UploadTarget::Visible),
                     screen_rects: parts.part(UploadTarget::ScreenRects),
-                    active_tiles: &b.active_tiles,
-                    dispatch_args: &b.dispatch_args,
+                    active_tiles: &b.active_tiles[slot],
+                    next_active_tiles: &b.active_tiles[1 - slot],
                     tile_flags: &b.tile_flags,
                     layers: parts.part(UploadTarget::Layers),
                     next_intermediate: &b.intermediate[1 - slot],
@@ -283,7 +284,7 @@ impl ReflectionRenderer {
                     color,
                     output: layer_output,
                     intermediate,
-                    active_tiles: &b.active_tiles,
+                    active_tiles: &b.active_tiles[slot],
                 },
             )
         });
@@ -295,7 +296,7 @@ impl ReflectionRenderer {
                     intermediate,
                     color,
                     output,
-                    active_tiles: &b.active_tiles,
+                    active_tiles: &b.active_tiles[slot],
                     depth,
                     normals: normals.unwrap_or(color),
                     glossy: parts.part(UploadTarget::Glossy),
@@ -357,9 +358,11 @@ impl ReflectionRenderer {
         }
         if layout.classify {
             // The classification counts the active tiles and raises the dispatch arguments
-            // from zero, at every encode.
-            encoder.clear_buffer(&b.active_tiles, 0, Some(ACTIVE_TILES_HEADER));
-            encoder.clear_buffer(&b.dispatch_args, 0, None);
+            // from zero, at every encode: zeroed by the last classification (which zeroes
+            // the other slot's), else here.
+            if !b.take_counters(slot) || self.debug.clear_pass_every_frame {
+                encoder.clear_buffer(&b.active_tiles[slot], 0, Some(ACTIVE_TILES_HEADER));
+            }
             if !layout.classify_with_projection {
                 let mut pass = frame.begin(encoder, "ppr tile classify", CLASSIFY);
                 frame.record_classify(&mut pass);
