@@ -442,9 +442,7 @@ fn direct_and_indirect_frames_by_turns_find_their_buffers_cleared() {
         let a = run(&mut turns, &frames[v], &cams[v]);
         let b = run(&mut every_frame, &frames[v], &cams[v]);
         assert_eq!(a.plan.indirect, indirect == on, "{what}");
-        assert!(a.intermediate == b.intermediate, "{what}: intermediate buffer");
-        assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
-        assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+        a.assert_same_frame(&b, &what);
         if indirect == on {
             assert_eq!(
                 active_tile_header(&turns),
@@ -488,9 +486,7 @@ fn each_frame_finds_its_buffers_cleared_by_the_frame_before() {
                 assert_eq!(cleared_in_pass, k == 0, "{what}: only the first frames clear in the pass");
             }
             assert!(every_frame.passes_recorded()[CLEAR]);
-            assert!(a.intermediate == b.intermediate, "{what}: intermediate buffer");
-            assert!(bits(&a.pixels) == bits(&b.pixels), "{what}: output");
-            assert!(bits(&a.layer_pixels) == bits(&b.layer_pixels), "{what}: layer output");
+            a.assert_same_frame(&b, &what);
             if indirect == Choice::On {
                 // The list's count and dispatch arguments start from zero (the frame before
                 // zeroed this slot's): the same as those of a list cleared before it.

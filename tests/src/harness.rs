@@ -17,6 +17,17 @@ pub struct Output {
     pub layer_pixels: Vec<Vec4>,
 }
 
+impl Output {
+    /// Asserts that `other` holds this run's frame bit for bit: intermediate buffer, output
+    /// and layer output (`what` names the frame in the message).
+    pub fn assert_same_frame(&self, other: &Output, what: &str) {
+        let bits = |p: &[Vec4]| p.iter().flat_map(|v| v.to_array().map(f32::to_bits)).collect::<Vec<_>>();
+        assert!(self.intermediate == other.intermediate, "{what}: intermediate buffer");
+        assert!(bits(&self.pixels) == bits(&other.pixels), "{what}: output");
+        assert!(bits(&self.layer_pixels) == bits(&other.layer_pixels), "{what}: layer output");
+    }
+}
+
 /// GPU textures of a CPU frame.
 pub struct GpuFrame {
     pub color: wgpu::Texture,
