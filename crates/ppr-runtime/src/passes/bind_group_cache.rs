@@ -12,8 +12,10 @@
 use std::sync::Mutex;
 
 /// Bind groups a pass keeps (a pass binds at most two sets of resources a frame: the clear
-/// its main and atlas buffers, a stereo frame its two eyes' targets).
-const CAPACITY: usize = 4;
+/// its main and atlas buffers, a stereo frame its two eyes' targets; across frames the two
+/// slots by turns, and with a bound upload each of the two or three upload buffers of the
+/// frames in flight: six combinations).
+const CAPACITY: usize = 8;
 
 /// Calls of [`BindGroupCache::get`] after which an entry no call matched is dropped.
 pub(crate) const MAX_IDLE_CALLS: u64 = 8;
