@@ -6,8 +6,8 @@
 # With BOUND=Z in the environment, then binary Z alone with `frame span` and
 # `frame span, copied upload` (the upload bound where it is written against copied, in one
 # process). Expected: 25 s a run.
-#   h200_ab33.sh "e f g"   e: main (faa5eff), f: the classification clears the next slot
-#                          (52a9650), g: f + the bound upload
+#   BOUND=h h200_ab33.sh "e f h"   e: main (faa5eff), f: the classification clears the next slot
+#                          (52a9650), h: f + the bound upload + the lists per slot (cc4cda9)
 source crates/ppr-bench/scripts/h200_env.sh
 BINS=($1)
 shift
