@@ -7,8 +7,11 @@ use std::sync::{Arc, Mutex};
 use anyhow::{Result, anyhow};
 use ppr_scene_gpu::{DeviceRequest, GpuDevice, GpuInitError, request_device};
 
-/// Features used when the adapter has them (never required): per-pass GPU times.
-const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY.union(wgpu::Features::SUBGROUP);
+/// Features used when the adapter has them (never required): per-pass GPU times, subgroup
+/// culling, and the frame upload bound where it is written (no copy a frame).
+const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
+    .union(wgpu::Features::SUBGROUP)
+    .union(wgpu::Features::MAPPABLE_PRIMARY_BUFFERS);
 
 /// What the device-lost callback and the error handler report, shared with the render loop.
 #[derive(Debug, Default)]
