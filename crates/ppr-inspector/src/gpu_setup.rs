@@ -6,11 +6,13 @@ use std::sync::Arc;
 
 use eframe::egui_wgpu::{WgpuSetup, WgpuSetupCreateNew};
 
-/// Features requested when the adapter has them (never required): timestamps, and
-/// subgroups for the projection's subgroup culling.
+/// Features requested when the adapter has them (never required): timestamps, subgroups
+/// for the projection's subgroup culling, and mapped buffers the preview's passes bind (its
+/// frame upload without a copy).
 const OPTIONAL_FEATURES: wgpu::Features = wgpu::Features::TIMESTAMP_QUERY
     .union(wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS)
-    .union(wgpu::Features::SUBGROUP);
+    .union(wgpu::Features::SUBGROUP)
+    .union(wgpu::Features::MAPPABLE_PRIMARY_BUFFERS);
 
 /// The device the inspector asks `adapter` for.
 pub fn device_descriptor(adapter: &wgpu::Adapter) -> wgpu::DeviceDescriptor<'static> {
