@@ -19,7 +19,7 @@ use crate::upload_ring::UploadRing;
 /// Buffers reallocated only when the viewport or the set changes.
 pub(crate) struct FrameBuffers {
     /// Every part of the frame upload (uniforms, shapes, lists, tests, plane groups), each
-    /// a range of it ([`Self::part`]), so that a frame fills them with one copy or a few.
+    /// a range of it ([`Self::parts`]), so that a frame fills them with one copy or a few.
     pub upload: wgpu::Buffer,
     pub upload_layout: UploadLayout,
     /// On devices with `MAPPABLE_PRIMARY_BUFFERS`: buffers laid out as [`Self::upload`]

@@ -61,7 +61,7 @@ impl UploadRing {
         Self { device: device.clone(), kind, free: Vec::new(), sender, returned, created: 0 }
     }
 
-    /// How many staging buffers the ring has created.
+    /// How many buffers the ring has created.
     pub fn created(&self) -> usize {
         self.created
     }
