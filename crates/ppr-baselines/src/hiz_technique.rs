@@ -131,4 +131,8 @@ impl ReflectionTechnique for HiZSsrTechnique {
     fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
         self.timer.as_ref()?.read(device, &PASSES.map(Some)).ok()
     }
+
+    fn stop_pass_timing(&mut self) {
+        self.timer = None;
+    }
 }

@@ -108,4 +108,8 @@ impl ReflectionTechnique for PlanarReflectionTechnique {
     fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
         self.timer.as_ref()?.read(device, &PASSES.map(Some)).ok()
     }
+
+    fn stop_pass_timing(&mut self) {
+        self.timer = None;
+    }
 }

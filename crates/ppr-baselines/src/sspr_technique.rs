@@ -204,4 +204,8 @@ impl ReflectionTechnique for SsprTechnique {
         let ran = [hashed.then_some(PASSES[0]), hashed.then_some(PASSES[1]), Some(PASSES[2])];
         self.timer.as_ref()?.read(device, &ran).ok()
     }
+
+    fn stop_pass_timing(&mut self) {
+        self.timer = None;
+    }
 }

@@ -191,4 +191,8 @@ impl ReflectionTechnique for SsrGlossyTechnique {
     fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
         self.timer.as_ref()?.read(device, &[Some("ssr march"), Some("ssr glossy blur")]).ok()
     }
+
+    fn stop_pass_timing(&mut self) {
+        self.timer = None;
+    }
 }

@@ -113,4 +113,8 @@ impl ReflectionTechnique for SsrTechnique {
     fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>> {
         self.timer.as_ref()?.read(device, &[Some("ssr march")]).ok()
     }
+
+    fn stop_pass_timing(&mut self) {
+        self.timer = None;
+    }
 }

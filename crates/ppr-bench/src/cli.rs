@@ -287,7 +287,8 @@ pub struct CompareArgs {
     /// ppr:glossy=off (every reflector blurred as a mirror), ppr:timing=frame (the whole
     /// frame between two encoder timestamps instead of the sum of its passes' own, which
     /// leaves out the barriers between them and the upload's copies; the SSR and SSPR
-    /// baselines take timing=frame too), ppr:upsample=shared|per-pixel (the reduced tiers'
+    /// baselines take timing=frame too, and then record none of their own pass timestamps
+    /// inside the span, as PPR records none), ppr:upsample=shared|per-pixel (the reduced tiers'
     /// upsample reads each workgroup's reduced samples once into workgroup memory, or each
     /// pixel its own, the default; the same image; or store-only|depth-only|no-own-depth,
     /// probes of its time, not its image), ssr-brute (thickness=),

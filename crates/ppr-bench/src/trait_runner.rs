@@ -24,10 +24,14 @@ impl TraitRunner {
     }
 
     /// Timed as a whole frame, between two encoder timestamps around everything it records
-    /// (as `ppr:timing=frame`; its own pass timestamps stay inside), where the device has
-    /// encoder timestamps; by its passes elsewhere.
+    /// (as `ppr:timing=frame`), where the device has encoder timestamps; by its passes
+    /// elsewhere. The technique then records none of its own pass timestamps, so that the
+    /// span holds its work alone (as PPR's does: `DebugOptions::frame_span`).
     pub fn with_frame_timing(mut self, device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         self.span = EncoderTimer::new(device, queue);
+        if self.span.is_some() {
+            self.inner.stop_pass_timing();
+        }
         self
     }
 

@@ -597,6 +597,13 @@ impl ReflectionRenderer {
         self.timer.is_some()
     }
 
+    /// Records no GPU timestamps from now on ([`Self::read_timings`] gives `None`, and
+    /// `DebugOptions::frame_span` times nothing): for a caller that times the frame
+    /// between timestamps of its own.
+    pub fn stop_timestamps(&mut self) {
+        self.timer = None;
+    }
+
     /// Waits for the last submitted frame and returns its GPU time per pass, when the
     /// device supports timestamps and the last plan ran passes; `None` at once (without
     /// waiting) when it ran none (an empty plan).

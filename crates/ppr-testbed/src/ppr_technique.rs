@@ -26,6 +26,8 @@ pub struct PprTechnique {
     bounces: u32,
     /// The previous frame's composite, when `bounces > 1`.
     feed: Option<PreviousFrameFeed>,
+    /// Whether the feed's copy is timed ([`ReflectionTechnique::stop_pass_timing`]).
+    feed_timed: bool,
     queue: wgpu::Queue,
 }
 
@@ -138,6 +140,7 @@ impl PprTechnique {
             size: [1, 1],
             bounces: 1,
             feed: None,
+            feed_timed: true,
             queue: queue.clone(),
         })
     }
@@ -222,7 +225,8 @@ impl ReflectionTechnique for PprTechnique {
             if frame + 1 < self.bounces {
                 let feed_inputs =
                     FeedInputs { scene_color: inputs.color, reflection: inputs.output, reflector_id };
-                feed.encode(&self.device, encoder, &feed_inputs, self.size, frame + 2 == self.bounces);
+                let timed = self.feed_timed && frame + 2 == self.bounces;
+                feed.encode(&self.device, encoder, &feed_inputs, self.size, timed);
             }
         }
         self.feed = Some(feed);
@@ -237,6 +241,11 @@ impl ReflectionTechnique for PprTechnique {
             passes.push((PREVIOUS_FRAME_COPY.to_owned(), ms));
         }
         Some(passes)
+    }
+
+    fn stop_pass_timing(&mut self) {
+        self.renderer.stop_timestamps();
+        self.feed_timed = false;
     }
 }
 

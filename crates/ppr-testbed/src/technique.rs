@@ -75,6 +75,12 @@ pub trait ReflectionTechnique {
     /// such as a Hi-Z build gives it its own entry). `None` when the device does not
     /// measure time.
     fn timings(&mut self, device: &wgpu::Device) -> Option<Vec<(String, f64)>>;
+
+    /// Records none of its own pass timestamps (nor their resolve) from now on, and
+    /// [`Self::timings`] gives `None`: for a caller that times everything the technique
+    /// records between timestamps of its own (`ppr-bench`'s `timing=frame`), whose span
+    /// would otherwise hold the technique's timestamp writes and resolve as well.
+    fn stop_pass_timing(&mut self);
 }
 
 /// `"name 0.123 ms, ..., total 0.456 ms"` for logs.

@@ -3,10 +3,11 @@
 //! reflector ids.
 
 use ppr_baselines::{
-    HiZSettings, HiZSsrTechnique, PlanarReflectionTechnique, SsprSettings, SsprTechnique, SsrSettings,
-    SsrTechnique,
+    HiZSettings, HiZSsrTechnique, PlanarReflectionTechnique, SsprSettings, SsprTechnique, SsrGlossySettings,
+    SsrGlossyTechnique, SsrSettings, SsrTechnique,
 };
-use ppr_testbed::{ReflectionInputs, ReflectionTechnique, RenderSettings, SyntheticScene};
+use ppr_runtime::ReflectionSettings;
+use ppr_testbed::{PprTechnique, ReflectionInputs, ReflectionTechnique, RenderSettings, SyntheticScene};
 
 use crate::common::{gpu, run, timed};
 use crate::scenes::floor_mirror;
@@ -86,6 +87,43 @@ fn every_technique_writes_only_reflector_pixels_at_any_size() {
                     }
                 }
             }
+        }
+    });
+}
+
+/// A technique told to stop its pass timing (`ppr-bench`'s `timing=frame` times its whole
+/// frame itself) gives no timings from then on and draws the same reflection; before, it
+/// gave them (llvmpipe's GL has timestamps).
+#[test]
+fn techniques_without_pass_timing_give_none_and_draw_the_same() {
+    timed("techniques_without_pass_timing_give_none_and_draw_the_same", || {
+        let scene = floor_mirror();
+        let g = gpu();
+        assert!(g.ctx.has_timestamps(), "this test needs timestamps (llvmpipe's GL has them)");
+        let (device, queue) = (&g.ctx.device, &g.ctx.queue);
+        let mut all = every_technique(&scene);
+        all.push(Box::new(SsrGlossyTechnique::new(
+            device,
+            queue,
+            &scene.reflectors,
+            SsrGlossySettings::default(),
+        )));
+        all.push(Box::new(
+            PprTechnique::new(device, queue, &scene.reflectors, ReflectionSettings::default())
+                .expect("a valid set"),
+        ));
+        for mut technique in all {
+            let size = [96, 72];
+            let timed_run = run(&scene, &scene.camera, size, technique.as_mut());
+            let name = &timed_run.name;
+            assert!(timed_run.timings.as_ref().is_some_and(|t| !t.is_empty()), "{name}: no timings before");
+            technique.stop_pass_timing();
+            let quiet = run(&scene, &scene.camera, size, technique.as_mut());
+            assert_eq!(quiet.timings, None, "{name}: timings after stop_pass_timing");
+            assert!(
+                timed_run.reflection.as_raw() == quiet.reflection.as_raw(),
+                "{name}: another reflection without pass timing"
+            );
         }
     });
 }
