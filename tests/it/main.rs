@@ -7,6 +7,7 @@ mod encoding_parity;
 mod features;
 mod glossy;
 mod parallel_trees;
+mod path_blockers;
 mod plane_groups;
 mod reflection;
 mod reflection_quads;

@@ -12,7 +12,7 @@ const SIZE: [u32; 2] = [128, 96];
 
 /// A stairway of `n` mirror treads with matte risers, mirror shelves beside it at other
 /// heights (the same family: one normal), a patterned wall and boxes to reflect.
-fn stairway(n: usize) -> AnalyticScene {
+pub(crate) fn stairway(n: usize) -> AnalyticScene {
     let mut s = AnalyticScene::default();
     let (rise, run) = (2.0 / n as f64, 4.0 / n as f64);
     s.quad(
@@ -44,7 +44,7 @@ fn stairway(n: usize) -> AnalyticScene {
     s
 }
 
-fn cameras() -> Vec<Camera> {
+pub(crate) fn cameras() -> Vec<Camera> {
     let look = |eye: DVec3, at: DVec3, fov: f32| {
         Camera::look_at(eye, at, Vec3::Y, Projection { fov_y: fov, ..Default::default() })
     };
@@ -93,7 +93,8 @@ fn the_write_shortcuts_leave_the_buffer_every_write_leaves() {
         assert_eq!(differing, 0, "{differing} of {n} written pixels differ");
         decided += n;
     }
-    assert!(decided > 5000, "{decided} written pixels over the cameras");
+    // (Path blockers empty the targets only far treads reached: about 4 600 with them.)
+    assert!(decided > 4000, "{decided} written pixels over the cameras");
 }
 
 #[test]
@@ -148,7 +149,7 @@ fn a_walked_tree_writes_what_its_shapes_write() {
         let e = run(&mut unoccluded, &gpu, &camera);
         occlusion_decided += a.intermediate.iter().zip(&e.intermediate).filter(|(x, y)| x != y).count();
     }
-    assert!(checked > 5000, "{checked} written pixels over the cameras");
+    assert!(checked > 4000, "{checked} written pixels over the cameras");
     assert!(occlusion_decided > 100, "the depth test decides {occlusion_decided} pixels over the cameras");
 }
 

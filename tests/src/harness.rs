@@ -399,6 +399,8 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
     let rel_from_clip = clip_from_rel.inverse();
     let mut buf = vec![ppr_runtime::CLEAR_VALUE; (w * h) as usize];
     let far = f64::from(camera.projection.far_depth());
+    // Each shape's path blocker (`PlanParams::path_blockers`, on by default).
+    let blockers = ppr_runtime::shapes::ShapeTable::from_set(set).path_blockers;
     // `ppr_unproject_homogeneous` of view.wgsl: the pixel centre's homogeneous point.
     let homogeneous = |x: u32, y: u32, d: f64| {
         let ndc = glam::DVec4::new(
@@ -435,7 +437,7 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
             }
             let p = unproject(x, y, d);
             let tolerance = on_plane_tolerance(x, y, d, p);
-            for r in &set.reflectors {
+            for (r, &blocker) in set.reflectors.iter().zip(&blockers) {
                 let c = r.center - camera.position;
                 let pd = c.dot(r.normal);
                 // The plan culls shapes whose reflecting side faces away from the camera.
@@ -469,6 +471,20 @@ pub fn cpu_projection(frame: &Frame, camera: &Camera, set: &ppr_format::Reflecto
                 });
                 if occluded {
                     continue;
+                }
+                // Path blockers: not where the path from `p` down to the reflection point
+                // crosses the shape's blocker (a parallel reflector in front of it) inside.
+                if let Some(b) = set.reflectors.get(blocker as usize) {
+                    let rise = (b.center - camera.position).dot(r.normal) - pd;
+                    let x = hit + (p - hit) * (rise / dist);
+                    let l = x - (b.center - camera.position);
+                    if rise > 0.0
+                        && rise < dist
+                        && l.dot(b.axis_u).abs() < b.half_extents.x
+                        && l.dot(b.axis_v).abs() < b.half_extents.y
+                    {
+                        continue;
+                    }
                 }
                 let cl = clip_from_rel * m.extend(1.0);
                 if cl.w <= 0.0 {

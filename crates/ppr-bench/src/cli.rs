@@ -281,8 +281,9 @@ pub struct CompareArgs {
     pub resolutions: Vec<Resolution>,
     /// Technique and setting, `name` or `name:key=value,...` (repeat; default: every PPR
     /// setting, exact, and the baselines with several SSR step counts and thicknesses).
-    /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect= on|off|auto; fade= border fade
-    /// as a fraction of the shorter side, 0..0.5; replace-far= on|off, the seed's 6-px rule;
+    /// Names: ppr-raw, ppr-holes, ppr-filter, ppr (culling=, indirect=, trees=, blockers=
+    /// on|off|auto; fade= border fade as a fraction of the shorter side, 0..0.5;
+    /// replace-far= on|off, the seed's 6-px rule;
     /// tier= full|half|quarter, the resolution the passes run at), exact,
     /// ppr:glossy=off (every reflector blurred as a mirror), ppr:timing=frame (the whole
     /// frame between two encoder timestamps instead of the sum of its passes' own, which

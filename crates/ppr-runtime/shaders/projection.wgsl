@@ -57,7 +57,7 @@
 // Not a variant (the plan decides per frame): a test whose `shape` has GROUP_TEST_FLAG
 // stands for a merged group of coplanar shapes, tested by the pyramid of their bounding
 // rectangle; a pixel that passes writes only if its reflection point lies on a member
-// (group_covers, a grid lookup).
+// (group_member, a grid lookup).
 // - PARALLEL_TREES: some test (its `shape` flagged TREE_TEST_FLAG) stands for the visible
 //   shapes of a parallel family at many plane offsets (crates/ppr-runtime/src/
 //   parallel_trees.rs): its plane is the lowest member's, and a pixel in front of it walks
@@ -72,6 +72,7 @@ override SUPER_TILES: bool = false;
 override FUSED_LISTS: bool = false;
 override PARALLEL_RULE: bool = false;
 override OCCLUDER_TESTS: bool = false;
+override PATH_BLOCKERS: bool = false;
 override DEPTH_OCCLUSION: bool = false;
 override LAYERS: bool = false;
 override DEBUG_WRITES: bool = false;
@@ -135,10 +136,12 @@ fn group_vec3(i: u32) -> vec3<f32> {
     return vec3<f32>(group_f32(i), group_f32(i + 1u), group_f32(i + 2u));
 }
 
-// Whether the reflection point `hit` (camera-relative, on the group's plane) lies on a
-// member of the merged group in header slot `slot`: the grid cell holding it lists the
-// members that overlap the cell, each tested by its own axes.
-fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
+// The member of the merged group in header slot `slot` on which the reflection point
+// `hit` (camera-relative, on the group's plane) lies, as the word position of its
+// rectangle (words: centre, half extents, axis, shape, path blocker), NO_SHAPE where none:
+// the grid cell holding it lists the members that overlap the cell, each tested by its
+// own axes.
+fn group_member(slot: u32, hit: vec3<f32>) -> u32 {
     let h = slot * 16u;
     let l = hit - group_vec3(h);
     let cells_start = plane_groups[h + 3u];
@@ -147,7 +150,7 @@ fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
     let cells = vec2<u32>(plane_groups[h + 7u], plane_groups[h + 11u]);
     let c = floor(vec2<f32>(u, v) * vec2<f32>(group_f32(h + 12u), group_f32(h + 13u)));
     if (!(all(c >= vec2<f32>(0.0)) && all(c < vec2<f32>(cells)))) {
-        return false;
+        return NO_SHAPE;
     }
     let cell = cells_start + u32(c.x) + u32(c.y) * cells.x;
     let rects = plane_groups[h + 14u];
@@ -159,10 +162,10 @@ fn group_covers(slot: u32, hit: vec3<f32>) -> bool {
         let lu = d.x * axis.x + d.y * axis.y;
         let lv = d.y * axis.x - d.x * axis.y;
         if (abs(lu) <= group_f32(r + 2u) && abs(lv) <= group_f32(r + 3u)) {
-            return true;
+            return r;
         }
     }
-    return false;
+    return NO_SHAPE;
 }
 
 // Bit of ShapeTest.shape: the test is a parallel tree's, the rest its header's word.
@@ -241,7 +244,7 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                     atomicStore(&intermediate[0], 0u);
                 }
             } else if (dist > tol && inside) {
-                reflect_pixel(pixel, p, dist, t.plane, t.shape);
+                reflect_pixel(pixel, p, dist, t.plane, t.shape, t.blocker);
             }
         }
         // The next node in walk order: up past right children (the trailing ones of the
@@ -441,17 +444,47 @@ fn write_layer(pixel: vec2<u32>, mirrored: vec3<f32>, l: Layer, s: Shape) {
     atomicMin(&atlas[l.offset + local.x + local.y * (l.rect_max.x - l.rect_min.x)], tv.z);
 }
 
-// Occluder tests and the write, for a shape (index `shape`) that passed its test. `plane`
-// is its test's plane (`ShapeTest.plane`: the shape's normal and minus its plane distance,
-// bit for bit what `shapes` holds), so that the write needs no load of the shape.
-fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32) -> bool {
+// The rounding margin of path_blocked per metre (PATH_MARGIN of path_blockers.rs).
+const PATH_MARGIN: f32 = 4e-6;
+const NO_BLOCKER: u32 = 0xffffffffu;
+
+// PATH_BLOCKERS: whether the path from the pixel's position `p` (at `dist` in front of
+// `plane`) down to its reflection point (`mirrored` its mirror image) crosses the
+// rectangle of the shape's blocker `b`, a parallel reflector in front of the plane,
+// strictly inside: the mirror cannot show `p` there (crates/ppr-runtime/src/
+// path_blockers.rs, whose path_blocked is this test on the CPU).
+fn path_blocked(p: vec3<f32>, mirrored: vec3<f32>, dist: f32, plane: vec4<f32>, b: u32) -> bool {
+    let s = shapes[b];
+    let rise = s.plane_dist + plane.w;
+    let margin = PATH_MARGIN * (length(p) + dist);
+    if (!(rise > margin && rise < dist - margin)) {
+        return false;
+    }
+    let hit = mirrored * (-plane.w / dot(mirrored, plane.xyz));
+    let x = hit + (p - hit) * (rise / dist);
+    let lu = dot(x, s.axis_u) - s.center_u;
+    let lv = dot(x, s.axis_v) - s.center_v;
+    return abs(lu) < s.half_u - margin && abs(lv) < s.half_v - margin;
+}
+
+// Occluder tests and the write, for a shape (index `shape`, path blocker `blocker`) that
+// passed its test. `plane` is its test's plane (`ShapeTest.plane`: the shape's normal and
+// minus its plane distance, bit for bit what `shapes` holds), so that the write needs no
+// load of the shape.
+fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, shape: u32, blocker: u32) -> bool {
     let n = plane.xyz;
     let mirrored = p - 2.0 * dist * n;
     if ((shape & GROUP_TEST_FLAG) != 0u) {
         // A merged plane group (never with occluder lists): does the reflection point lie
         // on a member, not just in the group's bounding rectangle?
         let hit = mirrored * (-plane.w / dot(mirrored, n));
-        if (!group_covers(shape & ~GROUP_TEST_FLAG, hit)) {
+        let r = group_member(shape & ~GROUP_TEST_FLAG, hit);
+        if (r == NO_SHAPE) {
+            return false;
+        }
+        // Its member's own path blocker.
+        let b = plane_groups[r + 7u];
+        if (PATH_BLOCKERS && b != NO_BLOCKER && path_blocked(p, mirrored, dist, plane, b)) {
             return false;
         }
     } else if (OCCLUDER_TESTS) {
@@ -460,6 +493,9 @@ fn reflect_pixel(pixel: vec2<u32>, p: vec3<f32>, dist: f32, plane: vec4<f32>, sh
         if (is_occluded(hit, s)) {
             return false;
         }
+    }
+    if (PATH_BLOCKERS && blocker != NO_BLOCKER && path_blocked(p, mirrored, dist, plane, blocker)) {
+        return false;
     }
     return write_projection(pixel, mirrored, n, -plane.w);
 }
@@ -773,6 +809,7 @@ fn main(
     // index, kept from its step.
     var pending_plane = vec4<f32>(0.0);
     var pending_shape = 0u;
+    var pending_blocker = NO_BLOCKER;
     var best_k = vec4<u32>(NO_SHAPE);
     var best_d = vec4<f32>(0.0);
     var written = vec4<u32>(0u);
@@ -816,12 +853,15 @@ fn main(
                 if (pk != NO_SHAPE) {
                     var plane = pending_plane;
                     var shape = pending_shape;
+                    var blocker = pending_blocker;
                     if (PARALLEL_RULE) {
                         let pt = shape_test(pk);
                         plane = pt.plane;
                         shape = pt.shape;
+                        blocker = pt.blocker;
                     }
-                    if (reflect_pixel(quad_pixel(base, j), quad_position(q, j), lane_f32(pending_d, j), plane, shape)) {
+                    let pixel = quad_pixel(base, j);
+                    if (reflect_pixel(pixel, quad_position(q, j), lane_f32(pending_d, j), plane, shape, blocker)) {
                         written = select(written, written | vec4<u32>(1u << (pk & 31u)), lane_mask(j));
                     }
                 }
@@ -853,6 +893,7 @@ fn main(
             pending_d = dist;
             pending_plane = t.plane;
             pending_shape = t.shape;
+            pending_blocker = select(NO_BLOCKER, t.blocker, PATH_BLOCKERS);
         }
     }
     if (ABLATION == 3u && dot(tested, vec4<f32>(1.0)) == 1234.5) {

@@ -31,10 +31,11 @@ struct ShapeTest {
     across_u: vec4<f32>,
     across_v: vec4<f32>,
     extent: vec4<f32>,
-    // Index of the shape in `shapes`, its parallel group.
+    // Index of the shape in `shapes`, its parallel group, its path blocker's index in
+    // `shapes` (NO_BLOCKER without: crates/ppr-runtime/src/path_blockers.rs).
     shape: u32,
     group: u32,
-    _pad0: u32,
+    blocker: u32,
     _pad1: u32,
 }
 

@@ -119,7 +119,10 @@ pub struct GpuShapeTest {
     pub shape: u32,
     /// Its parallel group.
     pub group: u32,
-    pub _pad: [u32; 2],
+    /// Its path blocker's index in the shape table ([`crate::path_blockers`]), or
+    /// [`crate::path_blockers::NO_BLOCKER`] (always, unless the frame tests blockers).
+    pub blocker: u32,
+    pub _pad: u32,
 }
 const _: () = assert!(std::mem::size_of::<GpuShapeTest>() == 80);
 

@@ -26,6 +26,7 @@ pub mod parallel_trees;
 mod pass_layout;
 #[doc(hidden)]
 pub mod passes;
+pub mod path_blockers;
 #[cfg(feature = "pipeline-log")]
 #[doc(hidden)]
 pub mod pipeline_log;

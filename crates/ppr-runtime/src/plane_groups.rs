@@ -17,7 +17,8 @@
 //! `nu · nv + 1` cell starts (word positions of each cell's member list, from
 //! `cells_start`; the next cell's start ends it), the member lists (local member indices),
 //! then per member eight words from `rects_start`: centre (u, v), half extents (u, v), the
-//! member's own u axis in the group's (u, v), its shape index, and a pad. On the GPU the
+//! member's own u axis in the group's (u, v), its shape index, and its path blocker
+//! ([`crate::path_blockers`], [`crate::path_blockers::NO_BLOCKER`] for none). On the GPU the
 //! static words follow the headers and the frame's parallel trees; a header's
 //! `cells_start` and `rects_start` count from the buffer's start.
 
@@ -26,6 +27,7 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3, Vec3};
 use ppr_format::ReflectorKind;
 
+use crate::path_blockers::NO_BLOCKER;
 use crate::shapes::ShapeSource;
 
 /// Bit of [`crate::gpu_types::GpuShapeTest::shape`]: the test is a merged plane group's
@@ -111,7 +113,7 @@ impl PlaneGroup {
     }
 }
 
-/// A merged group's header as `group_covers` of `projection.wgsl` reads it (16 words):
+/// A merged group's header as `group_member` of `projection.wgsl` reads it (16 words):
 /// its grid, camera-relative.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
@@ -178,6 +180,18 @@ impl PlaneGroups {
             out.groups.push(group);
         }
         out
+    }
+
+    /// Writes each member's path blocker (`blockers`: per shape of the table) into its
+    /// rectangle's last word.
+    pub fn set_blockers(&mut self, blockers: &[u32]) {
+        for g in &self.groups {
+            for (j, &m) in g.members.iter().enumerate() {
+                let r = g.rects_start as usize + RECT_WORDS * j;
+                debug_assert_eq!(self.words[r + 6], m);
+                self.words[r + 7] = blockers[m as usize];
+            }
+        }
     }
 }
 
@@ -250,7 +264,7 @@ fn build_grid(shapes: &[ShapeSource], members: Vec<u32>, words: &mut Vec<u32>) -
             DVec2::new(s.axis_u.as_dvec3().dot(au), s.axis_u.as_dvec3().dot(av)).normalize_or(DVec2::X);
         let f = [c.x as f32, c.y as f32, s.half_extents[0], s.half_extents[1], axis.x as f32, axis.y as f32];
         words.extend(f.map(f32::to_bits));
-        words.extend([m, 0]);
+        words.extend([m, NO_BLOCKER]);
     }
     debug_assert_eq!(words.len(), rects_start as usize + RECT_WORDS * members.len());
     PlaneGroup {

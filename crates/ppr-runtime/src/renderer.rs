@@ -477,6 +477,7 @@ impl ReflectionRenderer {
             fused_lists: plan.fused_lists,
             parallel_rule: plan.parallel_rule,
             occluder_tests: plan.occluder_tests,
+            path_blockers: plan.path_blockers,
             depth_occlusion: plan.depth_occlusion,
             layers: !plan.layers.is_empty(),
             debug_writes: self.debug.writes,

@@ -18,6 +18,7 @@ use glam::{DVec3, DVec4};
 
 use crate::gpu_types::GpuShapeTest;
 use crate::parallel_trees::{TREE_TEST_FLAG, TreeScratch, tree_words_start};
+use crate::path_blockers::NO_BLOCKER;
 use crate::plan::{FramePlan, TestedEntry};
 use crate::plane_groups::{GROUP_TEST_FLAG, plane_group_words_offset};
 use crate::shapes::{ShapeSource, ShapeTable};
@@ -69,7 +70,7 @@ impl FrameTests {
         let mut slots = 0usize;
         for (k, e) in plan.tested.iter().enumerate() {
             tests[k] = match *e {
-                TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
+                TestedEntry::Shape(i) => member_test(table, plan, i, eye),
                 TestedEntry::PlaneGroup(g) => {
                     let group = &table.plane_groups.groups[g as usize];
                     let slot = GROUP_TEST_FLAG | slots as u32;
@@ -87,7 +88,7 @@ impl FrameTests {
                     let tree = &plan.trees[t as usize];
                     let start = tests.len() as u32;
                     let header = tree.append_words(table, eye, 0, start, group_words, trees);
-                    tests.extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                    tests.extend(tree.members.iter().map(|&m| member_test(table, plan, m, eye)));
                     let mut test =
                         shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
                     // Lowered by a margin, so that no member reflects a point the entry's plane
@@ -104,6 +105,16 @@ impl FrameTests {
     }
 }
 
+/// The test of shape `index` of `table` as a tested entry or a tree's member: with its
+/// path blocker where the frame tests them ([`FramePlan::path_blockers`]).
+pub fn member_test(table: &ShapeTable, plan: &FramePlan, index: u32, eye: DVec3) -> GpuShapeTest {
+    let mut test = shape_test(&table.shapes[index as usize], index, eye);
+    if plan.path_blockers {
+        test.blocker = table.path_blockers.get(index as usize).copied().unwrap_or(NO_BLOCKER);
+    }
+    test
+}
+
 /// The test of one shape (index `index` in its table).
 pub fn shape_test(shape: &ShapeSource, index: u32, eye: DVec3) -> GpuShapeTest {
     let n = shape.normal.as_dvec3();
@@ -117,7 +128,8 @@ pub fn shape_test(shape: &ShapeSource, index: u32, eye: DVec3) -> GpuShapeTest {
         extent: [ku, mu, kv, mv].map(|x| x as f32),
         shape: index,
         group: shape.parallel_group,
-        _pad: [0; 2],
+        blocker: NO_BLOCKER,
+        _pad: 0,
     }
 }
 
@@ -237,7 +249,7 @@ mod tests {
         let mut tests: Vec<GpuShapeTest> = Vec::new();
         for e in &plan.tested {
             tests.push(match *e {
-                TestedEntry::Shape(i) => shape_test(&table.shapes[i as usize], i, eye),
+                TestedEntry::Shape(i) => member_test(&table, &plan, i, eye),
                 TestedEntry::PlaneGroup(g) => {
                     let group = &table.plane_groups.groups[g as usize];
                     headers.push(group.gpu_header(eye, base));
@@ -255,8 +267,7 @@ mod tests {
                         &mut tree_words,
                         &mut TreeScratch::default(),
                     );
-                    members
-                        .extend(tree.members.iter().map(|&m| shape_test(&table.shapes[m as usize], m, eye)));
+                    members.extend(tree.members.iter().map(|&m| member_test(&table, &plan, m, eye)));
                     let mut test =
                         shape_test(&table.shapes[tree.lowest(&table) as usize], TREE_TEST_FLAG | header, eye);
                     test.plane[3] += 1e-5 * test.plane[3].abs() + 1e-6;

@@ -6,6 +6,7 @@ use ppr_format::{ReflectorKind, ReflectorSet};
 
 use crate::gpu_types::{GpuShape, SHAPE_OCCLUDES};
 use crate::parallel_trees::ParallelFamilies;
+use crate::path_blockers::path_blockers;
 use crate::plane_groups::PlaneGroups;
 
 /// One reflector as the runtime needs it (f64 centre, f32 frame).
@@ -62,6 +63,8 @@ pub struct ShapeTable {
     /// The families of parallel shapes with one normal, in tree order (built with
     /// the table; a frame merges a family's visible members into a parallel tree).
     pub parallel_families: ParallelFamilies,
+    /// Per shape, its family's member right in front of it ([`crate::path_blockers`]).
+    pub path_blockers: Vec<u32>,
 }
 
 impl ShapeTable {
@@ -88,6 +91,8 @@ impl ShapeTable {
         }
         table.plane_groups = PlaneGroups::build(&table.shapes);
         table.parallel_families = ParallelFamilies::build(&table.shapes);
+        table.path_blockers = path_blockers(&table.shapes, &table.parallel_families);
+        table.plane_groups.set_blockers(&table.path_blockers);
         table
     }
 

@@ -93,6 +93,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling off", Choice::Auto, Ablation::None),
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
+        ("path blockers off", Choice::Auto, Ablation::None),
         ("occluder lists", Choice::Auto, Ablation::None),
         ("storage tests", Choice::Auto, Ablation::None),
         ("no subgroup culling", Choice::Auto, Ablation::None),
@@ -123,6 +124,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, reflection own pass", Choice::Auto, Ablation::None),
         ("frame span, separate upload copies", Choice::Auto, Ablation::None),
         ("frame span, copied upload", Choice::Auto, Ablation::None),
+        ("frame span, path blockers off", Choice::Auto, Ablation::None),
         ("frame span, layered reflection own pass", Choice::Auto, Ablation::None),
         ("layered reflection own pass", Choice::Auto, Ablation::None),
         ("reflection own pass", Choice::Auto, Ablation::None),
@@ -298,6 +300,8 @@ pub fn run_runtime(
                     params.tile_culling = Choice::On;
                 } else if name.starts_with("culling off") {
                     params.tile_culling = Choice::Off;
+                } else if name.ends_with("path blockers off") {
+                    params.path_blockers = Choice::Off;
                 } else if name == "occlusion off" {
                     params.depth_occlusion = Choice::Off;
                 } else if name == "occlusion first" {

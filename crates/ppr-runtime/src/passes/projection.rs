@@ -40,6 +40,8 @@ pub struct ProjectionVariant {
     pub parallel_rule: bool,
     /// The seed's occluder tests (lists of occluding reflectors).
     pub occluder_tests: bool,
+    /// A passing member's write first tests its path blocker (`crate::path_blockers`).
+    pub path_blockers: bool,
     /// Occlusion against the depth buffer at each write's target.
     pub depth_occlusion: bool,
     /// Glass and water layers exist this frame.
@@ -252,6 +254,7 @@ impl ProjectionPass {
             ("FUSED_LISTS", flag(v.tile_culling && v.fused_lists)),
             ("PARALLEL_RULE", flag(v.parallel_rule)),
             ("OCCLUDER_TESTS", flag(v.occluder_tests)),
+            ("PATH_BLOCKERS", flag(v.path_blockers)),
             ("DEPTH_OCCLUSION", flag(v.depth_occlusion)),
             ("LAYERS", flag(v.layers)),
             ("DEBUG_WRITES", flag(v.debug_writes)),
