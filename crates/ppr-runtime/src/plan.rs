@@ -138,7 +138,12 @@ pub struct PlanParams {
     /// could only lose (a flight of mirror treads reflects every pixel in four or five
     /// treads, all but the nearest behind the tread above) or show what a reflector
     /// hides are spared their projection, encoding and atomic. `Auto`: on wherever a
-    /// visible shape has a blocker.
+    /// visible shape has a blocker. Measured on an H100 at 3840×2160 (docs/perf/runtime.md,
+    /// thirty-fourth session), whole frames: the 1 000-tread stairway 0.692 → 0.526 ms,
+    /// the 10 000-tread one 1.774 → 1.457; collision-world 0.04–0.05 ms slower for 0.1 and
+    /// 1.1 dB more on-screen PSNR on its two cameras (reflections through its floors and
+    /// walls gone); the demo and the kitchen, whose steps and counters have blockers,
+    /// 0.000–0.009 ms slower with the same images to 0.02 dB.
     pub path_blockers: Choice,
     /// Give the projection pass, per visible shape, the screen box of the pixels that may
     /// reflect into it ([`FramePlan::source_rects`]), so that blocks outside it skip the
