@@ -2,58 +2,12 @@
 //! other heights, walked as one tree per family, write what testing each of them writes,
 //! under every culling variant, and the plan merges only what it may.
 
-use glam::{DVec3, Vec3};
-use ppr_runtime::{Camera, Choice, Projection, ReflectionRenderer, TestedEntry};
+use ppr_runtime::{Choice, ReflectionRenderer, TestedEntry};
 
 use ppr_tests::harness::{GpuFrame, Output, renderer, run, validated};
-use ppr_tests::scene::{Albedo, AnalyticScene};
+use ppr_tests::views::{stairway, stairway_cameras as cameras};
 
 const SIZE: [u32; 2] = [128, 96];
-
-/// A stairway of `n` mirror treads with matte risers, mirror shelves beside it at other
-/// heights (the same family: one normal), a patterned wall and boxes to reflect.
-pub(crate) fn stairway(n: usize) -> AnalyticScene {
-    let mut s = AnalyticScene::default();
-    let (rise, run) = (2.0 / n as f64, 4.0 / n as f64);
-    s.quad(
-        DVec3::new(0.0, -0.001, -3.0),
-        DVec3::X,
-        DVec3::NEG_Z,
-        [6.0, 6.0],
-        Albedo::Solid(Vec3::splat(0.3)),
-    );
-    s.quad(DVec3::new(0.0, 2.5, -6.0), DVec3::X, DVec3::Y, [6.0, 2.5], Albedo::Waves(0.3));
-    s.cuboid(DVec3::new(-0.6, 2.2, -3.5), DVec3::new(0.2, 2.9, -2.9), Vec3::new(0.9, 0.2, 0.1));
-    s.cuboid(DVec3::new(1.8, 0.0, -2.0), DVec3::new(2.4, 1.6, -1.4), Vec3::new(0.1, 0.3, 0.9));
-    for i in 0..n {
-        let y = (i + 1) as f64 * rise;
-        let z = -1.0 - i as f64 * run;
-        s.quad(DVec3::new(0.0, y - 0.5 * rise, z), DVec3::X, DVec3::Y, [1.2, 0.5 * rise], Albedo::Waves(0.6));
-        s.mirror(
-            &format!("tread {i}"),
-            DVec3::new(0.0, y, z - 0.5 * run),
-            DVec3::X,
-            DVec3::NEG_Z,
-            [1.2, 0.5 * run],
-        );
-    }
-    for k in 0..6 {
-        let c = DVec3::new(-2.6 + 0.2 * k as f64, 0.3 + 0.25 * k as f64, -1.5 - 0.5 * k as f64);
-        s.mirror(&format!("shelf {k}"), c, DVec3::X, DVec3::NEG_Z, [0.5, 0.3]);
-    }
-    s
-}
-
-pub(crate) fn cameras() -> Vec<Camera> {
-    let look = |eye: DVec3, at: DVec3, fov: f32| {
-        Camera::look_at(eye, at, Vec3::Y, Projection { fov_y: fov, ..Default::default() })
-    };
-    vec![
-        look(DVec3::new(0.3, 2.6, 1.5), DVec3::new(0.0, 0.8, -3.0), 1.1),
-        look(DVec3::new(-2.5, 3.2, 0.0), DVec3::new(0.5, 0.8, -3.0), 1.0),
-        look(DVec3::new(2.0, 1.4, 0.5), DVec3::new(-0.5, 1.0, -4.0), 1.0),
-    ]
-}
 
 /// A renderer with the given tree choice and culling, full-screen passes.
 fn configured(trees: Choice, culling: Choice, super_tiles: Choice) -> ReflectionRenderer {

@@ -8,7 +8,7 @@ use ppr_runtime::{Choice, ReflectionRenderer};
 use ppr_tests::gpu::read_buffer;
 use ppr_tests::harness::{GpuFrame, Output, compare, cpu_projection, renderer, run, validated};
 
-use crate::parallel_trees::{cameras, stairway};
+use ppr_tests::views::{stairway, stairway_cameras as cameras};
 
 const SIZE: [u32; 2] = [128, 96];
 

@@ -1,11 +1,13 @@
 //! Positions: a level 10 km and 100 km from the origin renders the same frame as at the
-//! origin (camera-relative math); depths at the far plane are skipped; NaN and infinite
-//! depths and colours never reach the output.
+//! origin (camera-relative math), a flight of mirror treads with its path blockers too;
+//! depths at the far plane are skipped; NaN and infinite depths and colours never reach
+//! the output.
 
 use glam::{DVec3, Vec3, Vec4};
 use ppr_runtime::{Camera, Choice, Projection};
 use ppr_tests::harness::{GpuFrame, renderer, run};
 use ppr_tests::scene::AnalyticScene;
+use ppr_tests::views::{stairway, stairway_cameras};
 
 use crate::{floor_room, invariants, run_case};
 
@@ -55,6 +57,48 @@ fn far_from_the_origin_the_frame_is_the_frame_at_the_origin() {
         // rounds differently far away), with a mean difference below 1e-3.
         assert!(differing as f64 <= 0.005 * diffs.len() as f64, "{name}: {differing}");
         assert!(mean <= 1e-3, "{name}: {mean}");
+    }
+}
+
+/// The path blockers (`ppr_runtime::path_blockers`) decide from camera-relative offsets:
+/// 10 km and 100 km from the origin they take out as many reflections of a flight of 40
+/// mirror treads as at the origin, and the frame is the origin's.
+#[test]
+fn far_from_the_origin_path_blockers_block_what_they_block_at_the_origin() {
+    let scene = stairway(40);
+    let camera = stairway_cameras().remove(0);
+    let moved = |c: &Camera, by: DVec3| Camera { position: c.position + by, ..*c };
+    // Values the blockers raise or empty, and the buffer with them.
+    let blocked = |scene: &AnalyticScene, camera: &Camera| {
+        let frame = scene.render(camera, SIZE);
+        let gpu = GpuFrame::upload(&frame);
+        let set = ppr_tests::harness::validated(&scene.reflector_set());
+        let mut outs = [Choice::Off, Choice::Auto].map(|blockers| {
+            let mut r = renderer();
+            r.plan_params.indirect = Choice::Off;
+            r.plan_params.path_blockers = blockers;
+            r.set_reflectors(&set);
+            run(&mut r, &gpu, camera)
+        });
+        assert!(outs[1].plan.path_blockers, "{}", outs[1].plan);
+        let raised = outs[0].intermediate.iter().zip(&outs[1].intermediate).filter(|(a, b)| b > a).count();
+        (raised, std::mem::take(&mut outs[1].intermediate))
+    };
+    let (at_origin, base) = blocked(&scene, &camera);
+    assert!(at_origin > 50, "the blockers decide at the origin: {at_origin}");
+    for (name, offset) in [("10 km", DVec3::new(1e4, 0.0, -1e4)), ("100 km", DVec3::new(1e5, 50.0, 1e5))] {
+        let (far, buffer) = blocked(&translated(&scene, offset), &moved(&camera, offset));
+        let differing = base.iter().zip(&buffer).filter(|(a, b)| a != b).count();
+        eprintln!(
+            "{name}: {far} values raised by the blockers (origin {at_origin}); {differing} differ from the origin's"
+        );
+        // Stated bound: within 5 % of the origin's count, and at most 0.5 % of the
+        // pixels' values apart (the CPU-made depth buffer rounds differently far away).
+        assert!(
+            far.abs_diff(at_origin) as f64 <= 0.05 * at_origin as f64,
+            "{name}: {far} against {at_origin}"
+        );
+        assert!(differing as f64 <= 0.005 * base.len() as f64, "{name}: {differing}");
     }
 }
 
