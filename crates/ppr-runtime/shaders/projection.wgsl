@@ -38,6 +38,11 @@
 //   and the reflection point there): one depth read per write, whatever occludes.
 // - OCCLUDER_TESTS: the seed's test instead: the ray to the reflection point against the
 //   shape's list of occluding reflectors (from the extractor).
+// - PATH_BLOCKERS: a write into a member of a parallel family first tests whether its
+//   path, from the pixel down to the reflection point, crosses the member in front of it
+//   (its test's `blocker`, a plane group member's rectangle's last word;
+//   crates/ppr-runtime/src/path_blockers.rs): a flight of treads writes the nearest
+//   tread's reflection, not the four behind the tread above it.
 // - LAYERS: glass panels and water planes with atlas regions exist this frame (without
 //   them the layer loop is compiled out).
 // - DEBUG_WRITES: record, per source pixel, a bit per visible shape it wrote for.
