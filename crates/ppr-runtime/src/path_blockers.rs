@@ -20,7 +20,10 @@
 //! no pixel shows), the pixel stays without a value instead of showing what the shelf
 //! hides. Only one blocker per member is looked up (the nearest rectangle of the nearest
 //! offset above that lies within reach), so some blocked paths still write: the
-//! buffer may keep values the test could have spared, never lose one it should have.
+//! buffer may keep values the test could have spared. A reflector's rectangle encloses
+//! its reflective region (the extractor's fit), so a path through a part of a blocker's
+//! rectangle that is not surface (the inside corner of an L-shaped floor) is blocked too:
+//! the approximation the seed's occluder lists make with the same rectangles.
 
 use glam::{DVec3, Vec3};
 
