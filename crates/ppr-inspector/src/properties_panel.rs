@@ -1,6 +1,8 @@
 //! The selected reflector's properties: enable, kind, roughness, name, placement fields, and the
 //! split, merge and re-fit operations. Every change is an edit command (undoable,
-//! validated; a refused one shows as an error).
+//! validated; a refused one shows as an error). It also says which reflector is the
+//! selection's path blocker (`ppr_runtime::path_blockers`): the runtime draws no reflection
+//! whose path crosses it.
 
 use egui::{DragValue, Ui};
 use ppr_format::ReflectorKind;
@@ -19,11 +21,13 @@ pub struct PropertiesPanel {
     pub merge_with: Option<u32>,
     /// The field being edited and its undo gesture (one step per field interaction).
     field_gesture: Option<(egui::Id, u64)>,
+    /// Per reflector of the set, its path blocker's index, for (level generation, revision).
+    blockers: Option<((u64, u64), Vec<u32>)>,
 }
 
 impl Default for PropertiesPanel {
     fn default() -> Self {
-        Self { split_at: 0.5, merge_with: None, field_gesture: None }
+        Self { split_at: 0.5, merge_with: None, field_gesture: None, blockers: None }
     }
 }
 
@@ -47,6 +51,33 @@ impl PropertiesPanel {
         }
     }
 
+    /// "path blocker: …" for reflector `r` of the set: the parallel reflector right in
+    /// front of it whose rectangle a reflection's path may cross (then not drawn), as the
+    /// runtime finds it; rebuilt after each edit.
+    fn path_blocker_line(&mut self, state: &InspectorState, r: &ppr_format::Reflector) -> String {
+        let Some(set) = state.set() else { return String::new() };
+        let key = (state.level_generation, state.revision());
+        if self.blockers.as_ref().is_none_or(|(k, _)| *k != key) {
+            self.blockers = Some((key, ppr_runtime::shapes::ShapeTable::from_set(set).path_blockers));
+        }
+        let blockers = self.blockers.as_ref().map(|(_, b)| b.as_slice()).unwrap_or_default();
+        let blocker = set
+            .reflectors
+            .iter()
+            .position(|x| x.id == r.id)
+            .and_then(|i| blockers.get(i))
+            .and_then(|&b| set.reflectors.get(b as usize));
+        match blocker {
+            Some(b) => format!(
+                "path blocker: {} (id {}), {:.3} m in front",
+                b.name,
+                b.id,
+                (b.center - r.center).dot(r.normal)
+            ),
+            None => "path blocker: none".to_owned(),
+        }
+    }
+
     /// Shows the panel for the selected reflector.
     pub fn show(&mut self, ui: &mut Ui, state: &mut InspectorState) {
         let Some(r) = state.selected().cloned() else {
@@ -67,6 +98,7 @@ impl PropertiesPanel {
             100.0 * r.coverage,
             r.occluders.len()
         ));
+        ui.label(self.path_blocker_line(state, &r));
 
         let mut enabled = r.enabled;
         if ui.checkbox(&mut enabled, "Enabled").changed() {

@@ -375,3 +375,39 @@ fn the_panel_shows_and_edits_the_roughness() {
     assert_eq!(selected(&harness).roughness, 1.0);
     snapshots.unwrap();
 }
+
+/// The properties panel names the selection's path blocker as the runtime finds it: on the
+/// demo's flight of steps, the step in front of it; none for the wall mirror.
+#[test]
+fn the_panel_names_the_path_blocker() {
+    let mut harness = harness();
+    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
+    harness.run();
+    harness.get_by_label("Open level").click();
+    harness.run_ok();
+    wait_for_extraction(&mut harness);
+    let set = harness.state().state.set().cloned().expect("a set");
+    let blockers = ppr_runtime::shapes::ShapeTable::from_set(&set).path_blockers;
+    let mut named = 0;
+    for (r, &b) in set.reflectors.iter().zip(&blockers) {
+        if !r.name.starts_with("mirror on step_") && r.name != "mirror on mirror_wall" {
+            continue;
+        }
+        harness.get_by_label(&r.name).click();
+        harness.run();
+        assert_eq!(selected(&harness).id, r.id);
+        match set.reflectors.get(b as usize) {
+            Some(blocker) => {
+                let line = format!("path blocker: {} (id {}),", blocker.name, blocker.id);
+                assert!(
+                    harness.query_by_label_contains(&line).is_some(),
+                    "{}: `{line}` in the panel",
+                    r.name
+                );
+                named += 1;
+            }
+            None => assert!(harness.query_by_label("path blocker: none").is_some(), "{}: none", r.name),
+        }
+    }
+    assert!(named >= 3, "the steps in front of other steps block them: {named}");
+}
