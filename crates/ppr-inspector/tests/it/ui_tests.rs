@@ -69,6 +69,16 @@ fn wait_for_extraction(harness: &mut Harness<'_, InspectorApp>) {
     harness.run();
 }
 
+/// Types the demo level's path (relative to the crate: the same on every machine), opens it
+/// and waits for its extraction.
+fn open_demo_level(harness: &mut Harness<'_, InspectorApp>) {
+    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
+    harness.run();
+    harness.get_by_label("Open level").click();
+    harness.run_ok();
+    wait_for_extraction(harness);
+}
+
 fn selected(harness: &Harness<'_, InspectorApp>) -> ppr_format::Reflector {
     harness.state().state.selected().cloned().expect("a reflector is selected")
 }
@@ -79,12 +89,7 @@ fn open_select_edit_undo_redo_save_reload() {
     let mut harness = harness();
     assert!(harness.state().viewport.adapter().is_some(), "the app renders on the harness's wgpu device");
 
-    // Open the demo level by typing its path (relative to the crate: the same on every machine).
-    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
-    harness.run();
-    harness.get_by_label("Open level").click();
-    harness.run_ok();
-    wait_for_extraction(&mut harness);
+    open_demo_level(&mut harness);
     assert_eq!(harness.state().state.set().map(|s| s.reflectors.len()), Some(16));
     assert!(harness.state().viewport.has_frame(), "a preview was rendered");
     snapshot(&mut harness, &mut snapshots, "inspector/opened", &[]);
@@ -164,11 +169,7 @@ fn open_select_edit_undo_redo_save_reload() {
 #[test]
 fn unsaved_changes_guard_asks_before_opening() {
     let mut harness = harness();
-    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
-    harness.run();
-    harness.get_by_label("Open level").click();
-    harness.run_ok();
-    wait_for_extraction(&mut harness);
+    open_demo_level(&mut harness);
     // A fresh extraction is unsaved: opening again asks.
     harness.get_by_label("Open level").click();
     harness.run();
@@ -381,11 +382,7 @@ fn the_panel_shows_and_edits_the_roughness() {
 #[test]
 fn the_panel_names_the_path_blocker() {
     let mut harness = harness();
-    harness.get_by_label("Path").set_text_value_accesskit(DEMO_LEVEL);
-    harness.run();
-    harness.get_by_label("Open level").click();
-    harness.run_ok();
-    wait_for_extraction(&mut harness);
+    open_demo_level(&mut harness);
     let set = harness.state().state.set().cloned().expect("a set");
     let blockers = ppr_runtime::shapes::ShapeTable::from_set(&set).path_blockers;
     let mut named = 0;
