@@ -36,6 +36,9 @@ pub struct ReflectionBindings<'a> {
     /// between two reads; without this binding the reflection waited there for the layer
     /// pass to end instead of running beside it.
     pub upload_storage: BufferPart<'a>,
+    /// The glossy colour pyramid, every level (read where the glossy uniform says it was
+    /// built; any `Rgba16Float` texture otherwise).
+    pub pyramid: &'a wgpu::TextureView,
 }
 
 /// Which reflection pipeline a frame runs (beside direct or indirect dispatch).
@@ -181,6 +184,16 @@ impl ReflectionPass {
                 storage_entry(10, false),
                 storage_entry(11, false),
                 storage_entry(12, true),
+                wgpu::BindGroupLayoutEntry {
+                    binding: 13,
+                    visibility: wgpu::ShaderStages::COMPUTE,
+                    ty: wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    count: None,
+                },
             ],
         });
         let module = crate::shader::module_with(
@@ -195,6 +208,8 @@ impl ReflectionPass {
             address_mode_v: wgpu::AddressMode::ClampToEdge,
             mag_filter: wgpu::FilterMode::Linear,
             min_filter: wgpu::FilterMode::Linear,
+            // Trilinear between the glossy pyramid's levels (the colour has one level).
+            mipmap_filter: wgpu::MipmapFilterMode::Linear,
             ..Default::default()
         });
         let mut pass = Self {
@@ -291,6 +306,10 @@ impl ReflectionPass {
                     wgpu::BindGroupEntry { binding: 10, resource: b.next_intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 11, resource: b.next_atlas.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 12, resource: b.upload_storage.binding() },
+                    wgpu::BindGroupEntry {
+                        binding: 13,
+                        resource: wgpu::BindingResource::TextureView(b.pyramid),
+                    },
                 ],
             },
         )
