@@ -15,6 +15,6 @@ ROWS=(--projection-profile --profile-row "frame span" --profile-row "frame span,
   --profile-row "frame span, glossy pyramid, 8 taps" --profile-row "frame span, glossy, 8 taps"
   --profile-row "reflection own pass" --profile-row "reflection own pass, glossy pyramid"
   --profile-row "reflection: no glossy")
-want ab && step ab 330 $B runtime $C "${ROWS[@]}" --frames 20 --out $R/ab
-want mirror && step mirror 260 $B compare $C --out $R/mirror --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 --technique ppr --technique ppr:pyramid=on --technique ppr:timing=frame --technique ppr:pyramid=on,timing=frame --technique ssr-low --technique ssr-low:timing=frame --technique exact
+want ab && step ab 300 $B runtime $C "${ROWS[@]}" --frames 20 --out $R/ab
+want mirror && step mirror 240 $B compare $C --out $R/mirror --reference mirror --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 --technique ppr --technique ppr:pyramid=on --technique ppr:timing=frame --technique ppr:pyramid=on,timing=frame --technique ssr-low --technique ssr-low:timing=frame --technique exact
 want glossy && step glossy 330 $B compare $C --out $R/glossy --scene demo --scene kitchen --resolution 1080p --resolution 4k --frames 20 --technique ppr --technique ppr:pyramid=on --technique ppr:pyramid=on,lod-bias=-1 --technique ppr:pyramid=on,lod-bias=-20 --technique ppr:glossy=off --technique ssr-low --technique ssr-glossy --technique exact
