@@ -137,7 +137,7 @@ fn the_pyramid_holds_the_means_of_the_colour_over_the_glossy_region() {
     let (frame, _, r) = render_pyramid(&scene(0.35), true);
     let (texture, rect) = r.glossy_pyramid().expect("a rough floor builds a pyramid");
     let [w, h] = SIZE;
-    assert!(rect.area() > 0 && rect.min[0] % 32 == 0 && rect.min[1] % 32 == 0, "{rect:?}");
+    assert!(rect.area() > 0 && rect.min.iter().all(|m| m.is_multiple_of(32)), "{rect:?}");
     // The CPU model: level 0 the mean of each 2 x 2 pixels of the uploaded (f16) colour,
     // clamped at the viewport's edge; each further level the mean of 2 x 2 of the last.
     let f16 = |v: f32| half::f16::from_f32(v).to_f32();

@@ -32,15 +32,6 @@ const SIDE: u32 = 16u;
 
 var<workgroup> means: array<vec3<f32>, 256>;
 
-// NaN to 0 and infinities to the f16 range, as the reflection's colour reads.
-fn finite_mean(c: vec3<f32>) -> vec3<f32> {
-    let bits = bitcast<vec3<u32>>(c);
-    let non_finite = (bits & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u);
-    let has_mantissa = (bits & vec3<u32>(0x007fffffu)) != vec3<u32>(0u);
-    let is_nan = select(vec3<bool>(false), has_mantissa, non_finite);
-    return clamp(select(c, vec3<f32>(0.0), is_nan), vec3<f32>(-65504.0), vec3<f32>(65504.0));
-}
-
 fn store_level(level: u32, texel: vec2<u32>, c: vec3<f32>) {
     let v = vec4<f32>(c, 1.0);
     switch level {
@@ -70,7 +61,7 @@ fn main(@builtin(local_invocation_id) lid: vec3<u32>, @builtin(workgroup_id) wid
     // The corner shared by the texel's four pixels: a bilinear sample there is their mean
     // (the sampler clamps at the viewport's edge).
     let uv = vec2<f32>(texel * 2u + 1u) / vec2<f32>(frame.size);
-    var c = finite_mean(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
+    var c = finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
     store_level(0u, texel, c);
     means[lid.x + lid.y * SIDE] = c;
     for (var level = 1u; level < 5u; level++) {

@@ -171,11 +171,11 @@ mod tests {
         let rect = pyramid_rect(&table, &plan, camera.position, &clip);
         let source = source_rect(&table.shapes[0], camera.position, &clip, viewport);
         assert!(source.area() > 0 && source.area() < 640 * 360, "{source:?}");
-        for a in 0..2 {
-            assert_eq!(rect.min[a] % BLOCK, 0, "{rect:?}");
-            assert!(rect.max[a] % BLOCK == 0 || rect.max[a] == viewport[a], "{rect:?}");
+        for (a, &end) in viewport.iter().enumerate() {
+            assert!(rect.min[a].is_multiple_of(BLOCK), "{rect:?}");
+            assert!(rect.max[a].is_multiple_of(BLOCK) || rect.max[a] == end, "{rect:?}");
             assert!(rect.min[a] <= source.min[a].saturating_sub(MARGIN_PX), "{rect:?} {source:?}");
-            assert!(rect.max[a] >= (source.max[a] + MARGIN_PX).min(viewport[a]), "{rect:?} {source:?}");
+            assert!(rect.max[a] >= (source.max[a] + MARGIN_PX).min(end), "{rect:?} {source:?}");
             // No more than a block's rounding past the margin.
             assert!(rect.min[a] + BLOCK + MARGIN_PX > source.min[a], "{rect:?} {source:?}");
         }

@@ -2,7 +2,10 @@
 //! region the frame's glossy reflections read (`crates/ppr-runtime/shaders/glossy_pyramid.wgsl`).
 
 use super::bind_group_cache::BindGroupCache;
-use super::{BufferPart, compute_pipeline, uniform_entry, write_texture_entry};
+use super::{
+    BufferPart, compute_pipeline, linear_sampler, sampled_texture_entry, sampler_entry, uniform_entry,
+    write_texture_entry,
+};
 use crate::glossy_pyramid::{FORMAT, GlossyPyramid, LEVELS, groups};
 use crate::plan::ScreenRect;
 
@@ -28,26 +31,8 @@ pub struct GlossyPyramidPass {
 
 impl GlossyPyramidPass {
     pub fn new(device: &wgpu::Device) -> Self {
-        let mut entries = vec![
-            uniform_entry(0),
-            wgpu::BindGroupLayoutEntry {
-                binding: 1,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Texture {
-                    sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                    view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
-                },
-                count: None,
-            },
-            wgpu::BindGroupLayoutEntry {
-                binding: 2,
-                visibility: wgpu::ShaderStages::COMPUTE,
-                ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                count: None,
-            },
-            uniform_entry(3),
-        ];
+        let mut entries =
+            vec![uniform_entry(0), sampled_texture_entry(1), sampler_entry(2), uniform_entry(3)];
         entries.extend((0..LEVELS).map(|level| write_texture_entry(4 + level, FORMAT)));
         let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("ppr glossy pyramid"),
@@ -55,14 +40,7 @@ impl GlossyPyramidPass {
         });
         let module = crate::shader::module_with(device, "ppr glossy pyramid", &[], WGSL);
         let pipeline = compute_pipeline(device, "ppr glossy pyramid", &layout, &module, "main", &[]);
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ppr glossy pyramid linear"),
-            address_mode_u: wgpu::AddressMode::ClampToEdge,
-            address_mode_v: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
+        let sampler = linear_sampler(device, "ppr glossy pyramid linear", false);
         Self { pipeline, layout, bind_groups: BindGroupCache::default(), sampler }
     }
 

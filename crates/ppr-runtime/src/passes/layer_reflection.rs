@@ -2,7 +2,10 @@
 //! their atlas regions, into the layer output.
 
 use super::bind_group_cache::BindGroupCache;
-use super::{BufferPart, TILE, compute_pipeline, loaded_texture_entry, storage_entry, uniform_entry};
+use super::{
+    BufferPart, TILE, compute_pipeline, linear_sampler, loaded_texture_entry, sampled_texture_entry,
+    sampler_entry, storage_entry, uniform_entry,
+};
 
 pub const WGSL: &str = include_str!("../../shaders/layer_reflection.wgsl");
 
@@ -99,22 +102,8 @@ impl LayerReflectionPass {
                 storage_entry(2, true),
                 storage_entry(3, true),
                 loaded_texture_entry(4),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 5,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 6,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                sampled_texture_entry(5),
+                sampler_entry(6),
                 wgpu::BindGroupLayoutEntry {
                     binding: 7,
                     visibility: wgpu::ShaderStages::COMPUTE,
@@ -136,12 +125,7 @@ impl LayerReflectionPass {
             WGSL,
         );
         let pipeline = compute_pipeline(device, "ppr layer reflection", &layout, &module, "main", &[]);
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ppr layer reflection linear"),
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            ..Default::default()
-        });
+        let sampler = linear_sampler(device, "ppr layer reflection linear", false);
         Self { pipeline, full_stretch: None, module, layout, bind_groups: BindGroupCache::default(), sampler }
     }
 

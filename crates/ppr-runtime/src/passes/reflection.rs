@@ -3,7 +3,8 @@
 use super::bind_group_cache::BindGroupCache;
 use super::tile_classify::ACTIVE_TILES_ARGS;
 use super::{
-    BufferPart, compute_pipeline, flag, loaded_texture_entry, storage_entry, tile_groups, uniform_entry,
+    BufferPart, compute_pipeline, flag, linear_sampler, loaded_texture_entry, sampled_texture_entry,
+    sampler_entry, storage_entry, tile_groups, uniform_entry,
 };
 
 use std::collections::HashMap;
@@ -151,22 +152,8 @@ impl ReflectionPass {
             entries: &[
                 uniform_entry(0),
                 storage_entry(1, true),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 2,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
-                wgpu::BindGroupLayoutEntry {
-                    binding: 3,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                    count: None,
-                },
+                sampled_texture_entry(2),
+                sampler_entry(3),
                 wgpu::BindGroupLayoutEntry {
                     binding: 4,
                     visibility: wgpu::ShaderStages::COMPUTE,
@@ -184,16 +171,7 @@ impl ReflectionPass {
                 storage_entry(10, false),
                 storage_entry(11, false),
                 storage_entry(12, true),
-                wgpu::BindGroupLayoutEntry {
-                    binding: 13,
-                    visibility: wgpu::ShaderStages::COMPUTE,
-                    ty: wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    count: None,
-                },
+                sampled_texture_entry(13),
             ],
         });
         let module = crate::shader::module_with(
@@ -202,16 +180,7 @@ impl ReflectionPass {
             &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let sampler = device.create_sampler(&wgpu::SamplerDescriptor {
-            label: Some("ppr reflection linear"),
-            address_mode_u: wgpu::AddressMode::ClampToEdge,
-            address_mode_v: wgpu::AddressMode::ClampToEdge,
-            mag_filter: wgpu::FilterMode::Linear,
-            min_filter: wgpu::FilterMode::Linear,
-            // Trilinear between the glossy pyramid's levels (the colour has one level).
-            mipmap_filter: wgpu::MipmapFilterMode::Linear,
-            ..Default::default()
-        });
+        let sampler = linear_sampler(device, "ppr reflection linear", true);
         let mut pass = Self {
             pipelines: HashMap::new(),
             module,
