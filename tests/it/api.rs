@@ -263,8 +263,7 @@ fn an_empty_plan_reports_no_timings_without_waiting() {
 #[test]
 fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
     // One renderer, both eyes planned by one prepare_stereo and recorded by one
-    // encode_stereo into the two layers of an array texture; a glossy floor mirror, its
-    // taps from the full-size colour or from each eye's own colour pyramid.
+    // encode_stereo into the two layers of an array texture; a glossy floor mirror.
     let mut s = room();
     s.roughen("floor mirror", 0.25);
     let set = ppr_tests::harness::validated(&s.reflector_set());
@@ -272,16 +271,13 @@ fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
     let eyes = [-0.032, 0.032].map(|dx| room_camera(head + DVec3::new(dx, 0.0, 0.0)));
     let frames: Vec<GpuFrame> = eyes.iter().map(|c| GpuFrame::upload(&s.render(c, SIZE))).collect();
     let g = gpu();
-    let variants = [(Choice::Off, false), (Choice::On, false), (Choice::Off, true), (Choice::On, true)];
-    for (indirect, pyramid) in variants {
+    for indirect in [Choice::Off, Choice::On] {
         let mono: Vec<Vec<Vec4>> = (0..2)
             .map(|k| {
                 let mut r = renderer();
                 r.plan_params.indirect = indirect;
-                r.debug.glossy_pyramid = pyramid;
                 r.set_reflectors(&set);
                 r.prepare(&eyes[k], SIZE);
-                assert_eq!(r.glossy_pyramid().is_some(), pyramid);
                 let out = fresh_output();
                 let mut encoder = g.device.create_command_encoder(&Default::default());
                 encode_into(&r, &mut encoder, &frames[k], &out);
@@ -293,7 +289,6 @@ fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
 
         let mut r = renderer();
         r.plan_params.indirect = indirect;
-        r.debug.glossy_pyramid = pyramid;
         r.set_reflectors(&set);
         let plans = r.prepare_stereo([&eyes[0], &eyes[1]], SIZE);
         assert!(plans.iter().all(|p| p.glossy.len() == 1), "{}", plans[0]);
@@ -352,10 +347,8 @@ fn each_eye_of_a_stereo_frame_is_its_mono_frame_bit_for_bit() {
                     stereo[i].to_array().map(f32::to_bits) != mono[k][i].to_array().map(f32::to_bits)
                 })
                 .count();
-            eprintln!(
-                "indirect {indirect:?}, pyramid {pyramid}, eye {k}: {differing} pixels differ from the mono frame"
-            );
-            assert_eq!(differing, 0, "eye {k}, indirect {indirect:?}, pyramid {pyramid}");
+            eprintln!("indirect {indirect:?}, eye {k}: {differing} pixels differ from the mono frame");
+            assert_eq!(differing, 0, "eye {k}, indirect {indirect:?}");
         }
     }
 }

@@ -2,7 +2,7 @@
 //! reflected rays (`scene::GLOSSY_SAMPLES` per pixel), over the floor's on-screen pixels.
 
 use glam::{DVec3, Vec3, Vec4};
-use ppr_runtime::{Camera, Projection, ReflectionRenderer, ReflectionSettings};
+use ppr_runtime::{Camera, Projection, ReflectionSettings};
 use ppr_tests::harness::{Comparison, GpuFrame, compare, renderer, run, validated};
 use ppr_tests::masks::interior;
 use ppr_tests::scene::{Albedo, AnalyticScene, Frame};
@@ -116,94 +116,4 @@ fn near_contact_the_glossy_reflection_stays_sharp() {
     assert!(near >= 10 && far >= 100, "{near} {far}");
     assert!(near_differ * 4 <= near, "near contact stays sharp: {near_differ} of {near}");
     assert!(far_differ * 2 >= far, "far away it spreads: {far_differ} of {far}");
-}
-
-/// [`render`] with the glossy blur's colour pyramid on or off; with the renderer, to read
-/// the pyramid back.
-fn render_pyramid(s: &AnalyticScene, pyramid: bool) -> (Frame, Vec<Vec4>, ReflectionRenderer) {
-    let cam = camera();
-    let frame = s.render(&cam, SIZE);
-    let gpu = GpuFrame::upload(&frame);
-    let mut r = renderer();
-    r.settings = ReflectionSettings { glossy: true, ..ReflectionSettings::ALL };
-    r.debug.glossy_pyramid = pyramid;
-    r.set_reflectors(&validated(&s.reflector_set()));
-    let out = run(&mut r, &gpu, &cam);
-    (frame, out.pixels, r)
-}
-
-#[test]
-fn the_pyramid_holds_the_means_of_the_colour_over_the_glossy_region() {
-    let (frame, _, r) = render_pyramid(&scene(0.35), true);
-    let (texture, rect) = r.glossy_pyramid().expect("a rough floor builds a pyramid");
-    let [w, h] = SIZE;
-    assert!(rect.area() > 0 && rect.min.iter().all(|m| m.is_multiple_of(32)), "{rect:?}");
-    // The CPU model: level 0 the mean of each 2 x 2 pixels of the uploaded (f16) colour,
-    // clamped at the viewport's edge; each further level the mean of 2 x 2 of the last.
-    let f16 = |v: f32| half::f16::from_f32(v).to_f32();
-    let colour = |x: u32, y: u32| {
-        let c = frame.color[(y.min(h - 1) * w + x.min(w - 1)) as usize];
-        Vec3::new(f16(c.x), f16(c.y), f16(c.z))
-    };
-    let [w0, h0] = [texture.width(), texture.height()];
-    let mut level: Vec<Vec3> = (0..w0 * h0)
-        .map(|i| {
-            let (x, y) = (2 * (i % w0), 2 * (i / w0));
-            (colour(x, y) + colour(x + 1, y) + colour(x, y + 1) + colour(x + 1, y + 1)) * 0.25
-        })
-        .collect();
-    let mut checked = 0;
-    for l in 0..ppr_runtime::glossy_pyramid::LEVELS {
-        let (lw, lh) = (w0 >> l, h0 >> l);
-        if l > 0 {
-            let last = level;
-            level = (0..lw * lh)
-                .map(|i| {
-                    let (x, y) = (2 * (i % lw), 2 * (i / lw));
-                    let at = |x: u32, y: u32| last[(y * (lw * 2) + x) as usize];
-                    (at(x, y) + at(x + 1, y) + at(x, y + 1) + at(x + 1, y + 1)) * 0.25
-                })
-                .collect();
-        }
-        let gpu = ppr_tests::harness::read_rgba16f_level(texture, l);
-        // The region's texels at this level (2^(l+1) pixels a side).
-        let px = 2 << l;
-        for y in rect.min[1] / px..rect.max[1].div_ceil(px).min(lh) {
-            for x in rect.min[0] / px..rect.max[0].div_ceil(px).min(lw) {
-                let (want, got) = (level[(y * lw + x) as usize], gpu[(y * lw + x) as usize].truncate());
-                let tolerance = 2e-3 + 2e-3 * want.abs().max_element();
-                assert!(
-                    (want - got).abs().max_element() <= tolerance,
-                    "level {l} texel ({x}, {y}): {got} against {want}"
-                );
-                checked += 1;
-            }
-        }
-    }
-    assert!(checked > 1000, "{checked} texels");
-}
-
-#[test]
-fn the_pyramid_blur_stays_as_close_to_the_glossy_reference_as_the_taps() {
-    // A mirror floor builds no pyramid and gives the same image either way.
-    let (_, mirror_taps, _) = render_pyramid(&scene(0.0), false);
-    let (_, mirror_pyramid, r) = render_pyramid(&scene(0.0), true);
-    assert!(r.glossy_pyramid().is_none());
-    assert_eq!(mirror_taps, mirror_pyramid);
-    for roughness in [0.2, 0.35] {
-        let s = scene(roughness);
-        let (frame, taps, _) = render_pyramid(&s, false);
-        let (_, pyramid, _) = render_pyramid(&s, true);
-        let (_, sharp) = render(&s, false);
-        let taps_psnr = against(&format!("taps_{roughness}"), &frame, &taps, &frame.glossy_reference);
-        let pyramid_psnr =
-            against(&format!("pyramid_{roughness}"), &frame, &pyramid, &frame.glossy_reference);
-        let sharp_psnr = against(&format!("sharp_p_{roughness}"), &frame, &sharp, &frame.glossy_reference);
-        eprintln!(
-            "roughness {roughness}: pyramid {pyramid_psnr:?}\n  taps {taps_psnr:?}\n  sharp {sharp_psnr:?}"
-        );
-        assert_eq!(pyramid_psnr.pixels, taps_psnr.pixels);
-        assert!(pyramid_psnr.psnr >= taps_psnr.psnr - 1.0, "{pyramid_psnr:?} vs {taps_psnr:?}");
-        assert!(pyramid_psnr.psnr > sharp_psnr.psnr + 5.0, "the blur must beat a mirror: {sharp_psnr:?}");
-    }
 }

@@ -283,13 +283,8 @@ pub fn renderer() -> ReflectionRenderer {
 
 /// Reads an `Rgba16Float` texture.
 pub fn read_rgba16f(texture: &wgpu::Texture) -> Vec<Vec4> {
-    read_rgba16f_level(texture, 0)
-}
-
-/// Reads mip level `level` of an `Rgba16Float` texture (row-major, the level's size).
-pub fn read_rgba16f_level(texture: &wgpu::Texture, level: u32) -> Vec<Vec4> {
     let g = gpu();
-    let (w, h) = ((texture.width() >> level).max(1), (texture.height() >> level).max(1));
+    let (w, h) = (texture.width(), texture.height());
     let row = (w * 8).next_multiple_of(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT);
     let buffer = g.device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("test texture readback"),
@@ -299,7 +294,7 @@ pub fn read_rgba16f_level(texture: &wgpu::Texture, level: u32) -> Vec<Vec4> {
     });
     let mut encoder = g.device.create_command_encoder(&Default::default());
     encoder.copy_texture_to_buffer(
-        wgpu::TexelCopyTextureInfo { mip_level: level, ..texture.as_image_copy() },
+        texture.as_image_copy(),
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
             layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(row), rows_per_image: None },

@@ -77,9 +77,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
 /// their own pass), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
-/// the exact reference is a mirror's), `pyramid=on|off` (the glossy blur's wide footprints
-/// read a colour pyramid: `DebugOptions::glossy_pyramid`), `lod-bias=F` (added to each
-/// pyramid tap's level: `DebugOptions::glossy_lod_bias`), `timing=passes|frame` (GPU time as the sum of the
+/// the exact reference is a mirror's), `timing=passes|frame` (GPU time as the sum of the
 /// passes' own timestamps, the default, or the whole frame between two encoder timestamps,
 /// the barriers between passes included; the SSR and SSPR baselines take it too),
 /// `upsample=per-pixel|shared` (the reduced tiers' upsample reads each pixel's reduced
@@ -90,7 +88,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 17] = [
+const PPR_KEYS: [&str; 15] = [
     "culling",
     "indirect",
     "groups",
@@ -102,8 +100,6 @@ const PPR_KEYS: [&str; 17] = [
     "replace-far",
     "tier",
     "glossy",
-    "pyramid",
-    "lod-bias",
     "timing",
     "upsample",
     "bounces",
@@ -205,7 +201,7 @@ impl TechniqueSpec {
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
                 "culling" | "indirect" | "groups" | "trees" | "blockers" | "subgroups" | "fused-lists"
-                | "replace-far" | "glossy" | "pyramid" => {
+                | "replace-far" | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -219,12 +215,6 @@ impl TechniqueSpec {
                 }
                 "bounces" | "reference-bounces" => {
                     parse_bounces(v).map_err(bad)?;
-                }
-                "lod-bias" => {
-                    let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
-                    if !f.is_finite() {
-                        return Err(bad(format!("lod-bias: {f} is not finite")));
-                    }
                 }
                 "fade" => {
                     let f = v.parse::<f32>().map_err(|e| bad(format!("{k}: {e}")))?;
@@ -406,13 +396,6 @@ pub fn build_technique(
         if let Some(v) = spec.param("timing") {
             runner.renderer().debug.frame_span = frame_timing(v).map_err(BenchError::Spec)?;
         }
-        if let Some(v) = spec.param("pyramid") {
-            runner.renderer().debug.glossy_pyramid = parse_choice(v).map_err(BenchError::Spec)? == Choice::On;
-        }
-        if let Some(v) = spec.param("lod-bias") {
-            let bias = v.parse::<f32>().map_err(|e| BenchError::Spec(format!("lod-bias: {e}")))?;
-            runner.renderer().debug.glossy_lod_bias = Some(bias);
-        }
         if let Some(v) = spec.param("upsample") {
             let (shared, probe) = upsample_mode(v).map_err(BenchError::Spec)?;
             runner.renderer().debug.shared_upsample = shared;
@@ -536,10 +519,6 @@ mod tests {
         assert!("ppr:blockers=maybe".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:blockers=off".parse::<TechniqueSpec>().is_err());
         assert!("ppr:glossy=blurry".parse::<TechniqueSpec>().is_err());
-        assert!("ppr:pyramid=on,lod-bias=-1.5".parse::<TechniqueSpec>().is_ok());
-        assert!("ppr:pyramid=maybe".parse::<TechniqueSpec>().is_err());
-        assert!("ppr:lod-bias=deep".parse::<TechniqueSpec>().is_err());
-        assert!("ssr-low:pyramid=on".parse::<TechniqueSpec>().is_err());
         assert!("nope".parse::<TechniqueSpec>().is_err());
         assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
         assert!("exact:steps=3".parse::<TechniqueSpec>().is_err());

@@ -93,13 +93,3 @@ struct Shape {
     _pad1: u32,
     _pad2: u32,
 }
-
-// NaN and infinities in the scene colour never reach the output: NaN becomes 0 and
-// infinities the largest f16. (Bit tests: a driver may fold `x != x` away.)
-fn finite_colour(c: vec3<f32>) -> vec3<f32> {
-    let bits = bitcast<vec3<u32>>(c);
-    let non_finite = (bits & vec3<u32>(0x7f800000u)) == vec3<u32>(0x7f800000u);
-    let has_mantissa = (bits & vec3<u32>(0x007fffffu)) != vec3<u32>(0u);
-    let is_nan = select(vec3<bool>(false), has_mantissa, non_finite);
-    return clamp(select(c, vec3<f32>(0.0), is_nan), vec3<f32>(-65504.0), vec3<f32>(65504.0));
-}

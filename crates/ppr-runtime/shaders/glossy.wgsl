@@ -4,12 +4,6 @@
 // reflection distance |q - p| is exact: near contact the reflection stays sharp, far away
 // it spreads, as a rough mirror's does.
 //
-// With a colour pyramid (`glossy.pyramid_levels` > 0, glossy_pyramid.wgsl) a footprint of
-// GLOSSY_PYRAMID_MIN_RADIUS_PX or more takes at most GLOSSY_PYRAMID_TAPS taps, each read
-// from the pyramid at the level whose texel matches its share of the lobe
-// (`ppr_glossy_pyramid`): a prefiltered tap stands for the area around it instead of a
-// point, so fewer taps reach a smooth blur, and they read half-size or smaller texels.
-//
 // The lobe: GGX with alpha = roughness². A microfacet normal tilted by θ turns the
 // reflected ray by 2θ, so the reflected point moves by about 2 tan θ |q - p|; across the
 // plane of incidence the turn shrinks by cos θi (the reflection stretches along the view,
@@ -19,8 +13,8 @@
 // reflected point's pixel, each weighted equally (importance sampling), plus the sharp
 // sample. The screen footprint of a world radius at q is its projection at q's distance.
 //
-// Needs `frame`, `color_tex`, `linear_sampler` (trilinear), `depth_tex`, `glossy_pyramid`,
-// VIEW, and the uniform `glossy: GlossyShapes` with the frame's visible glossy reflectors.
+// Needs `frame`, `color_tex`, `linear_sampler`, `depth_tex`, VIEW, and the uniform
+// `glossy: GlossyShapes` with the frame's visible glossy reflectors.
 
 const GLOSSY_CAPACITY: u32 = 32u;
 // Fewest taps, taps per pixel of footprint radius (the most: `glossy.max_taps`).
@@ -31,10 +25,6 @@ const GLOSSY_MIN_RADIUS_PX: f32 = 0.5;
 // cos and sin of the golden angle (2.39996323 rad), the turn between successive taps.
 const GLOSSY_GOLDEN_COS: f32 = -0.73736888;
 const GLOSSY_GOLDEN_SIN: f32 = 0.67549029;
-// With the pyramid: footprints from this radius take prefiltered taps, at most this many.
-const GLOSSY_PYRAMID_MIN_RADIUS_PX: f32 = 2.0;
-const GLOSSY_PYRAMID_TAPS: u32 = 12u;
-const GLOSSY_PI: f32 = 3.14159265;
 
 struct GlossyShape {
     // Camera-relative plane: xyz the normal, w = -dot(normal, center).
@@ -54,15 +44,7 @@ struct GlossyShapes {
     max_radius_px: f32,
     // The most taps per pixel.
     max_taps: u32,
-    // Levels of the colour pyramid (0: none, the taps read the full-size colour).
-    pyramid_levels: u32,
-    // The pyramid's region in pixels: min xy, max xy.
-    pyramid_rect: vec4<u32>,
-    // Added to each pyramid tap's level (negative: sharper than its share of the lobe).
-    pyramid_lod_bias: f32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    _pad: u32,
     shapes: array<GlossyShape, GLOSSY_CAPACITY>,
 }
 
@@ -154,9 +136,6 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
     // coordinates, with one transcendental a tap: r_k = a * inverseSqrt(a * b) for
     // a = k + 0.5, b = taps - a, and (cos, sin) turned by the golden angle each tap (a
     // rotation, four products; within 1e-6 of the direct cos and sin over 12 taps).
-    if (glossy.pyramid_levels > 0u && radius >= GLOSSY_PYRAMID_MIN_RADIUS_PX) {
-        return ppr_glossy_pyramid(src, sharp, radius, along, side, cos_i, min(taps, GLOSSY_PYRAMID_TAPS));
-    }
     let src_uv = src * frame.resolution.zw;
     let along_uv = radius * along * frame.resolution.zw;
     let side_uv = radius * cos_i * side * frame.resolution.zw;
@@ -167,52 +146,6 @@ fn ppr_glossy(vpos: vec2<i32>, src: vec2<f32>, sharp: vec4<f32>) -> vec4<f32> {
         let r = a * inverseSqrt(a * (f32(taps) - a));
         let uv = src_uv + r * (turn.x * along_uv + turn.y * side_uv);
         sum += finite_colour(textureSampleLevel(color_tex, linear_sampler, uv, 0.0).rgb);
-        turn = vec2<f32>(
-            turn.x * GLOSSY_GOLDEN_COS - turn.y * GLOSSY_GOLDEN_SIN,
-            turn.y * GLOSSY_GOLDEN_COS + turn.x * GLOSSY_GOLDEN_SIN,
-        );
-    }
-    return vec4<f32>(sum / f32(taps + 1u), sharp.a);
-}
-
-// `ppr_glossy`'s taps read from the colour pyramid: the same lobe (`taps` samples of it
-// around the source pixel `src`, a footprint of `radius` pixels, `along` the reflection's
-// screen direction and `side` across it, narrowed by `cos_i`), each tap at the pyramid
-// level whose texel is its share of the lobe's area. Importance sampling gives each tap
-// probability 1 / taps; where the lobe's density (in radii, p(r) = 1 / (π (1 + r²)²))
-// is low the taps lie far apart, so tap k stands for an area of π (1 + r_k²)² cos_i /
-// taps square radii: a square of side radius (1 + r_k²) √(π cos_i / taps) pixels, read
-// at the level whose texel has that side (level 0 is two pixels) plus
-// `glossy.pyramid_lod_bias` (crate::glossy_pyramid::LOD_BIAS says why it is negative).
-fn ppr_glossy_pyramid(
-    src: vec2<f32>,
-    sharp: vec4<f32>,
-    radius: f32,
-    along: vec2<f32>,
-    side: vec2<f32>,
-    cos_i: f32,
-    taps: u32,
-) -> vec4<f32> {
-    // Texture coordinates per pixel (level 0 covers a whole number of 32-pixel blocks).
-    let per_px = 0.5 / vec2<f32>(textureDimensions(glossy_pyramid, 0));
-    // The region built this frame, less half a level-4 texel where it ends inside the
-    // viewport (its texels there hold another frame's colour).
-    let rect = vec4<f32>(glossy.pyramid_rect);
-    let size = frame.resolution.xy;
-    let lo = select(rect.xy + 16.0, vec2<f32>(0.0), rect.xy <= vec2<f32>(0.0)) * per_px;
-    let hi = max(select(rect.zw - 16.0, size, rect.zw >= size) * per_px, lo);
-    let src_uv = src * per_px;
-    let along_uv = radius * along * per_px;
-    let side_uv = radius * cos_i * side * per_px;
-    let footprint = radius * sqrt(GLOSSY_PI * cos_i / f32(taps));
-    var turn = vec2<f32>(1.0, 0.0);
-    var sum = sharp.rgb;
-    for (var k = 0u; k < taps; k++) {
-        let a = f32(k) + 0.5;
-        let r = a * inverseSqrt(a * (f32(taps) - a));
-        let uv = clamp(src_uv + r * (turn.x * along_uv + turn.y * side_uv), lo, hi);
-        let level = max(log2(max(footprint * (1.0 + r * r), 1.0)) - 1.0 + glossy.pyramid_lod_bias, 0.0);
-        sum += textureSampleLevel(glossy_pyramid, linear_sampler, uv, level).rgb;
         turn = vec2<f32>(
             turn.x * GLOSSY_GOLDEN_COS - turn.y * GLOSSY_GOLDEN_SIN,
             turn.y * GLOSSY_GOLDEN_COS + turn.x * GLOSSY_GOLDEN_SIN,

@@ -30,8 +30,6 @@
 // CLEAR_NEXT.
 @group(0) @binding(10) var<storage, read_write> next_intermediate: array<u32>;
 @group(0) @binding(11) var<storage, read_write> next_atlas: array<u32>;
-// The glossy colour pyramid (glossy_pyramid.wgsl), read where `glossy.pyramid_levels` > 0.
-@group(0) @binding(13) var glossy_pyramid: texture_2d<f32>;
 
 override INDIRECT: bool = false;
 override NORMAL_MAPS: bool = false;

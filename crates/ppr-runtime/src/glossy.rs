@@ -4,7 +4,7 @@
 use glam::DVec3;
 
 use crate::gpu_types::{GLOSSY_CAPACITY, GpuGlossyShape, GpuGlossyShapes};
-use crate::plan::{FramePlan, ScreenRect};
+use crate::plan::FramePlan;
 use crate::shapes::ShapeTable;
 
 /// Largest footprint radius of the glossy blur (of its median tap), as a fraction of the
@@ -18,16 +18,8 @@ pub const MAX_FOOTPRINT: f32 = 0.25;
 pub const GLOSSY_TAPS: u32 = 12;
 
 /// The plan's glossy shapes (at most [`GLOSSY_CAPACITY`]) as the shader reads them,
-/// relative to `eye`, each with its screen rectangle grown by a pixel; `pyramid`: the
-/// region of the frame's colour pyramid and the taps' level bias, when the blur reads one
-/// ([`crate::glossy_pyramid::pyramid_rect`]).
-pub fn glossy_shapes(
-    table: &ShapeTable,
-    plan: &FramePlan,
-    eye: DVec3,
-    max_taps: u32,
-    pyramid: Option<(ScreenRect, f32)>,
-) -> GpuGlossyShapes {
+/// relative to `eye`, each with its screen rectangle grown by a pixel.
+pub fn glossy_shapes(table: &ShapeTable, plan: &FramePlan, eye: DVec3, max_taps: u32) -> GpuGlossyShapes {
     let [w, h] = plan.viewport;
     let glossy = &plan.glossy;
     let mut shapes = [GpuGlossyShape::default(); GLOSSY_CAPACITY];
@@ -50,10 +42,7 @@ pub fn glossy_shapes(
         count: glossy.len().min(GLOSSY_CAPACITY) as u32,
         max_radius_px: MAX_FOOTPRINT * w.min(h) as f32,
         max_taps,
-        pyramid_levels: if pyramid.is_some() { crate::glossy_pyramid::LEVELS } else { 0 },
-        pyramid_rect: pyramid.map_or([0; 4], |(r, _)| [r.min[0], r.min[1], r.max[0], r.max[1]]),
-        pyramid_lod_bias: pyramid.map_or(0.0, |(_, bias)| bias),
-        _pad: [0; 3],
+        _pad: 0,
         shapes,
     }
 }
@@ -116,7 +105,7 @@ mod tests {
             set.reflectors.push(r);
         }
         let eye = DVec3::new(0.0, 3.0, 2.0);
-        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p, eye, 12, None);
+        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p, eye, 12);
         assert_eq!(u.count, 2);
         for (slot, &i) in u.shapes.iter().zip(&p.glossy) {
             let expected_center = (set.reflectors[i as usize].center - eye).as_vec3();
@@ -133,12 +122,5 @@ mod tests {
             assert_eq!(slot.rect, grown);
         }
         assert_eq!(u.max_radius_px, super::MAX_FOOTPRINT * 180.0);
-        assert_eq!((u.pyramid_levels, u.pyramid_rect), (0, [0; 4]));
-        let rect = crate::plan::ScreenRect { min: [32, 0], max: [320, 96] };
-        let u = super::glossy_shapes(&ShapeTable::from_set(&set), &p, eye, 12, Some((rect, -2.5)));
-        assert_eq!(
-            (u.pyramid_levels, u.pyramid_rect, u.pyramid_lod_bias),
-            (crate::glossy_pyramid::LEVELS, [32, 0, 320, 96], -2.5)
-        );
     }
 }

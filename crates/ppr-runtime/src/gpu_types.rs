@@ -195,16 +195,7 @@ pub struct GpuGlossyShapes {
     pub max_radius_px: f32,
     /// The most taps per pixel.
     pub max_taps: u32,
-    /// Levels of the colour pyramid the blur samples (`glossy_pyramid.wgsl`); 0: it takes
-    /// its taps from the full-size colour.
-    pub pyramid_levels: u32,
-    /// The pyramid's built region in pixels (min x, min y, max x, max y; multiples of
-    /// [`crate::glossy_pyramid::BLOCK`] but where the viewport ends): taps are clamped
-    /// into it.
-    pub pyramid_rect: [u32; 4],
-    /// Added to each pyramid tap's level.
-    pub pyramid_lod_bias: f32,
-    pub _pad: [u32; 3],
+    pub _pad: u32,
     pub shapes: [GpuGlossyShape; GLOSSY_CAPACITY],
 }
-const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 48 + 80 * GLOSSY_CAPACITY);
+const _: () = assert!(std::mem::size_of::<GpuGlossyShapes>() == 16 + 80 * GLOSSY_CAPACITY);

@@ -20,8 +20,6 @@ mod frame_buffers;
 mod frame_upload;
 mod glossy;
 #[doc(hidden)]
-pub mod glossy_pyramid;
-#[doc(hidden)]
 pub mod gpu_types;
 #[doc(hidden)]
 pub mod parallel_trees;

@@ -11,16 +11,15 @@ use crate::encoding::EncodingLayout;
 use crate::frame_buffers::FrameBuffers;
 use crate::frame_upload::{FrameUpload, UploadMemory};
 use crate::glossy::glossy_shapes;
-use crate::glossy_pyramid::{GlossyPyramid, pyramid_rect};
 use crate::gpu_types::{FLAG_LAYER_EVERY_TILE, FLAG_OCCLUDER_TESTS, FrameUniforms, GpuLayer, kind_code};
 use crate::passes::layer_reflection::LayerPlacement;
 use crate::passes::projection::BoxReduction;
 use crate::passes::reflection::{ReflectionAblation, ReflectionVariant};
 use crate::passes::{
-    Ablation, BlockListPass, ClearPass, DownsamplePass, GlossyPyramidPass, LayerReflectionPass,
-    ProjectionPass, ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
+    Ablation, BlockListPass, ClearPass, DownsamplePass, LayerReflectionPass, ProjectionPass,
+    ProjectionVariant, ReflectionPass, SuperTileListPass, TileClassifyPass, UpsamplePass,
 };
-use crate::plan::{Choice, FramePlan, PlanParams, ScreenRect};
+use crate::plan::{Choice, FramePlan, PlanParams};
 use crate::reduced_targets::ReducedTargets;
 use crate::settings::{ReflectionSettings, WriteMode};
 use crate::shapes::ShapeTable;
@@ -215,14 +214,6 @@ pub struct DebugOptions {
     /// The reduced tiers' upsample replaced by a probe of its time (bench only, not the
     /// image: `UpsampleProbe`), on the output's dispatch (the layer output's stays).
     pub upsample_probe: crate::passes::upsample::UpsampleProbe,
-    /// The glossy blur's wide footprints take at most 8 taps from a colour pyramid built
-    /// beside the projection over the region the glossy reflections read
-    /// (`glossy_pyramid.wgsl`), instead of up to [`crate::glossy::GLOSSY_TAPS`] from the
-    /// full-size colour. Full resolution only (the reduced tiers take their taps).
-    pub glossy_pyramid: bool,
-    /// With `glossy_pyramid`: added to each tap's level instead of
-    /// [`crate::glossy_pyramid::LOD_BIAS`] (bench only).
-    pub glossy_lod_bias: Option<f32>,
 }
 
 /// Workgroups of the reflection pass's tile loop in indirect frames (`reflection.wgsl`'s
@@ -276,11 +267,6 @@ pub struct ReflectionRenderer {
     layer_reflection: LayerReflectionPass,
     downsample: DownsamplePass,
     upsample: UpsamplePass,
-    glossy_pyramid: GlossyPyramidPass,
-    /// The glossy colour pyramid of the full-size viewport (allocated by the first
-    /// `prepare` that builds one), and a small one the reflection binds when there is none.
-    pyramid: Option<GlossyPyramid>,
-    pyramid_placeholder: GlossyPyramid,
     /// The reduced tiers' textures (allocated by the first reduced `prepare`).
     reduced: Option<ReducedTargets>,
     table: ShapeTable,
@@ -321,9 +307,6 @@ impl ReflectionRenderer {
             layer_reflection: LayerReflectionPass::new(device),
             downsample: DownsamplePass::new(device),
             upsample: UpsamplePass::new(device),
-            glossy_pyramid: GlossyPyramidPass::new(device),
-            pyramid: None,
-            pyramid_placeholder: GlossyPyramid::new(device, [1, 1]),
             reduced: None,
             table: ShapeTable::default(),
             table_dirty: true,
@@ -435,32 +418,14 @@ impl ReflectionRenderer {
             .into_iter()
             .filter_map(|v| v.upload.map(FrameUpload::into_memory))
             .collect();
-        let pyramids: Vec<Option<ScreenRect>> = cameras
-            .iter()
-            .zip(&plans)
-            .map(|(camera, plan)| self.pyramid_region(camera, plan, reduced_active))
-            .collect();
-        if pyramids.iter().any(Option::is_some)
-            && self.pyramid.as_ref().is_none_or(|p| p.viewport != viewport)
-        {
-            self.pyramid = Some(GlossyPyramid::new(&self.device, viewport));
-        }
         self.views = cameras
             .iter()
             .zip(&plans)
-            .zip(pyramids)
-            .map(|((camera, plan), pyramid)| PreparedView {
+            .map(|(camera, plan)| PreparedView {
                 plan: Arc::clone(plan),
-                upload: self.upload(
-                    camera,
-                    plan,
-                    reduced_active,
-                    pyramid,
-                    recycled.pop().unwrap_or_default(),
-                ),
+                upload: self.upload(camera, plan, reduced_active, recycled.pop().unwrap_or_default()),
                 full_viewport: viewport,
                 reduced_active,
-                pyramid,
             })
             .collect();
         plans
@@ -489,22 +454,6 @@ impl ReflectionRenderer {
     /// The plan of the last [`Self::prepare`].
     pub fn plan(&self) -> Option<&FramePlan> {
         self.views.first().map(|v| v.plan.as_ref())
-    }
-
-    /// The region of the glossy colour pyramid a view's frame builds: where
-    /// `DebugOptions::glossy_pyramid` asks for one, at full resolution, on frames that blur
-    /// some glossy reflector whose source box is on screen.
-    fn pyramid_region(&self, camera: &Camera, plan: &FramePlan, reduced: bool) -> Option<ScreenRect> {
-        if !self.debug.glossy_pyramid
-            || !self.settings.glossy
-            || reduced
-            || plan.glossy.is_empty()
-            || plan.is_empty()
-        {
-            return None;
-        }
-        let rect = pyramid_rect(&self.table, plan, camera.position, &camera.clip_from_relative(plan.aspect));
-        (rect.area() > 0).then_some(rect)
     }
 
     /// The reflection pass's variant for a frame with (or without) normal maps and glossy.
@@ -555,7 +504,6 @@ impl ReflectionRenderer {
         camera: &Camera,
         plan: &FramePlan,
         reduced: bool,
-        pyramid: Option<ScreenRect>,
         mut memory: UploadMemory,
     ) -> Option<FrameUpload> {
         let [w, h] = plan.viewport;
@@ -605,8 +553,7 @@ impl ReflectionRenderer {
             .collect();
         memory.tests.fill(&self.table, plan, camera.position);
         let taps = self.debug.glossy_taps.unwrap_or(crate::glossy::GLOSSY_TAPS);
-        let bias = self.debug.glossy_lod_bias.unwrap_or(crate::glossy_pyramid::LOD_BIAS);
-        let glossy = glossy_shapes(&self.table, plan, camera.position, taps, pyramid.map(|r| (r, bias)));
+        let glossy = glossy_shapes(&self.table, plan, camera.position, taps);
         debug_assert!(b.fits(&self.table, plan, self.debug.writes));
         Some(FrameUpload::new(
             &[
@@ -705,14 +652,6 @@ impl ReflectionRenderer {
         self.buffers.as_ref().map(|b| &b.super_lists)
     }
 
-    /// The glossy colour pyramid (`DebugOptions::glossy_pyramid`), once a frame built one;
-    /// its region is the last prepared view's (`None` where that frame built none), for
-    /// tests and debug views.
-    pub fn glossy_pyramid(&self) -> Option<(&wgpu::Texture, ScreenRect)> {
-        let rect = self.views.first()?.pyramid?;
-        Some((self.pyramid.as_ref()?.texture(), rect))
-    }
-
     /// The active-tile list of the last frame (count, the indirect dispatch arguments x, y,
     /// z, tile indices), for debug views and tests.
     pub fn active_tiles_buffer(&self) -> Option<&wgpu::Buffer> {
@@ -727,6 +666,4 @@ pub(crate) struct PreparedView {
     pub upload: Option<FrameUpload>,
     pub full_viewport: [u32; 2],
     pub reduced_active: bool,
-    /// The region of the glossy colour pyramid its encode builds, if it builds one.
-    pub pyramid: Option<ScreenRect>,
 }

@@ -39,7 +39,7 @@ pub const OCCUPANCY_PAD: &str = include_str!("../shaders/occupancy_pad.wgsl");
 pub const SHADING: &str = include_str!("../shaders/shading.wgsl");
 
 /// Glossy reflections: the reflector lookup and the lobe's taps (needs `frame`,
-/// `color_tex`, `linear_sampler`, `depth_tex`, `glossy_pyramid`, `glossy`, `valid_depth_at`, [`VIEW`] and
+/// `color_tex`, `linear_sampler`, `depth_tex`, `glossy`, `valid_depth_at`, [`VIEW`] and
 /// [`SHADING`]).
 pub const GLOSSY: &str = include_str!("../shaders/glossy.wgsl");
 
@@ -160,7 +160,6 @@ pub fn all_passes() -> Vec<(&'static str, String)> {
         ("reflection", source_with(&[VIEW, SHADING, GLOSSY], reflection::WGSL)),
         ("layer reflection", source_with(&[VIEW, SHADING], layer_reflection::WGSL)),
         ("downsample", source_with(&[VIEW], downsample::WGSL)),
-        ("glossy pyramid", source(glossy_pyramid::WGSL)),
         ("upsample", source_with(&[VIEW, upsample::SPAN_STUB], upsample::WGSL)),
         ("upsample (shared)", source_with(&[VIEW, upsample::SPAN], upsample::WGSL)),
     ]

@@ -125,13 +125,6 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("frame span, separate upload copies", Choice::Auto, Ablation::None),
         ("frame span, copied upload", Choice::Auto, Ablation::None),
         ("frame span, path blockers off", Choice::Auto, Ablation::None),
-        ("glossy pyramid", Choice::Auto, Ablation::None),
-        ("reflection own pass, glossy pyramid", Choice::Auto, Ablation::None),
-        ("frame span, glossy pyramid", Choice::Auto, Ablation::None),
-        ("frame span, glossy pyramid, bias -1", Choice::Auto, Ablation::None),
-        ("frame span, glossy pyramid, bias -20", Choice::Auto, Ablation::None),
-        ("frame span, glossy pyramid, 8 taps", Choice::Auto, Ablation::None),
-        ("frame span, glossy pyramid, 8 taps, bias -1", Choice::Auto, Ablation::None),
         ("frame span, glossy, 8 taps", Choice::Auto, Ablation::None),
         ("frame span, layered reflection own pass", Choice::Auto, Ablation::None),
         ("layered reflection own pass", Choice::Auto, Ablation::None),
@@ -379,10 +372,9 @@ pub fn run_runtime(
                     frame_span: name.starts_with("frame span"),
                     classify_own_pass: name.contains("classify own pass"),
                     reflection_own_pass: name.ends_with(", reflection own pass")
-                        || name.starts_with("reflection own pass"),
-                    glossy_pyramid: name.contains("glossy pyramid"),
-                    glossy_lod_bias: name.rsplit_once("bias ").and_then(|(_, b)| b.parse().ok()),
-                    glossy_taps: if name.contains(", 8 taps") { Some(8) } else { tuning.glossy_taps },
+                        || name == "reflection own pass",
+                    // The most glossy taps 8, not 12 (the thirty-fifth session's row).
+                    glossy_taps: if name.ends_with(", 8 taps") { Some(8) } else { tuning.glossy_taps },
                     layered_reflection_own_pass: name.ends_with("layered reflection own pass"),
                     separate_upload_copies: name.ends_with("separate upload copies"),
                     copied_upload: name.ends_with("copied upload")

@@ -125,7 +125,7 @@ impl LayerReflectionPass {
             WGSL,
         );
         let pipeline = compute_pipeline(device, "ppr layer reflection", &layout, &module, "main", &[]);
-        let sampler = linear_sampler(device, "ppr layer reflection linear", false);
+        let sampler = linear_sampler(device, "ppr layer reflection linear");
         Self { pipeline, full_stretch: None, module, layout, bind_groups: BindGroupCache::default(), sampler }
     }
 

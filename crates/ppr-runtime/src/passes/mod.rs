@@ -4,7 +4,6 @@ mod bind_group_cache;
 pub mod block_lists;
 pub mod clear;
 pub mod downsample;
-pub mod glossy_pyramid;
 pub mod layer_reflection;
 pub mod projection;
 pub mod reflection;
@@ -15,7 +14,6 @@ pub mod upsample;
 pub use block_lists::BlockListPass;
 pub use clear::ClearPass;
 pub use downsample::DownsamplePass;
-pub use glossy_pyramid::GlossyPyramidPass;
 pub use layer_reflection::LayerReflectionPass;
 pub use projection::{Ablation, BoxReduction, ProjectionPass, ProjectionVariant};
 pub use reflection::ReflectionPass;
@@ -67,7 +65,7 @@ pub(crate) fn loaded_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// A float texture the pass samples (filtered: the scene colour, the glossy pyramid).
+/// A float texture the pass samples (filtered: the scene colour).
 pub(crate) fn sampled_texture_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
@@ -91,15 +89,14 @@ pub(crate) fn sampler_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
     }
 }
 
-/// A bilinear sampler clamped to the edge (trilinear between mip levels with `mipmaps`).
-pub(crate) fn linear_sampler(device: &wgpu::Device, label: &str, mipmaps: bool) -> wgpu::Sampler {
+/// A bilinear sampler clamped to the edge.
+pub(crate) fn linear_sampler(device: &wgpu::Device, label: &str) -> wgpu::Sampler {
     device.create_sampler(&wgpu::SamplerDescriptor {
         label: Some(label),
         address_mode_u: wgpu::AddressMode::ClampToEdge,
         address_mode_v: wgpu::AddressMode::ClampToEdge,
         mag_filter: wgpu::FilterMode::Linear,
         min_filter: wgpu::FilterMode::Linear,
-        mipmap_filter: if mipmaps { wgpu::MipmapFilterMode::Linear } else { wgpu::MipmapFilterMode::Nearest },
         ..Default::default()
     })
 }

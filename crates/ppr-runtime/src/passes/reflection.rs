@@ -37,9 +37,6 @@ pub struct ReflectionBindings<'a> {
     /// between two reads; without this binding the reflection waited there for the layer
     /// pass to end instead of running beside it.
     pub upload_storage: BufferPart<'a>,
-    /// The glossy colour pyramid, every level (read where the glossy uniform says it was
-    /// built; any `Rgba16Float` texture otherwise).
-    pub pyramid: &'a wgpu::TextureView,
 }
 
 /// Which reflection pipeline a frame runs (beside direct or indirect dispatch).
@@ -171,7 +168,6 @@ impl ReflectionPass {
                 storage_entry(10, false),
                 storage_entry(11, false),
                 storage_entry(12, true),
-                sampled_texture_entry(13),
             ],
         });
         let module = crate::shader::module_with(
@@ -180,7 +176,7 @@ impl ReflectionPass {
             &[crate::shader::VIEW, crate::shader::SHADING, crate::shader::GLOSSY],
             WGSL,
         );
-        let sampler = linear_sampler(device, "ppr reflection linear", true);
+        let sampler = linear_sampler(device, "ppr reflection linear");
         let mut pass = Self {
             pipelines: HashMap::new(),
             module,
@@ -275,10 +271,6 @@ impl ReflectionPass {
                     wgpu::BindGroupEntry { binding: 10, resource: b.next_intermediate.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 11, resource: b.next_atlas.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 12, resource: b.upload_storage.binding() },
-                    wgpu::BindGroupEntry {
-                        binding: 13,
-                        resource: wgpu::BindingResource::TextureView(b.pyramid),
-                    },
                 ],
             },
         )

@@ -8,14 +8,13 @@ use crate::pass_layout::PassLayout;
 use crate::passes::block_lists::BlockListBindings;
 use crate::passes::clear::ClearBindings;
 use crate::passes::downsample::DownsampleBindings;
-use crate::passes::glossy_pyramid::GlossyPyramidBindings;
 use crate::passes::layer_reflection::{LayerBindings, LayerGroups, LayerPlacement};
 use crate::passes::projection::ProjectionBindings;
 use crate::passes::reflection::{ReflectionBindings, ReflectionVariant};
 use crate::passes::super_tile_lists::SuperTileBindings;
 use crate::passes::tile_classify::{ACTIVE_TILES_HEADER, ClassifyBindings};
 use crate::passes::upsample::{UpsampleBindings, UpsampleProbe, UpsampleVariant};
-use crate::plan::{FramePlan, ScreenRect};
+use crate::plan::FramePlan;
 use crate::reduced_targets::ReducedTargets;
 use crate::timestamps::{
     CLASSIFY, CLEAR, DOWNSAMPLE, LAYERS, PROJECTION, PROJECTION_REFLECTION, PassTimer, REFLECTION, UPSAMPLE,
@@ -41,8 +40,6 @@ struct FrameRecorder<'a> {
     classify: Option<wgpu::BindGroup>,
     layers: Option<wgpu::BindGroup>,
     reflection: Option<(wgpu::BindGroup, ReflectionVariant)>,
-    /// The glossy pyramid's build and its region, where the frame builds one.
-    pyramid: Option<(wgpu::BindGroup, ScreenRect)>,
 }
 
 impl<'a> FrameRecorder<'a> {
@@ -164,12 +161,6 @@ impl<'a> FrameRecorder<'a> {
         let with_reflection = self.layout.reflection_with_projection;
         let index = if with_reflection { PROJECTION_REFLECTION } else { PROJECTION };
         let mut pass = self.begin(encoder, "ppr projection", index);
-        if let Some((bg, rect)) = &self.pyramid {
-            // First, beside everything up to the reflection (no buffer or texture in
-            // common): the reflection's barrier waits for it.
-            r.glossy_pyramid.encode(&mut pass, bg, *rect);
-            self.count(1);
-        }
         if self.layout.classify_with_projection {
             self.record_classify(&mut pass);
         }
@@ -317,7 +308,6 @@ impl ReflectionRenderer {
                     next_intermediate: if plan.indirect { &b.placeholder } else { &b.intermediate[1 - slot] },
                     next_atlas: if plan.indirect { &b.placeholder } else { &b.atlas[1 - slot] },
                     upload_storage: parts.part(UploadTarget::Shapes),
-                    pyramid: &self.pyramid.as_ref().unwrap_or(&self.pyramid_placeholder).view,
                 },
             );
             let variant = self.reflection_variant(
@@ -325,19 +315,6 @@ impl ReflectionRenderer {
                 self.settings.glossy && !plan.glossy.is_empty(),
             );
             (bg, variant)
-        });
-        let pyramid = view.pyramid.filter(|_| layout.has_main).map(|rect| {
-            let pyramid = self.pyramid.as_ref().expect("prepare() allocates the glossy pyramid");
-            let bg = self.glossy_pyramid.bind_group(
-                device,
-                &GlossyPyramidBindings {
-                    uniforms: parts.part(UploadTarget::Uniforms),
-                    color,
-                    glossy: parts.part(UploadTarget::Glossy),
-                    pyramid,
-                },
-            );
-            (bg, rect)
         });
         let frame = FrameRecorder {
             r: self,
@@ -351,7 +328,6 @@ impl ReflectionRenderer {
             classify,
             layers,
             reflection,
-            pyramid,
         };
 
         // The frame's span begins before its copies: everything this encode records.
