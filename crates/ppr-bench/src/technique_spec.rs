@@ -77,7 +77,8 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
 /// their own pass), `fade=`, `replace-far=`,
 /// `tier=`, `glossy=on|off` (reflectors with roughness blurred, the default, or all mirrors:
-/// the exact reference is a mirror's), `timing=passes|frame` (GPU time as the sum of the
+/// the exact reference is a mirror's), `glossy-taps=N` (the glossy blur's most taps a pixel,
+/// 2 to 64, instead of 12: `DebugOptions::glossy_taps`), `timing=passes|frame` (GPU time as the sum of the
 /// passes' own timestamps, the default, or the whole frame between two encoder timestamps,
 /// the barriers between passes included; the SSR and SSPR baselines take it too),
 /// `upsample=per-pixel|shared` (the reduced tiers' upsample reads each pixel's reduced
@@ -88,7 +89,7 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 15] = [
+const PPR_KEYS: [&str; 16] = [
     "culling",
     "indirect",
     "groups",
@@ -100,6 +101,7 @@ const PPR_KEYS: [&str; 15] = [
     "replace-far",
     "tier",
     "glossy",
+    "glossy-taps",
     "timing",
     "upsample",
     "bounces",
@@ -206,6 +208,9 @@ impl TechniqueSpec {
                 }
                 "tier" => {
                     parse_tier(v).map_err(bad)?;
+                }
+                "glossy-taps" => {
+                    glossy_taps(v).map_err(bad)?;
                 }
                 "timing" => {
                     frame_timing(v).map_err(bad)?;
@@ -355,6 +360,15 @@ pub fn ppr_settings(
     Ok(Some((settings, params)))
 }
 
+/// `glossy-taps=`: the glossy blur's most taps a pixel (0 and 1 are the bench's cost
+/// probes, not a blur: `--glossy` rows of the runtime suite).
+fn glossy_taps(v: &str) -> Result<u32, String> {
+    match v.parse::<u32>() {
+        Ok(n) if (2..=64).contains(&n) => Ok(n),
+        _ => Err(format!("glossy-taps: `{v}` is not a whole number from 2 to 64")),
+    }
+}
+
 /// `timing=`: whether PPR is timed as a whole frame (`frame`) or pass by pass (`passes`).
 fn frame_timing(v: &str) -> Result<bool, String> {
     match v {
@@ -395,6 +409,9 @@ pub fn build_technique(
         runner.set_reference_bounces(reference_bounces(spec)?);
         if let Some(v) = spec.param("timing") {
             runner.renderer().debug.frame_span = frame_timing(v).map_err(BenchError::Spec)?;
+        }
+        if let Some(v) = spec.param("glossy-taps") {
+            runner.renderer().debug.glossy_taps = Some(glossy_taps(v).map_err(BenchError::Spec)?);
         }
         if let Some(v) = spec.param("upsample") {
             let (shared, probe) = upsample_mode(v).map_err(BenchError::Spec)?;
@@ -519,6 +536,13 @@ mod tests {
         assert!("ppr:blockers=maybe".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:blockers=off".parse::<TechniqueSpec>().is_err());
         assert!("ppr:glossy=blurry".parse::<TechniqueSpec>().is_err());
+        let eight: TechniqueSpec = "ppr:glossy-taps=8".parse().expect("glossy taps");
+        assert_eq!(eight.label(), "ppr glossy-taps=8");
+        for bad in
+            ["ppr:glossy-taps=1", "ppr:glossy-taps=65", "ppr:glossy-taps=many", "ssr-low:glossy-taps=8"]
+        {
+            assert!(bad.parse::<TechniqueSpec>().is_err(), "{bad}");
+        }
         assert!("nope".parse::<TechniqueSpec>().is_err());
         assert!("ppr:culling=maybe".parse::<TechniqueSpec>().is_err());
         assert!("exact:steps=3".parse::<TechniqueSpec>().is_err());
