@@ -8,6 +8,7 @@ use ppr_testbed::GpuContext;
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
+use crate::goals::{GoalFiles, judge_files, write_atomically};
 use crate::report::compare_report::write_compare_report;
 use crate::report::pipeline_stats_report::write_pipeline_stats_report;
 use crate::report::runtime_report::write_runtime_report;
@@ -89,6 +90,43 @@ pub enum Suite {
     /// WGPU_BACKEND=vulkan so that the frames choose the variants (subgroups) the GPU's wgpu
     /// device gets.
     PipelineStats(PipelineStatsArgs),
+    /// Issue 13's goals judged from CSV files the other suites wrote (no GPU): whole frames
+    /// at 4K, the projection against its floor, PPR against the cheapest low-quality SSR,
+    /// the generated levels against shape count, collision-world. Prints a markdown report
+    /// (and writes it with --out) saying which goals the files meet and by how much the
+    /// others are missed.
+    ///
+    /// The runtime files should hold the `frame span` and `reflection own pass` profile rows
+    /// (`runtime --projection-profile --profile-row "frame span" --profile-row "reflection
+    /// own pass"`) and, for the scaling goals, the generated levels (`runtime --scene
+    /// stairway-1 --scene stairway-1000 --scene stairway-10000 …`). Example:
+    ///
+    ///   ppr-bench goals --runtime results/profile --runtime results/generated
+    ///     --compare results/compare --compare results/collision
+    ///     --baseline-compare docs/perf/comparison_34_h100.csv --out goals.md
+    #[command(verbatim_doc_comment)]
+    Goals(GoalsArgs),
+}
+
+/// Options of `goals`.
+#[derive(Args, Debug, Clone)]
+pub struct GoalsArgs {
+    /// A `runtime.csv`, or a `runtime --out` folder holding one (repeat).
+    #[arg(long = "runtime", value_name = "CSV_OR_DIR")]
+    pub runtime: Vec<PathBuf>,
+    /// A `comparison.csv`, or a `compare --out` folder holding one (repeat).
+    #[arg(long = "compare", value_name = "CSV_OR_DIR")]
+    pub compare: Vec<PathBuf>,
+    /// A compare run of the code whose on-screen PSNR full PPR must not fall below (without
+    /// it the PSNR goal is not judged).
+    #[arg(long = "baseline-compare", value_name = "CSV_OR_DIR")]
+    pub baseline_compare: Option<PathBuf>,
+    /// How many dB below the baseline's PSNR still count as no lower.
+    #[arg(long, default_value_t = 0.02)]
+    pub psnr_tolerance_db: f64,
+    /// Also write the report to this file.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
 }
 
 /// Options of `pipeline-stats`.
@@ -168,6 +206,24 @@ pub struct RuntimeArgs {
     /// `--stereo 2064x2208 --stereo 1920x1080`).
     #[arg(long = "stereo", value_parser = parse_size)]
     pub stereo: Vec<[u32; 2]>,
+}
+
+/// `goals`: judges the files, prints the report, writes it where asked.
+fn run_goals(a: &GoalsArgs) -> Result<Vec<PathBuf>, BenchError> {
+    let judgement = judge_files(&GoalFiles {
+        runtime: a.runtime.clone(),
+        compare: a.compare.clone(),
+        baseline: a.baseline_compare.clone(),
+        psnr_tolerance_db: a.psnr_tolerance_db,
+    })?;
+    print!("{}", judgement.markdown);
+    match &a.out {
+        Some(path) => {
+            write_atomically(path, &judgement.markdown)?;
+            Ok(vec![path.clone()])
+        }
+        None => Ok(Vec::new()),
+    }
 }
 
 /// `WIDTHxHEIGHT`.
@@ -391,7 +447,11 @@ where
     let args: Vec<std::ffi::OsString> = args.into_iter().map(Into::into).collect();
     let command_line = args.iter().map(|a| a.to_string_lossy().into_owned()).collect::<Vec<_>>().join(" ");
     let cli = Cli::try_parse_from(&args).map_err(|e| BenchError::Spec(e.to_string()))?;
-    let gpu = GpuContext::new_headless()?;
+    // `goals` reads files only: answered before a GPU is asked for.
+    let gpu = match &cli.suite {
+        Suite::Goals(a) => return run_goals(a),
+        _ => GpuContext::new_headless()?,
+    };
     eprintln!("adapter: {}", gpu.describe());
     match &cli.suite {
         Suite::Compare(a) => {
@@ -477,6 +537,7 @@ where
             let (rows, notes) = run_extract_trade(&gpu, &cfg, &tc)?;
             write_trade_report(&cfg.out_dir, &rows, &notes, &gpu.describe(), tc.resolution, &command_line)
         }
+        Suite::Goals(_) => unreachable!("`goals` returned before the GPU was made"),
         Suite::PipelineStats(a) => {
             let mut cfg = a.paths.config();
             cfg.command_line = command_line.clone();

@@ -20,6 +20,10 @@ pub enum BenchError {
     /// A file could not be written.
     #[error("{}: {source}", path.display())]
     Io { path: PathBuf, source: std::io::Error },
+    /// A CSV file read back (`goals`) lacks a column or holds a value that does not parse
+    /// (the reason names the line and the field).
+    #[error("{}: {reason}", path.display())]
+    Csv { path: PathBuf, reason: String },
     /// A plot could not be drawn or saved.
     #[error("plot {}: {reason}", path.display())]
     Plot { path: PathBuf, reason: String },

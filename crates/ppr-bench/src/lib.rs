@@ -21,6 +21,7 @@ pub mod error;
 pub mod error_causes;
 pub mod exact_reference;
 pub mod frame_loop;
+pub mod goals;
 pub mod mirror_room;
 pub mod pipeline_stats;
 pub mod ppr_runner;

@@ -4,6 +4,7 @@
 mod bounces;
 mod error_causes;
 mod glossy_compare;
+mod goals;
 mod mirror_rooms;
 mod pipeline_stats;
 mod quick_compare;
