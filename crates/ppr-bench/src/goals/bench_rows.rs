@@ -47,6 +47,9 @@ pub struct CompareRow {
     /// PSNR against the reference over the pixels whose reflection is on screen (`inf`
     /// where equal, `NaN` where quality was not measured).
     pub psnr_on_screen_db: f64,
+    /// What the run scored against, from its command line (`--reference mirror`): the
+    /// flag's value, or `default` where the command gave none or the file has no command.
+    pub reference: String,
 }
 
 /// A row type read by column name.
@@ -79,6 +82,7 @@ impl BenchRow for CompareRow {
             technique: r.text("technique")?,
             gpu_total_median_ms: r.number("gpu_total_median_ms")?,
             psnr_on_screen_db: r.number("psnr_on_screen_db")?,
+            reference: r.optional("command").map_or_else(|| "default".to_owned(), reference_of),
         })
     }
 }
@@ -93,6 +97,11 @@ impl Record<'_> {
     fn field(&self, name: &str) -> Result<&str, String> {
         let i = self.header.iter().position(|h| h == name).ok_or_else(|| format!("no column `{name}`"))?;
         self.fields.get(i).ok_or_else(|| format!("column `{name}` is missing from the row"))
+    }
+
+    /// The field of a column the file may lack.
+    fn optional(&self, name: &str) -> Option<&str> {
+        self.field(name).ok()
     }
 
     fn text(&self, name: &str) -> Result<String, String> {
@@ -118,6 +127,20 @@ impl Record<'_> {
     fn number_or_nan(&self, name: &str) -> Result<f64, String> {
         if self.header.iter().any(|h| h == name) { self.number(name) } else { Ok(f64::NAN) }
     }
+}
+
+/// The value of `--reference` on a command line (`default` without one).
+fn reference_of(command: &str) -> String {
+    let mut words = command.split_whitespace();
+    while let Some(w) = words.next() {
+        if let Some(v) = w.strip_prefix("--reference=") {
+            return v.to_owned();
+        }
+        if w == "--reference" {
+            return words.next().unwrap_or("default").to_owned();
+        }
+    }
+    "default".to_owned()
 }
 
 /// `scene [row]` → (`scene`, `Some(row)`); a label without brackets → (label, `None`).
@@ -169,6 +192,13 @@ mod tests {
             split_label("stairway-1000 [path blockers off]"),
             ("stairway-1000", Some("path blockers off"))
         );
+    }
+
+    #[test]
+    fn the_reference_is_read_from_the_command_line() {
+        assert_eq!(reference_of("ppr-bench compare --reference mirror --scene demo"), "mirror");
+        assert_eq!(reference_of("ppr-bench compare --reference=glossy"), "glossy");
+        assert_eq!(reference_of("ppr-bench compare --scene demo"), "default");
     }
 
     #[test]

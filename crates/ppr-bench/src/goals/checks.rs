@@ -92,16 +92,25 @@ pub struct GoalInputs<'a> {
     pub psnr_tolerance_db: f64,
 }
 
+/// The checks of a judgement, and what could not be judged and why.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Verdicts {
+    pub checks: Vec<Check>,
+    /// Lines for the report: comparisons left out (a baseline scored against another
+    /// reference, with no camera in common).
+    pub notes: Vec<String>,
+}
+
 /// Every check the rows allow, goal by goal.
-pub fn check_goals(inputs: &GoalInputs<'_>) -> Vec<Check> {
-    let mut checks = Vec::new();
-    checks.extend(frame_checks(inputs.runtime));
-    checks.extend(floor_checks(inputs.runtime));
-    checks.extend(compare_checks(inputs));
-    checks.extend(scaling_checks(inputs.runtime));
-    checks.extend(collision_checks(inputs.compare));
-    checks.sort_by_key(|c| c.goal);
-    checks
+pub fn check_goals(inputs: &GoalInputs<'_>) -> Verdicts {
+    let mut v = Verdicts::default();
+    v.checks.extend(frame_checks(inputs.runtime));
+    v.checks.extend(floor_checks(inputs.runtime));
+    compare_checks(inputs, &mut v);
+    v.checks.extend(scaling_checks(inputs.runtime));
+    v.checks.extend(collision_checks(inputs.compare));
+    v.checks.sort_by_key(|c| c.goal);
+    v
 }
 
 /// `4K`, `1080p` or `WxH`.
@@ -248,9 +257,8 @@ fn cheapest_ssr_low(
         .min_by(|a, b| a.1.total_cmp(&b.1))
 }
 
-fn compare_checks(inputs: &GoalInputs<'_>) -> Vec<Check> {
+fn compare_checks(inputs: &GoalInputs<'_>, v: &mut Verdicts) {
     let rows = inputs.compare;
-    let mut checks = Vec::new();
     for scene in COMPARE_SCENES {
         let mut sizes: Vec<(u32, u32)> = rows
             .iter()
@@ -279,7 +287,7 @@ fn compare_checks(inputs: &GoalInputs<'_>) -> Vec<Check> {
                     continue;
                 };
                 let ratio = ppr_ms / ssr_ms;
-                checks.push(Check {
+                v.checks.push(Check {
                     goal: Goal::CompareCost,
                     subject: format!("{scene} {name}, {what}"),
                     value: ratio,
@@ -291,22 +299,64 @@ fn compare_checks(inputs: &GoalInputs<'_>) -> Vec<Check> {
                 });
             }
             let Some(baseline) = inputs.baseline else { continue };
-            let psnr = |r: &CompareRow| r.psnr_on_screen_db;
-            if let (Some(now), Some(then)) = (
-                camera_mean(rows, scene, size, "ppr", &cameras, psnr),
-                camera_mean(baseline, scene, size, "ppr", &cameras, psnr),
-            ) {
-                checks.push(Check {
-                    goal: Goal::ComparePsnr,
-                    subject: format!("{scene} {name}"),
-                    value: now - then,
-                    met: now >= then - inputs.psnr_tolerance_db,
-                    detail: format!("{now:.2} dB against the baseline's {then:.2} dB"),
-                });
-            }
+            psnr_check(rows, baseline, scene, size, &cameras, inputs.psnr_tolerance_db, v);
         }
     }
-    checks
+}
+
+/// Full PPR's on-screen PSNR against the baseline's, over the cameras both runs have, where
+/// both scored against the same reference.
+fn psnr_check(
+    rows: &[CompareRow],
+    baseline: &[CompareRow],
+    scene: &str,
+    size: (u32, u32),
+    cameras: &[String],
+    tolerance_db: f64,
+    v: &mut Verdicts,
+) {
+    let name = size_name(size.0, size.1);
+    let ppr_of = |rows: &'_ [CompareRow]| -> Vec<CompareRow> {
+        rows.iter()
+            .filter(|r| r.scene == scene && (r.width, r.height) == size && r.technique == "ppr")
+            .cloned()
+            .collect()
+    };
+    let (now, then) = (ppr_of(rows), ppr_of(baseline));
+    if then.is_empty() {
+        return;
+    }
+    let common: Vec<String> =
+        cameras.iter().filter(|c| then.iter().any(|r| r.camera == **c)).cloned().collect();
+    if common.is_empty() {
+        v.notes
+            .push(format!("PSNR of {scene} {name} not judged: the baseline has none of this run's cameras."));
+        return;
+    }
+    let (reference_now, reference_then) = (&now[0].reference, &then[0].reference);
+    if reference_now != reference_then {
+        v.notes.push(format!(
+            "PSNR of {scene} {name} not judged: this run scored against the `{reference_now}` reference, \
+             the baseline against the `{reference_then}` one."
+        ));
+        return;
+    }
+    let psnr = |r: &CompareRow| r.psnr_on_screen_db;
+    if let (Some(a), Some(b)) = (
+        camera_mean(rows, scene, size, "ppr", &common, psnr),
+        camera_mean(baseline, scene, size, "ppr", &common, psnr),
+    ) {
+        v.checks.push(Check {
+            goal: Goal::ComparePsnr,
+            subject: format!("{scene} {name}"),
+            value: a - b,
+            met: a >= b - tolerance_db,
+            detail: format!(
+                "{a:.2} dB against the baseline's {b:.2} dB ({} cameras, `{reference_now}` reference)",
+                common.len()
+            ),
+        });
+    }
 }
 
 fn scaling_checks(rows: &[RuntimeRow]) -> Vec<Check> {
@@ -409,6 +459,7 @@ mod tests {
             technique: technique.into(),
             gpu_total_median_ms: ms,
             psnr_on_screen_db: psnr,
+            reference: "mirror".into(),
         }
     }
 
@@ -416,7 +467,7 @@ mod tests {
     const HD: (u32, u32) = (1920, 1080);
 
     fn judge(runtime: &[RuntimeRow], compare: &[CompareRow], baseline: Option<&[CompareRow]>) -> Vec<Check> {
-        check_goals(&GoalInputs { runtime, compare, baseline, psnr_tolerance_db: 0.02 })
+        check_goals(&GoalInputs { runtime, compare, baseline, psnr_tolerance_db: 0.02 }).checks
     }
 
     fn of(checks: &[Check], goal: Goal) -> Vec<&Check> {
@@ -484,6 +535,26 @@ mod tests {
             [compare("demo", "a", UHD, "ppr", 0.5, 25.5), compare("demo", "b", UHD, "ppr", 0.5, 26.6)];
         let psnr = of(&judge(&[], &rows, Some(&lower)), Goal::ComparePsnr)[0].clone();
         assert!(!psnr.met && (psnr.value + 0.05).abs() < 1e-9, "{psnr:?}");
+        // Over the cameras both runs have: camera b alone, 27.0 against 26.6.
+        let one = [compare("demo", "b", UHD, "ppr", 0.5, 26.6), compare("demo", "z", UHD, "ppr", 0.5, 40.0)];
+        let psnr = of(&judge(&[], &rows, Some(&one)), Goal::ComparePsnr)[0].clone();
+        assert!(
+            psnr.met && (psnr.value - 0.4).abs() < 1e-9 && psnr.detail.contains("(1 cameras"),
+            "{psnr:?}"
+        );
+        // Another reference: not judged, and the notes say why.
+        let mut glossy = baseline.to_vec();
+        for r in &mut glossy {
+            r.reference = "default".into();
+        }
+        let v = check_goals(&GoalInputs {
+            runtime: &[],
+            compare: &rows,
+            baseline: Some(&glossy),
+            psnr_tolerance_db: 0.02,
+        });
+        assert!(v.checks.iter().all(|c| c.goal != Goal::ComparePsnr));
+        assert!(v.notes.iter().any(|n| n.contains("demo 4K") && n.contains("`default`")), "{:?}", v.notes);
     }
 
     #[test]

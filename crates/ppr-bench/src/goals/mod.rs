@@ -29,6 +29,8 @@ pub struct GoalFiles {
 #[derive(Clone, Debug, PartialEq)]
 pub struct GoalJudgement {
     pub checks: Vec<Check>,
+    /// What could not be judged and why.
+    pub notes: Vec<String>,
     pub markdown: String,
 }
 
@@ -63,14 +65,14 @@ pub fn judge_files(files: &GoalFiles) -> Result<GoalJudgement, BenchError> {
         }
         None => None,
     };
-    let checks = check_goals(&GoalInputs {
+    let verdicts = check_goals(&GoalInputs {
         runtime: &runtime,
         compare: &compare,
         baseline: baseline.as_deref(),
         psnr_tolerance_db: files.psnr_tolerance_db,
     });
-    let markdown = goals_markdown(&checks, &read, files.baseline.is_some());
-    Ok(GoalJudgement { checks, markdown })
+    let markdown = goals_markdown(&verdicts, &read, files.baseline.is_some());
+    Ok(GoalJudgement { checks: verdicts.checks, notes: verdicts.notes, markdown })
 }
 
 /// Writes `text` to `path` through a temporary file beside it, so that a failed write

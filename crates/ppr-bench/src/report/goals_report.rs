@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use crate::goals::checks::{Check, Goal};
+use crate::goals::checks::{Check, Goal, Verdicts};
 use crate::report::markdown::MarkdownTable;
 
 /// A check's value in its goal's unit.
@@ -20,7 +20,8 @@ fn value_text(c: &Check) -> String {
 
 /// The report: which files, how many checks are met, and each goal's table (or why it has
 /// none).
-pub fn goals_markdown(checks: &[Check], files: &[PathBuf], has_baseline: bool) -> String {
+pub fn goals_markdown(verdicts: &Verdicts, files: &[PathBuf], has_baseline: bool) -> String {
+    let checks = &verdicts.checks;
     let mut out = String::from("# Issue 13's goals, judged from the bench's CSV files\n\nFiles:\n\n");
     for f in files {
         out.push_str(&format!("- `{}`\n", f.display()));
@@ -29,7 +30,9 @@ pub fn goals_markdown(checks: &[Check], files: &[PathBuf], has_baseline: bool) -
     out.push_str(&format!("\n**{met} of {} checks met.** By goal:\n\n", checks.len()));
     for goal in Goal::ALL {
         let of: Vec<&Check> = checks.iter().filter(|c| c.goal == goal).collect();
-        let state = if of.is_empty() {
+        let state = if of.is_empty() && goal == Goal::ComparePsnr {
+            "not judged (below)".to_owned()
+        } else if of.is_empty() {
             "not measured in these files".to_owned()
         } else if of.iter().all(|c| c.met) {
             format!("**met** ({} of {})", of.len(), of.len())
@@ -41,11 +44,17 @@ pub fn goals_markdown(checks: &[Check], files: &[PathBuf], has_baseline: bool) -
     for goal in Goal::ALL {
         out.push_str(&format!("\n## {}\n\n", goal.title()));
         let of: Vec<&Check> = checks.iter().filter(|c| c.goal == goal).collect();
+        if goal == Goal::ComparePsnr {
+            for n in &verdicts.notes {
+                out.push_str(&format!("{n}\n\n"));
+            }
+        }
         if of.is_empty() {
             out.push_str(match goal {
                 Goal::ComparePsnr if !has_baseline => {
                     "Not judged: give `--baseline-compare` (a compare run of the code to compare with).\n"
                 }
+                Goal::ComparePsnr => "Not judged: no scene and size comparable with the baseline.\n",
                 _ => "Not measured: no rows for it in these files.\n",
             });
             continue;
