@@ -60,11 +60,12 @@ pub trait BenchRow: Sized {
 
 impl BenchRow for RuntimeRow {
     fn from_record(r: &Record<'_>) -> Result<Self, String> {
+        let (scene, camera, width, height) = r.view()?;
         Ok(Self {
-            scene: r.text("scene")?,
-            camera: r.text("camera")?,
-            width: r.whole("width")?,
-            height: r.whole("height")?,
+            scene,
+            camera,
+            width,
+            height,
             pass: r.text("pass")?,
             median_ms: r.number("median_ms")?,
             ratio_to_floor: r.number_or_nan("ratio_to_floor")?,
@@ -74,11 +75,12 @@ impl BenchRow for RuntimeRow {
 
 impl BenchRow for CompareRow {
     fn from_record(r: &Record<'_>) -> Result<Self, String> {
+        let (scene, camera, width, height) = r.view()?;
         Ok(Self {
-            scene: r.text("scene")?,
-            camera: r.text("camera")?,
-            width: r.whole("width")?,
-            height: r.whole("height")?,
+            scene,
+            camera,
+            width,
+            height,
             technique: r.text("technique")?,
             gpu_total_median_ms: r.number("gpu_total_median_ms")?,
             psnr_on_screen_db: r.number("psnr_on_screen_db")?,
@@ -97,6 +99,11 @@ impl Record<'_> {
     fn field(&self, name: &str) -> Result<&str, String> {
         let i = self.header.iter().position(|h| h == name).ok_or_else(|| format!("no column `{name}`"))?;
         self.fields.get(i).ok_or_else(|| format!("column `{name}` is missing from the row"))
+    }
+
+    /// The view a row measured: scene, camera, width and height (both files' first columns).
+    fn view(&self) -> Result<(String, String, u32, u32), String> {
+        Ok((self.text("scene")?, self.text("camera")?, self.whole("width")?, self.whole("height")?))
     }
 
     /// The field of a column the file may lack.
