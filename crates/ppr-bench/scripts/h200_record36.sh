@@ -2,7 +2,8 @@
 # The record issue 13 closes on (written in the thirty-sixth session, not yet run): one
 # binary of the final code (.gpu/ppr-bench.gz, its commit in .gpu/BUILT_FROM) measures
 # every suite the goals read, on the lent H200 (or whatever card the call gets: name it).
-# Same setup as h200.sh. Two calls of under 600 s each:
+# Same setup as h200.sh (`bash tools/pack_gpu.sh` builds and packs .gl and .gpu). Two calls
+# of under 600 s each:
 #
 #   bash crates/ppr-bench/scripts/h200_record36.sh compare collision     # ~330 + 80 s
 #   bash crates/ppr-bench/scripts/h200_record36.sh profile generated     # ~200 + 150 s
