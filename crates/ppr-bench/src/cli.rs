@@ -8,7 +8,7 @@ use ppr_testbed::GpuContext;
 
 use crate::config::{BenchConfig, Resolution};
 use crate::error::BenchError;
-use crate::goals::{GoalFiles, judge_files, write_atomically};
+use crate::goals::{GoalFiles, judge_files};
 use crate::report::compare_report::write_compare_report;
 use crate::report::pipeline_stats_report::write_pipeline_stats_report;
 use crate::report::runtime_report::write_runtime_report;
@@ -219,7 +219,9 @@ fn run_goals(a: &GoalsArgs) -> Result<Vec<PathBuf>, BenchError> {
     print!("{}", judgement.markdown);
     match &a.out {
         Some(path) => {
-            write_atomically(path, &judgement.markdown)?;
+            // Through a temporary file and a rename: a failed write leaves no half report.
+            ppr_format::write_atomically(path, judgement.markdown.as_bytes())
+                .map_err(|e| BenchError::io(path, e))?;
             Ok(vec![path.clone()])
         }
         None => Ok(Vec::new()),

@@ -3,7 +3,7 @@
 //! against shape count, and collision-world. One [`Check`] per scene, camera or family
 //! measured; a goal with no rows in the files has no check (the report says so).
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 use crate::goals::bench_rows::{CompareRow, RuntimeRow};
 use crate::scaling::level_family::LevelFamily;
@@ -137,15 +137,12 @@ fn first_by_key<'a, K: Ord + Clone>(
     rows: impl Iterator<Item = &'a RuntimeRow>,
     key: impl Fn(&RuntimeRow) -> K,
 ) -> Vec<(K, &'a RuntimeRow)> {
-    let mut seen = BTreeMap::new();
-    let mut out = Vec::new();
-    for r in rows {
+    let mut seen = BTreeSet::new();
+    rows.filter_map(|r| {
         let k = key(r);
-        if seen.insert(k.clone(), ()).is_none() {
-            out.push((k, r));
-        }
-    }
-    out
+        seen.insert(k.clone()).then_some((k, r))
+    })
+    .collect()
 }
 
 fn frame_checks(rows: &[RuntimeRow]) -> Vec<Check> {

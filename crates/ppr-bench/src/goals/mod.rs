@@ -5,7 +5,7 @@
 pub mod bench_rows;
 pub mod checks;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use crate::error::BenchError;
 use crate::report::goals_report::goals_markdown;
@@ -73,17 +73,4 @@ pub fn judge_files(files: &GoalFiles) -> Result<GoalJudgement, BenchError> {
     });
     let markdown = goals_markdown(&verdicts, &read, files.baseline.is_some());
     Ok(GoalJudgement { checks: verdicts.checks, notes: verdicts.notes, markdown })
-}
-
-/// Writes `text` to `path` through a temporary file beside it, so that a failed write
-/// leaves no half-written report.
-///
-/// # Errors
-/// The file cannot be written or renamed.
-pub fn write_atomically(path: &Path, text: &str) -> Result<(), BenchError> {
-    let dir = path.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new("."));
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| BenchError::io(dir, e))?;
-    std::io::Write::write_all(&mut tmp, text.as_bytes()).map_err(|e| BenchError::io(tmp.path(), e))?;
-    tmp.persist(path).map_err(|e| BenchError::io(path, e.error))?;
-    Ok(())
 }
