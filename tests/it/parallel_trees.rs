@@ -77,6 +77,21 @@ fn a_walked_tree_writes_what_its_shapes_write() {
         assert_eq!(differing, 0, "{differing} of {n} written pixels differ");
         checked += n;
 
+        // The treads' offsets spread: the tree has an offset index (`Auto`), and the pixels
+        // that take their members from it write what walking writes.
+        assert!(b.plan.tree_index && b.plan.to_string().contains("with offset indexes"), "{}", b.plan);
+        let words = ppr_runtime::shape_tests::frame_tests(walked.shapes(), &b.plan, camera.position);
+        let header = (words.tests[0].shape & !ppr_runtime::parallel_trees::TREE_TEST_FLAG) as usize;
+        assert_ne!(words.group_words[header + 13], 0, "the flight's tree has an index");
+        let mut unindexed = configured(Choice::On, Choice::Off, Choice::Off);
+        unindexed.plan_params.tree_index = Choice::Off;
+        unindexed.set_reflectors(&set);
+        let u = run(&mut unindexed, &gpu, &camera);
+        assert!(!u.plan.tree_index, "{}", u.plan);
+        let words = ppr_runtime::shape_tests::frame_tests(unindexed.shapes(), &u.plan, camera.position);
+        assert_eq!(words.group_words[header + 13], 0, "no index unasked");
+        assert_eq!(u.intermediate, b.intermediate, "walked only and through the index");
+
         // Block lists and super-tile lists treat the tree's test like any other.
         for (culling, super_tiles) in [(Choice::On, Choice::Off), (Choice::On, Choice::On)] {
             let mut tiled = configured(Choice::On, culling, super_tiles);

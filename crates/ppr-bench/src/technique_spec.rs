@@ -72,7 +72,8 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 
 /// PPR settings accept `culling=on|off|auto`, `indirect=on|off|auto`, `groups=on|off|auto`
 /// (coplanar reflectors merged into plane groups), `trees=on|off|auto` (parallel reflectors
-/// at many plane offsets walked as a tree), `blockers=on|off|auto` (a write into a parallel
+/// at many plane offsets walked as a tree), `tree-index=on|off|auto` (the trees' offset
+/// index: `PlanParams::tree_index`), `blockers=on|off|auto` (a write into a parallel
 /// reflector first tests the one in front of it: `PlanParams::path_blockers`), `subgroups=on|off|auto` (the projection's
 /// subgroup culling), `fused-lists=on|off|auto` (tile lists built in the projection or by
 /// their own pass), `fade=`, `replace-far=`,
@@ -89,11 +90,12 @@ pub const DEFAULT_TECHNIQUES: [&str; 15] = [
 /// as its colour input; scored against the N-bounce reference).
 /// Every technique but `exact` and `planar` also accepts `reference-bounces=N`: scored
 /// against the N-bounce reference (default: its `bounces`, else 1).
-const PPR_KEYS: [&str; 16] = [
+const PPR_KEYS: [&str; 17] = [
     "culling",
     "indirect",
     "groups",
     "trees",
+    "tree-index",
     "blockers",
     "subgroups",
     "fused-lists",
@@ -202,8 +204,8 @@ impl TechniqueSpec {
             }
             let bad = |e: String| BenchError::Spec(format!("technique `{self}`: {e}"));
             match k.as_str() {
-                "culling" | "indirect" | "groups" | "trees" | "blockers" | "subgroups" | "fused-lists"
-                | "replace-far" | "glossy" => {
+                "culling" | "indirect" | "groups" | "trees" | "tree-index" | "blockers" | "subgroups"
+                | "fused-lists" | "replace-far" | "glossy" => {
                     parse_choice(v).map_err(bad)?;
                 }
                 "tier" => {
@@ -347,6 +349,9 @@ pub fn ppr_settings(
     }
     if let Some(v) = spec.param("trees") {
         params.parallel_trees = parse_choice(v).map_err(BenchError::Spec)?;
+    }
+    if let Some(v) = spec.param("tree-index") {
+        params.tree_index = parse_choice(v).map_err(BenchError::Spec)?;
     }
     if let Some(v) = spec.param("blockers") {
         params.path_blockers = parse_choice(v).map_err(BenchError::Spec)?;
@@ -534,6 +539,11 @@ mod tests {
         let (_, params) = ppr_settings(&open, PlanParams::default()).expect("valid").expect("ppr");
         assert_eq!(params.path_blockers, Choice::Off);
         assert!("ppr:blockers=maybe".parse::<TechniqueSpec>().is_err());
+        let walked: TechniqueSpec = "ppr:tree-index=off".parse().expect("tree index");
+        let (_, params) = ppr_settings(&walked, PlanParams::default()).expect("valid").expect("ppr");
+        assert_eq!(params.tree_index, Choice::Off);
+        assert!("ppr:tree-index=fast".parse::<TechniqueSpec>().is_err());
+        assert!("ssr-low:tree-index=off".parse::<TechniqueSpec>().is_err());
         assert!("ssr-low:blockers=off".parse::<TechniqueSpec>().is_err());
         assert!("ppr:glossy=blurry".parse::<TechniqueSpec>().is_err());
         let eight: TechniqueSpec = "ppr:glossy-taps=8".parse().expect("glossy taps");

@@ -221,9 +221,143 @@ fn tree_node_meets(w: u32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
     return w1 + mw >= b.x && w0 - mw <= b.y;
 }
 
+// Tests member test `k` of a tree for one pixel (position `p`, on-plane tolerance `tol`)
+// and writes the pixel's reflection in it where it passes, as the plain loop would.
+fn tree_member(k: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
+    let t = tests[k];
+    let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
+    let inside = inside_pyramid(t, p, dist);
+    if (ABLATION == 3u) {
+        // Tests only: the walk and the members' tests, no write.
+        if (dist == 1234.5 && inside) {
+            atomicStore(&intermediate[0], 0u);
+        }
+    } else if (dist > tol && inside) {
+        reflect_pixel(pixel, p, dist, t.plane, t.shape, t.blocker);
+    }
+}
+
+// Most candidates a pixel takes from a tree's offset index before it walks the tree
+// instead (parallel_trees.rs, INDEX_MOST_MEMBERS).
+const INDEX_MOST_MEMBERS: u32 = 64u;
+// Buckets by which a pixel widens each offset interval (parallel_trees.rs, INDEX_SLACK).
+const INDEX_SLACK: f32 = 0.25;
+
+// {d in [a, b] : qa d^2 + qb d + qc >= 0} as two intervals (x, y) and (z, w), empty where
+// the first end is above the second; a superset (a negative discriminant counts as a
+// double root). The CPU model is parallel_trees.rs's quadratic_set.
+fn quadratic_set(qa: f32, qb: f32, qc: f32, a: f32, b: f32) -> vec4<f32> {
+    let none = vec2<f32>(1.0, 0.0);
+    if (qa == 0.0) {
+        if (qb == 0.0) {
+            return select(vec4<f32>(none, none), vec4<f32>(a, b, none), qc >= 0.0);
+        }
+        let r = -qc / qb;
+        return select(vec4<f32>(a, min(b, r), none), vec4<f32>(max(a, r), b, none), qb > 0.0);
+    }
+    let disc = qb * qb - 4.0 * qa * qc;
+    let s = sqrt(max(disc, 0.0));
+    let q = -0.5 * (qb + select(s, -s, qb < 0.0));
+    let r1 = q / qa;
+    // No real roots (or one): the vertex twice.
+    let r2 = select(qc / q, r1, disc <= 0.0 || q == 0.0);
+    let lo = min(r1, r2);
+    let hi = max(r1, r2);
+    if (qa > 0.0) {
+        return vec4<f32>(a, min(b, lo), max(a, hi), b);
+    }
+    return vec4<f32>(max(a, lo), min(b, hi), none);
+}
+
+// The plane offsets d at which the root node `a`, `b` (its two vec4s) may hold a member
+// that reflects the pixel (`zp`, `uv`, `reach`, margin `m` as tree_node_meets'), as two
+// intervals in ascending order (xy, zw; each empty where x > y). Below the camera (d < 0,
+// where members face it) 2d - zp < 0, so each bound times it is a polynomial in d: t u >=
+// U iff (2U - u) d - U zp >= 0, t u <= U iff (u - 2U) d + U zp >= 0; t v - alpha d >= W
+// iff 2 alpha d^2 - (v + alpha zp - 2W) d - W zp >= 0, <= W the same negated. t v - alpha
+// d has one stationary point at most: one of the slab's bounds passes in two pieces at
+// most, so all of them in two. The CPU model is parallel_trees.rs's index_interval.
+fn index_interval(a: vec4<f32>, b: vec4<f32>, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> vec4<f32> {
+    let u0 = a.z - m;
+    let u1 = a.w + m;
+    let d = quadratic_set(0.0, 2.0 * u0 - uv.x, -u0 * zp, a.x, min(min(a.y, reach), 0.0)).xy;
+    let e = quadratic_set(0.0, uv.x - 2.0 * u1, u1 * zp, d.x, d.y).xy;
+    let alpha = b.z;
+    let mw = m + 1e-5 * abs(alpha) * (abs(a.x) + abs(zp));
+    let w0 = b.x - mw;
+    let w1 = b.y + mw;
+    let above = quadratic_set(2.0 * alpha, -(uv.y + alpha * zp - 2.0 * w0), -w0 * zp, e.x, e.y);
+    let below = quadratic_set(-2.0 * alpha, uv.y + alpha * zp - 2.0 * w1, w1 * zp, e.x, e.y);
+    if (above.z <= above.w) {
+        // Above in two pieces: below's hull (one piece, in exact arithmetic) cuts each.
+        var h = below.xy;
+        if (below.z <= below.w) {
+            h = select(below.zw, vec2<f32>(below.x, below.w), below.x <= below.y);
+        }
+        return vec4<f32>(max(above.x, h.x), min(above.y, h.y), max(above.z, h.x), min(above.w, h.y));
+    }
+    return vec4<f32>(max(above.x, below.x), min(above.y, below.y), max(above.x, below.z), min(above.y, below.w));
+}
+
+// The members of a tree's offset index (at word `index`, `count` buckets, lowest offset
+// `d0`, buckets per metre `per_metre`) whose bucket meets offsets `iv`, widened by
+// INDEX_SLACK buckets a side, as index positions [x, y), from `start` on.
+fn index_range(index: u32, count: u32, d0: f32, per_metre: f32, iv: vec2<f32>, start: u32) -> vec2<u32> {
+    let last = f32(count - 1u);
+    let b0 = u32(clamp(floor((iv.x - d0) * per_metre - INDEX_SLACK), 0.0, last));
+    let b1 = u32(clamp(floor((iv.y - d0) * per_metre + INDEX_SLACK), 0.0, last));
+    let first = max(plane_groups[index + b0], start);
+    return vec2<u32>(first, max(plane_groups[index + b1 + 1u], first));
+}
+
+// The parallel tree at header word `h` through its offset index, for one pixel (zp, uv in
+// the family's frame): the members of the offsets that pass the root's test
+// (index_interval), looked up in the index's offset buckets, each tested with its own
+// test. False where the tree has no index or the pixel must walk it instead (more than
+// INDEX_MOST_MEMBERS candidates, an interval not a number). The CPU model is
+// parallel_trees.rs's indexed_leaves.
+fn tree_index_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32, zp: f32, uv: vec2<f32>, reach: f32, m: f32) -> bool {
+    let index = plane_groups[h + 13u];
+    if (index == 0u) {
+        return false;
+    }
+    let w = plane_groups[h + 3u] >> 2u;
+    let iv = index_interval(bitcast<vec4<f32>>(tree_nodes[w]), bitcast<vec4<f32>>(tree_nodes[w + 1u]), zp, uv, reach, m);
+    let has = vec2<bool>(iv.x <= iv.y, iv.z <= iv.w);
+    // Not a number (no comparison holds) or out of range: walk.
+    let big = abs(iv) >= vec4<f32>(1e30);
+    if (!(has.x || iv.x > iv.y) || !(has.y || iv.z > iv.w) || (has.x && any(big.xy)) || (has.y && any(big.zw))) {
+        return false;
+    }
+    let count = plane_groups[h + 11u];
+    let d0 = bitcast<f32>(plane_groups[h + 14u]);
+    let per_metre = bitcast<f32>(plane_groups[h + 15u]);
+    var r0 = vec2<u32>(0u);
+    var r1 = vec2<u32>(0u);
+    if (has.x) {
+        r0 = index_range(index, count, d0, per_metre, iv.xy, 0u);
+    }
+    if (has.y) {
+        r1 = index_range(index, count, d0, per_metre, iv.zw, r0.y);
+    }
+    if ((r0.y - r0.x) + (r1.y - r1.x) > INDEX_MOST_MEMBERS) {
+        return false;
+    }
+    let tests_start = plane_groups[h + 12u];
+    let order = index + count + 1u;
+    for (var i = r0.x; i < r0.y; i++) {
+        tree_member(tests_start + plane_groups[order + i], pixel, p, tol);
+    }
+    for (var i = r1.x; i < r1.y; i++) {
+        tree_member(tests_start + plane_groups[order + i], pixel, p, tol);
+    }
+    return true;
+}
+
 // Walks the parallel tree whose header is at word `h` for one pixel (position `p`, on-plane
 // tolerance `tol`) and writes its reflection in every member that passes the member's own
-// test, as the plain loop would.
+// test, as the plain loop would; through the tree's offset index where it has one and the
+// pixel's candidates are few.
 fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let n = group_vec3(h);
     let node_start = plane_groups[h + 3u];
@@ -233,6 +367,9 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
     let uv = vec2<f32>(dot(p, group_vec3(h + 4u)), dot(p, group_vec3(h + 8u)));
     let reach = zp - 0.5 * tol;
     let m = 1e-5 * (abs(uv.x) + abs(uv.y) + abs(zp));
+    if (tree_index_pixel(h, pixel, p, tol, zp, uv, reach, m)) {
+        return;
+    }
     var node = 1u;
     loop {
         if (tree_node_meets(node_start + (node - 1u) * TREE_NODE_WORDS, zp, uv, reach, m)) {
@@ -240,17 +377,7 @@ fn tree_pixel(h: u32, pixel: vec2<u32>, p: vec3<f32>, tol: f32) {
                 node = node * 2u;
                 continue;
             }
-            let t = tests[tests_start + node - leaves];
-            let dist = p.x * t.plane.x + p.y * t.plane.y + p.z * t.plane.z + t.plane.w;
-            let inside = inside_pyramid(t, p, dist);
-            if (ABLATION == 3u) {
-                // Tests only: the walk and the members' tests, no write.
-                if (dist == 1234.5 && inside) {
-                    atomicStore(&intermediate[0], 0u);
-                }
-            } else if (dist > tol && inside) {
-                reflect_pixel(pixel, p, dist, t.plane, t.shape, t.blocker);
-            }
+            tree_member(tests_start + node - leaves, pixel, p, tol);
         }
         // The next node in walk order: up past right children (the trailing ones of the
         // node's number, one shift for all: no loop whose count differs between the lanes),

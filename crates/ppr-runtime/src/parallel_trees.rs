@@ -28,8 +28,23 @@
 //! first member test), then the nodes, [`TREE_NODE_WORDS`] each, in heap order (node 1
 //! the root, children `2k` and `2k + 1`, leaves from the leaf count): lowest and highest
 //! offset, u range, range of `v − α·offset`, `α`, `1/α`. Empty leaves have an offset range
-//! that no pixel meets. They live in the plane-group buffer, between the groups' headers
-//! and their static grids ([`tree_words_start`]).
+//! that no pixel meets. Then the offset index (below), [`index_words`] long. They live in
+//! the plane-group buffer, between the groups' headers and their static grids
+//! ([`tree_words_start`]).
+//!
+//! **The offset index** (where the plan asks for it, [`crate::plan::FramePlan::tree_index`]):
+//! a member can reflect a pixel only where its own offset passes the *root's* test at that
+//! one offset, and on a flight of stairs (the root's slab as tight as a tread) few do: 4.6
+//! a pixel of the scaling stairway's 1 000 treads, 10 of its 10 000, against 32 and 51
+//! node tests of the walk. So the pixel solves the root's test for the offsets that pass
+//! it (the u bounds are linear in the offset, the slab's quadratic: [`index_interval`]),
+//! looks up the members of those offsets in an index of equal offset buckets (a quarter
+//! bucket of slack on each side), and runs the member tests on them; more than
+//! [`INDEX_MOST_MEMBERS`] candidates, and it walks. The index: header words 13-15 hold its
+//! word position (0: none), the lowest offset and the buckets per metre; its words are the
+//! bucket starts (members + 1 words) and the members' leaf positions sorted by bucket.
+//! The CPU writes it only where no bucket holds more than [`INDEX_MOST_PER_BUCKET`]
+//! members (a flight, not the floors of a level at a few heights).
 
 use std::collections::HashMap;
 
@@ -46,6 +61,15 @@ pub const TREE_TEST_FLAG: u32 = 0x4000_0000;
 pub const TREE_HEADER_WORDS: usize = 16;
 /// Words of a tree node.
 pub const TREE_NODE_WORDS: usize = 8;
+
+/// Most candidates a pixel takes from the offset index; more and it walks the tree.
+pub const INDEX_MOST_MEMBERS: u32 = 64;
+/// Buckets (a share of one) by which a pixel widens each offset interval before it looks
+/// up its buckets: far more than the f32 rounding of the interval's ends and of the bucket
+/// arithmetic where buckets are as wide as [`offset_index`] asks.
+pub const INDEX_SLACK: f32 = 0.25;
+/// Most members an offset bucket of an index may hold (else the tree gets no index).
+pub const INDEX_MOST_PER_BUCKET: u32 = 4;
 
 /// Largest difference of a member's unit normal from its family's, per component: members
 /// share the family's plane coordinates to within f32 rounding of the pixel positions.
@@ -140,7 +164,14 @@ fn median_split(items: &mut [([f64; 3], u32)]) {
 
 /// Words of a tree over `members` leaves.
 fn tree_words(members: usize) -> usize {
-    TREE_HEADER_WORDS + TREE_NODE_WORDS * (2 * members.next_power_of_two() - 1)
+    TREE_HEADER_WORDS + TREE_NODE_WORDS * (2 * members.next_power_of_two() - 1) + index_words(members)
+}
+
+/// Words of a tree's offset index over `members` members: the bucket starts (one bucket a
+/// member, and the end) and the members' leaf positions, rounded up to whole nodes (the
+/// next tree's header stays 32-byte aligned).
+pub fn index_words(members: usize) -> usize {
+    (2 * members + 1).next_multiple_of(TREE_NODE_WORDS)
 }
 
 /// Word position of the trees in the plane-group buffer: after the groups' headers.
@@ -166,14 +197,17 @@ impl FrameTree {
     }
 
     /// Appends this tree's words for a camera at `eye` to `words` (whose first word sits at
-    /// word `base` of the buffer), its members' tests starting at `tests_start`; returns
-    /// the header's word position in the buffer. `scratch`: working memory, reused.
+    /// word `base` of the buffer), its members' tests starting at `tests_start`, with its
+    /// offset index where `index` asks for one and the members allow it; returns the
+    /// header's word position in the buffer. `scratch`: working memory, reused.
+    #[allow(clippy::too_many_arguments)]
     pub fn append_words(
         &self,
         table: &ShapeTable,
         eye: DVec3,
         base: u32,
         tests_start: u32,
+        index: bool,
         words: &mut Vec<u32>,
         scratch: &mut TreeScratch,
     ) -> u32 {
@@ -193,7 +227,7 @@ impl FrameTree {
         words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
         words.extend([tests_start, 0, 0, 0]);
         let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
-        let TreeScratch { spans: geometry, stats } = scratch;
+        let TreeScratch { spans: geometry, stats, buckets } = scratch;
         geometry.clear();
         geometry.extend(self.members.iter().map(|&m| {
             let s = &table.shapes[m as usize];
@@ -219,6 +253,17 @@ impl FrameTree {
             let range = first.min(geometry.len())..(first + span).min(geometry.len());
             words.extend(node_words(&geometry[range], m));
         }
+        let index_at = base + words.len() as u32;
+        let room = index_words(self.members.len());
+        match index.then(|| offset_index(geometry, stats[1].d, buckets)).flatten() {
+            Some((d0, per_metre)) => {
+                let at = (header - base) as usize;
+                words[at + 13..at + 16].copy_from_slice(&[index_at, d0.to_bits(), per_metre.to_bits()]);
+                words.extend_from_slice(buckets);
+                words.resize(words.len() + room - buckets.len(), 0);
+            }
+            None => words.resize(words.len() + room, 0),
+        }
         debug_assert_eq!(words.len() as u32 + base - header, tree_words(self.members.len()) as u32);
         header
     }
@@ -229,6 +274,50 @@ impl FrameTree {
 pub struct TreeScratch {
     spans: Vec<MemberSpan>,
     stats: Vec<NodeStats>,
+    buckets: Vec<u32>,
+}
+
+/// The offset index of members `spans` (in leaf order) whose offsets span `range`: fills
+/// `out` with the bucket starts (`spans.len() + 1` of them) and the leaf positions sorted
+/// by bucket, and returns the lowest offset and the buckets per metre as the shader gets
+/// them; `None` where the offsets do not spread (a bucket with more than
+/// [`INDEX_MOST_PER_BUCKET`] members, or buckets too narrow for f32 at these offsets).
+fn offset_index(spans: &[MemberSpan], range: [f64; 2], out: &mut Vec<u32>) -> Option<(f32, f32)> {
+    let n = spans.len();
+    let width = range[1] - range[0];
+    // A bucket must stay wide against the f32 rounding of the pixels' offsets and of the
+    // intervals' ends: a quarter of one (INDEX_SLACK) some 40 f32 steps at these offsets.
+    let least = 1e-5 * range[0].abs().max(range[1].abs());
+    if n < 2 || (width / n as f64).partial_cmp(&least) != Some(std::cmp::Ordering::Greater) {
+        return None;
+    }
+    let d0 = down(range[0]);
+    let per_metre = (n as f64 / width) as f32;
+    let bucket =
+        |d: f64| ((d - f64::from(d0)) * f64::from(per_metre)).floor().clamp(0.0, (n - 1) as f64) as usize;
+    out.clear();
+    out.resize(2 * n + 1, 0);
+    let (starts, order) = out.split_at_mut(n + 1);
+    for s in spans {
+        starts[bucket(s.offset) + 1] += 1;
+    }
+    if starts.iter().any(|&c| c > INDEX_MOST_PER_BUCKET) {
+        return None;
+    }
+    for b in 1..=n {
+        starts[b] += starts[b - 1];
+    }
+    // Each member to the next free slot of its bucket (its start counted up, then back).
+    for (leaf, s) in spans.iter().enumerate() {
+        let b = bucket(s.offset);
+        order[starts[b] as usize] = leaf as u32;
+        starts[b] += 1;
+    }
+    for b in (1..=n).rev() {
+        starts[b] = starts[b - 1];
+    }
+    starts[0] = 0;
+    Some((d0, per_metre))
 }
 
 /// What a node needs of a member: its plane offset, its centre's v, and its corners' u
@@ -455,6 +544,107 @@ fn node_meets(lim: [f32; 8], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> 
     w1 + m >= lim[4] && w0 - m <= lim[5]
 }
 
+/// `{d ∈ [a, b] : qa·d² + qb·d + qc ≥ 0}` as two intervals (empty where the first end is
+/// above the second), in f32 as `quadratic_set` of the shader computes it: a superset
+/// (a negative discriminant counts as a double root).
+fn quadratic_set(qa: f32, qb: f32, qc: f32, a: f32, b: f32) -> [[f32; 2]; 2] {
+    const NONE: [f32; 2] = [1.0, 0.0];
+    if qa == 0.0 {
+        if qb == 0.0 {
+            return [if qc >= 0.0 { [a, b] } else { NONE }, NONE];
+        }
+        let r = -qc / qb;
+        return [if qb > 0.0 { [a.max(r), b] } else { [a, b.min(r)] }, NONE];
+    }
+    let disc = qb * qb - 4.0 * qa * qc;
+    let s = disc.max(0.0).sqrt();
+    let q = -0.5 * (qb + if qb < 0.0 { -s } else { s });
+    let r1 = q / qa;
+    // No real roots (or one): the vertex twice.
+    let r2 = if disc <= 0.0 || q == 0.0 { r1 } else { qc / q };
+    let (lo, hi) = (r1.min(r2), r1.max(r2));
+    if qa > 0.0 { [[a, b.min(lo)], [a.max(hi), b]] } else { [[a.max(lo), b.min(hi)], NONE] }
+}
+
+/// The offsets `d` at which the root node `lim` (its words) may hold a member that reflects
+/// a pixel at `zp`, `uv` (`reach`, `margin` as for [`node_meets`]), as two intervals in
+/// ascending order (each empty where its first end is above its second): `index_interval`
+/// of the shader. Below the camera (`d < 0`, where a member faces it) `2d − zp < 0`, so
+/// each bound, multiplied by it, is a polynomial in `d`: `t·u ≥ U` ⇔ `(2U − u)·d − U·zp ≥
+/// 0`, `t·u ≤ U` ⇔ `(u − 2U)·d + U·zp ≥ 0`; `t·v − α·d ≥ W` ⇔ `2α·d² − (v + α·zp −
+/// 2W)·d − W·zp ≥ 0` and `≤ W` the same negated. `t·v − α·d` has one stationary point
+/// at most, so at most one of the slab's two bounds passes in two pieces, and what passes
+/// every bound is two intervals at most (one hull would join the two ends of a flight a
+/// grazing pixel meets: tens of treads between them).
+pub fn index_interval(lim: [f32; 8], zp: f32, uv: [f32; 2], reach: f32, margin: f32) -> [[f32; 2]; 2] {
+    let a = lim[0];
+    let b = lim[1].min(reach).min(0.0);
+    let (u0, u1) = (lim[2] - margin, lim[3] + margin);
+    let [a, b] = quadratic_set(0.0, 2.0 * u0 - uv[0], -u0 * zp, a, b)[0];
+    let [a, b] = quadratic_set(0.0, uv[0] - 2.0 * u1, u1 * zp, a, b)[0];
+    let alpha = lim[6];
+    let m = margin + 1e-5 * alpha.abs() * (lim[0].abs() + zp.abs());
+    let (w0, w1) = (lim[4] - m, lim[5] + m);
+    let above = quadratic_set(2.0 * alpha, -(uv[1] + alpha * zp - 2.0 * w0), -w0 * zp, a, b);
+    let below = quadratic_set(-2.0 * alpha, uv[1] + alpha * zp - 2.0 * w1, w1 * zp, a, b);
+    let cut = |x: [f32; 2], y: [f32; 2]| [x[0].max(y[0]), x[1].min(y[1])];
+    let hull = |s: [[f32; 2]; 2]| match (s[0][0] <= s[0][1], s[1][0] <= s[1][1]) {
+        (true, true) => [s[0][0], s[1][1]],
+        (false, true) => s[1],
+        _ => s[0],
+    };
+    if above[1][0] <= above[1][1] {
+        let below = hull(below);
+        [cut(above[0], below), cut(above[1], below)]
+    } else {
+        [cut(above[0], below[0]), cut(above[0], below[1])]
+    }
+}
+
+/// The CPU model of `tree_index_pixel` in `projection.wgsl`: the leaves (member positions)
+/// a pixel takes from the tree's offset index, or `None` where the tree has no index or the
+/// pixel walks it instead (more than [`INDEX_MOST_MEMBERS`] candidates, or an interval
+/// that is not a number). Arguments as for [`reached_leaves`].
+pub fn indexed_leaves(words: &[u32], base: u32, header: u32, p: glam::Vec3, tol: f32) -> Option<Vec<u32>> {
+    let w = |i: u32| words[(i - base) as usize];
+    let f = |i: u32| f32::from_bits(w(i));
+    let index = w(header + 13);
+    if index == 0 {
+        return None;
+    }
+    let v3 = |i: u32| Vec3::new(f(i), f(i + 1), f(i + 2));
+    let (n, au, av) = (v3(header), v3(header + 4), v3(header + 8));
+    let (node_start, count) = (w(header + 3), w(header + 11));
+    let zp = p.dot(n);
+    let uv = [p.dot(au), p.dot(av)];
+    let lim: [f32; 8] = std::array::from_fn(|i| f(node_start + i as u32));
+    let (d0, per_metre) = (f(header + 14), f(header + 15));
+    let last = (count - 1) as f32;
+    // Each piece's members: its buckets, widened by INDEX_SLACK; the second from where the
+    // first's end, so that none is tested twice.
+    let mut ranges = [(0u32, 0u32); 2];
+    let mut from = 0;
+    for (k, [lo, hi]) in
+        index_interval(lim, zp, uv, zp - 0.5 * tol, node_margin(uv, zp)).into_iter().enumerate()
+    {
+        if lo > hi {
+            continue;
+        }
+        if lo.is_nan() || hi.is_nan() || lo.abs() >= 1e30 || hi.abs() >= 1e30 {
+            return None;
+        }
+        let b0 = ((lo - d0) * per_metre - INDEX_SLACK).floor().clamp(0.0, last) as u32;
+        let b1 = ((hi - d0) * per_metre + INDEX_SLACK).floor().clamp(0.0, last) as u32;
+        let (first, end) = (w(index + b0).max(from), w(index + b1 + 1));
+        ranges[k] = (first, end.max(first));
+        from = from.max(end);
+    }
+    if ranges.iter().map(|r| r.1 - r.0).sum::<u32>() > INDEX_MOST_MEMBERS {
+        return None;
+    }
+    Some(ranges.into_iter().flat_map(|(a, b)| a..b).map(|i| w(index + count + 1 + i)).collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -592,7 +782,7 @@ mod tests {
             let eye = DVec3::new(-7.0, 11.0, 8.0);
             let tree = FrameTree { family: 0, members: table.parallel_families.families[0].members.clone() };
             let mut words = Vec::new();
-            let header = tree.append_words(&table, eye, 0, 0, &mut words, &mut TreeScratch::default());
+            let header = tree.append_words(&table, eye, 0, 0, true, &mut words, &mut TreeScratch::default());
             Self { table, eye, tree, words, header, run }
         }
     }
@@ -624,6 +814,125 @@ mod tests {
             assert!(per(hits) > 1.0, "{count} treads: the treads reflect their pixels ({:.2})", per(hits));
             assert!(per(nodes) < max_nodes, "{count} treads: {:.1} nodes per pixel", per(nodes));
             assert!(leaves <= 2 * hits, "{count} treads: {leaves} leaves reached for {hits} reflections");
+        }
+    }
+
+    /// The offset index of the scaling suite's stairways hands a pixel on the treads every
+    /// member that reflects it, and few others: far fewer members than the walk tests
+    /// nodes; a pixel walks instead only now and then.
+    #[test]
+    fn the_offset_index_hands_a_pixel_its_reflecting_treads_and_few_others() {
+        for (count, most_mean) in [(1000u32, 9.0), (10_000, 16.0)] {
+            let ScalingStairway { table: t, eye, tree, words, header, run } = ScalingStairway::new(count);
+            assert_ne!(words[header as usize + 13], 0, "{count} treads: a flight gets an index");
+            let mut next = rng(9);
+            let (mut candidates, mut walked, mut nodes, mut hits, n) = (0usize, 0usize, 0usize, 0usize, 4000);
+            for _ in 0..n {
+                let s = &t.shapes[(next() * f64::from(count)) as usize];
+                let on = s.center + DVec3::new((next() - 0.5) * 6.0, 0.0, (next() - 0.5) * run);
+                let p = (on - eye).as_vec3();
+                let tol = 1e-4 * p.length();
+                nodes += reached_leaves(&words, 0, header, p, tol).1;
+                let Some(given) = indexed_leaves(&words, 0, header, p, tol) else {
+                    walked += 1;
+                    continue;
+                };
+                candidates += given.len();
+                for (leaf, &m) in tree.members.iter().enumerate() {
+                    if shape_test(&t.shapes[m as usize], m, eye).reflects(p, tol).is_some() {
+                        hits += 1;
+                        assert!(
+                            given.contains(&(leaf as u32)),
+                            "{count} treads: member {m} reflects {p} but is not handed"
+                        );
+                    }
+                }
+            }
+            let per = |x: usize| x as f64 / n as f64;
+            eprintln!(
+                "{count} treads: {:.2} candidates, {:.2} reflections, {:.1} walked nodes a pixel; {} of {n} walk",
+                per(candidates),
+                per(hits),
+                per(nodes),
+                walked
+            );
+            assert!(per(hits) > 1.0, "{count} treads: the treads reflect their pixels ({:.2})", per(hits));
+            assert!(per(candidates) < most_mean, "{count} treads: {:.2} candidates a pixel", per(candidates));
+            assert!(walked * 20 < n, "{count} treads: {walked} of {n} pixels walk");
+        }
+    }
+
+    /// Around stairs and shelves, from random cameras, wherever a pixel takes the index's
+    /// candidates they hold every member that reflects it; a family at a few offsets
+    /// (floors of a level, many a storey) gets no index, and none is written unasked.
+    #[test]
+    fn the_offset_index_misses_no_reflecting_member_and_stays_off_where_offsets_cluster() {
+        let t = table(stairs_and_shelves(300));
+        let family = &t.parallel_families.families[0];
+        let tree = FrameTree { family: 0, members: family.members.clone() };
+        let mut next = rng(17);
+        let (mut indexed, mut hits) = (0usize, 0usize);
+        for _ in 0..8 {
+            let eye = DVec3::new(next() * 4.0 - 2.0, 2.5 + next() * 2.0, 1.0 + next() * 3.0);
+            let mut words = Vec::new();
+            let header = tree.append_words(&t, eye, 24, 0, true, &mut words, &mut TreeScratch::default());
+            assert_ne!(words[header as usize - 24 + 13], 0);
+            let tests: Vec<_> =
+                tree.members.iter().map(|&m| shape_test(&t.shapes[m as usize], m, eye)).collect();
+            for _ in 0..2000 {
+                let p = (DVec3::new(next() * 5.0 - 2.5, next() * 3.0, -next() * 5.0) - eye).as_vec3();
+                let tol = 1e-4 * p.length();
+                let Some(given) = indexed_leaves(&words, 24, header, p, tol) else { continue };
+                indexed += 1;
+                for (k, test) in tests.iter().enumerate() {
+                    if test.reflects(p, tol).is_some() {
+                        hits += 1;
+                        assert!(given.contains(&(k as u32)), "member {k} reflects {p} but is not handed");
+                    }
+                }
+            }
+        }
+        assert!(indexed > 10_000 && hits > 500, "{indexed} pixels indexed, {hits} reflections");
+
+        // Ten storeys of forty floor tiles each: buckets of forty.
+        let floors: Vec<ShapeSource> = (0..400u32)
+            .map(|i| tread(i, DVec3::new(f64::from(i % 40) * 2.0, f64::from(i / 40) * 3.0, 0.0), [0.9, 0.9]))
+            .collect();
+        let t = table(floors);
+        let tree = FrameTree { family: 0, members: t.parallel_families.families[0].members.clone() };
+        let eye = DVec3::new(10.0, 40.0, 10.0);
+        for index in [true, false] {
+            let mut words = Vec::new();
+            let header = tree.append_words(&t, eye, 0, 0, index, &mut words, &mut TreeScratch::default());
+            assert_eq!(words[header as usize + 13], 0, "index {index}: clustered offsets get none");
+            assert_eq!(words.len(), tree_words(400));
+            assert_eq!(indexed_leaves(&words, 0, header, Vec3::new(0.0, -45.0, -10.0), 1e-3), None);
+        }
+    }
+
+    proptest::proptest! {
+        /// `quadratic_set` holds every point of [a, b] where the quadratic is clearly
+        /// non-negative (by more than f32 rounding), whatever its coefficients.
+        #[test]
+        fn quadratic_set_holds_every_point_where_the_quadratic_is_non_negative(
+            qa in proptest::prop_oneof![proptest::strategy::Just(0.0f32), -10.0f32..10.0],
+            qb in -100.0f32..100.0,
+            qc in -100.0f32..100.0,
+            a in -20.0f32..0.0,
+            len in 0.0f32..20.0,
+            x in 0.0f64..=1.0,
+        ) {
+            let b = a + len;
+            let d = f64::from(a) + x * f64::from(len);
+            let (qa64, qb64, qc64) = (f64::from(qa), f64::from(qb), f64::from(qc));
+            let value = qa64 * d * d + qb64 * d + qc64;
+            let scale = qa64.abs() * d * d + qb64.abs() * d.abs() + qc64.abs();
+            let set = quadratic_set(qa, qb, qc, a, b);
+            if value > 1e-4 * scale + 1e-6 {
+                let slack = 1e-3 * (1.0 + d.abs());
+                let inside = set.iter().any(|s| f64::from(s[0]) - slack <= d && d <= f64::from(s[1]) + slack);
+                proptest::prop_assert!(inside, "q({}) = {} but the set is {:?}", d, value, set);
+            }
         }
     }
 
@@ -682,7 +991,8 @@ mod tests {
                 let tree = FrameTree { family: 0, members: family.members.clone() };
                 let mut words = Vec::new();
                 let base = 40;
-                let header = tree.append_words(&t, eye, base, 0, &mut words, &mut TreeScratch::default());
+                let header =
+                    tree.append_words(&t, eye, base, 0, true, &mut words, &mut TreeScratch::default());
                 assert_eq!(words.len(), tree_words(tree.members.len()));
                 let tests: Vec<_> =
                     tree.members.iter().map(|&m| shape_test(&t.shapes[m as usize], m, eye)).collect();

@@ -172,6 +172,11 @@ pub struct PlanParams {
     /// against 12.1); on collision-world, whose families are walls of separate rooms,
     /// trees of 16 and more members doubled the projection.
     pub parallel_tree_min_shapes: usize,
+    /// Give each parallel tree an offset index where its members' offsets spread (a flight
+    /// of stairs): a pixel then solves the root's test for the offsets it passes and tests
+    /// the members there, walking the tree only where they are many
+    /// ([`crate::parallel_trees`], "The offset index"). The same writes. `Auto`: on.
+    pub tree_index: Choice,
     /// Give the projection pass the shape tests in a uniform buffer (at most
     /// [`UNIFORM_TESTS_CAPACITY`] visible shapes and layers) instead of a storage buffer:
     /// the per-shape loads of every pixel go through the constant cache. `Auto`: on
@@ -258,6 +263,7 @@ impl Default for PlanParams {
             plane_group_min_shapes: 4,
             parallel_trees: Choice::Auto,
             parallel_tree_min_shapes: 768,
+            tree_index: Choice::Auto,
             subgroup_cull: Choice::Auto,
             subgroup_cull_min_shapes: 16,
             subgroup_tile_culling_min_shapes: 128,
@@ -313,6 +319,8 @@ pub struct FramePlan {
     pub grouped_shapes: usize,
     /// The parallel trees of `tested`.
     pub trees: Vec<FrameTree>,
+    /// The trees get offset indexes ([`PlanParams::tree_index`]).
+    pub tree_index: bool,
     /// With source boxes: the screen box of the pixels that may reflect into each entry of
     /// `tested`, then into each layer (`crate::source_box`). Empty without.
     pub source_rects: Vec<ScreenRect>,
@@ -414,6 +422,7 @@ impl FramePlan {
             tested: Vec::new(),
             grouped_shapes: 0,
             trees: Vec::new(),
+            tree_index: false,
             source_rects: Vec::new(),
             disabled: 0,
             culled_back_side: 0,
@@ -581,6 +590,7 @@ impl FramePlan {
     /// by one tree entry (where its first member stood).
     fn merge_parallel_trees(&mut self, table: &ShapeTable, params: &PlanParams) {
         self.trees.clear();
+        self.tree_index = params.tree_index.decide(true);
         if self.occluder_tests || self.parallel_rule {
             return;
         }
@@ -824,9 +834,10 @@ impl fmt::Display for FramePlan {
         if !self.trees.is_empty() {
             writeln!(
                 f,
-                "parallel trees: {} reflector(s) at many plane offsets walked as {} tree(s); {} projection test(s)",
+                "parallel trees: {} reflector(s) at many plane offsets walked as {} tree(s){}; {} projection test(s)",
                 self.trees.iter().map(|t| t.members.len()).sum::<usize>(),
                 self.trees.len(),
+                if self.tree_index { " with offset indexes" } else { "" },
                 self.tested.len()
             )?;
         }

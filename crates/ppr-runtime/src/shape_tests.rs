@@ -87,7 +87,7 @@ impl FrameTests {
                 TestedEntry::ParallelTree(t) => {
                     let tree = &plan.trees[t as usize];
                     let start = tests.len() as u32;
-                    let header = tree.append_words(table, eye, 0, start, group_words, trees);
+                    let header = tree.append_words(table, eye, 0, start, plan.tree_index, group_words, trees);
                     tests.extend(tree.members.iter().map(|&m| member_test(table, plan, m, eye)));
                     let mut test =
                         shape_test(&table.shapes[tree.lowest(table) as usize], TREE_TEST_FLAG | header, eye);
@@ -235,8 +235,12 @@ mod tests {
             Vec3::Y,
             Projection::default(),
         );
-        let params =
-            PlanParams { plane_groups: Choice::On, parallel_trees: Choice::On, ..PlanParams::default() };
+        let params = PlanParams {
+            plane_groups: Choice::On,
+            parallel_trees: Choice::On,
+            tree_index: Choice::On,
+            ..PlanParams::default()
+        };
         let plan = FramePlan::build(&table, &camera, [320, 180], &params);
         let groups = plan.tested.iter().filter(|e| matches!(e, TestedEntry::PlaneGroup(_))).count();
         assert_eq!((groups, plan.trees.len()), (2, 1), "{:?}", plan.tested);
@@ -264,6 +268,7 @@ mod tests {
                         eye,
                         tree_base,
                         start,
+                        plan.tree_index,
                         &mut tree_words,
                         &mut TreeScratch::default(),
                     );

@@ -10,12 +10,20 @@ use crate::report::markdown::{MarkdownTable, ms};
 use crate::report::plot::{PALETTE, PlotPoint, PlotSeries, PlotSpec, write_plot};
 use crate::suites::scaling::{
     CULLING_OFF, CULLING_ON, NO_SUBGROUPS, PARALLEL_TREES, PLANE_GROUPS, SUBGROUPS_ON, SUPER_TILES,
-    ScalingOutcome, ScalingRow, crossover, indirect_crossover,
+    ScalingOutcome, ScalingRow, TREES_NO_INDEX, crossover, indirect_crossover,
 };
 
 /// The culling variants, in table and plot order.
-const VARIANTS: [&str; 7] =
-    [CULLING_OFF, CULLING_ON, SUPER_TILES, PLANE_GROUPS, PARALLEL_TREES, NO_SUBGROUPS, SUBGROUPS_ON];
+const VARIANTS: [&str; 8] = [
+    CULLING_OFF,
+    CULLING_ON,
+    SUPER_TILES,
+    PLANE_GROUPS,
+    PARALLEL_TREES,
+    TREES_NO_INDEX,
+    NO_SUBGROUPS,
+    SUBGROUPS_ON,
+];
 
 fn csv_rows(csv: &mut CsvTable, sweep: &str, rows: &[ScalingRow], adapter: &str, res: &str) {
     for r in rows {

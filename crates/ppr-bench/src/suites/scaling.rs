@@ -177,6 +177,8 @@ pub const PLANE_GROUPS: &str = "plane groups";
 /// Parallel families walked as trees (forced on), plane groups and culling as the plan
 /// picks them.
 pub const PARALLEL_TREES: &str = "parallel trees";
+/// Parallel trees forced on, walked without their offset index (what the index buys).
+pub const TREES_NO_INDEX: &str = "trees, no offset index";
 /// The plan's own choices with the projection's subgroup culling off (what it buys).
 pub const NO_SUBGROUPS: &str = "no subgroup culling";
 /// The plan's own choices with the projection's subgroup culling forced on (where its
@@ -202,6 +204,10 @@ pub fn run_scaling(
             PlanParams { plane_groups: Choice::On, parallel_trees: Choice::Off, ..PlanParams::default() },
         ),
         (PARALLEL_TREES, PlanParams { parallel_trees: Choice::On, ..PlanParams::default() }),
+        (
+            TREES_NO_INDEX,
+            PlanParams { parallel_trees: Choice::On, tree_index: Choice::Off, ..PlanParams::default() },
+        ),
         (NO_SUBGROUPS, PlanParams { subgroup_cull: Choice::Off, ..PlanParams::default() }),
         (SUBGROUPS_ON, PlanParams { subgroup_cull: Choice::On, ..PlanParams::default() }),
     ];
