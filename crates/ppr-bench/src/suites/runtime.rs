@@ -94,6 +94,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("culling off, tests only", Choice::Auto, Ablation::TestsOnly),
         ("occlusion off", Choice::Auto, Ablation::None),
         ("path blockers off", Choice::Auto, Ablation::None),
+        ("no offset index", Choice::Auto, Ablation::None),
+        ("tests only, offset index", Choice::Auto, Ablation::TestsOnly),
+        ("tests only, no offset index", Choice::Auto, Ablation::TestsOnly),
         ("occluder lists", Choice::Auto, Ablation::None),
         ("storage tests", Choice::Auto, Ablation::None),
         ("no subgroup culling", Choice::Auto, Ablation::None),
@@ -303,6 +306,8 @@ pub fn run_runtime(
                     params.tile_culling = Choice::Off;
                 } else if name.ends_with("path blockers off") {
                     params.path_blockers = Choice::Off;
+                } else if name.ends_with("no offset index") {
+                    params.tree_index = Choice::Off;
                 } else if name == "occlusion off" {
                     params.depth_occlusion = Choice::Off;
                 } else if name == "occlusion first" {
