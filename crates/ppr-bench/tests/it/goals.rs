@@ -1,5 +1,5 @@
 //! `ppr-bench goals`: the thirty-fourth session's committed record (H100) judged as its
-//! closing note judged it by hand, and the files the suites write today read back (a
+//! closing note judged it by hand, the thirty-seventh's as its report says, and the files the suites write today read back (a
 //! quick `runtime` with the profile rows the goals read, on the software adapter).
 
 use std::path::PathBuf;
@@ -91,6 +91,42 @@ fn the_thirty_fourth_session_s_record_is_judged_as_its_note_says() {
     // The projection's floor rows were not in that call: the report says so.
     assert!(written.contains("Not measured: no rows for it in these files."), "{written}");
     assert!(written.contains("| stairway | 0.4551 ms | missed |"), "{written}");
+}
+
+/// The thirty-seventh session's record (H100, binary ff8a48a), the final run, as
+/// `docs/perf/goals_37_h100.md` and `runtime.md` state it: 19 of 38 checks met, the
+/// projection's floor measured this time (missed on all six cameras), the stairway's 1 000
+/// and 10 000 treads missed.
+#[test]
+fn the_thirty_seventh_session_s_record_is_judged_as_its_report_says() {
+    let judgement = judge_files(&GoalFiles {
+        runtime: vec![perf("runtime_37_h100.csv"), perf("runtime_37_h100_generated.csv")],
+        compare: vec![perf("comparison_37_h100.csv"), perf("comparison_collision_37_h100.csv")],
+        baseline: Some(perf("comparison_29_h200.csv")),
+        psnr_tolerance_db: 0.02,
+    })
+    .expect("judged");
+    let met = judgement.checks.iter().filter(|c| c.met).count();
+    assert_eq!((met, judgement.checks.len()), (19, 38), "{}", judgement.markdown);
+    let committed = std::fs::read_to_string(perf("goals_37_h100.md")).expect("the committed report");
+    assert!(committed.contains("**19 of 38 checks met.**"), "{committed}");
+    let check = |goal: Goal, subject: &str| {
+        judgement
+            .checks
+            .iter()
+            .find(|c| c.goal == goal && c.subject == subject)
+            .unwrap_or_else(|| panic!("no {goal:?} check of {subject}: {:#?}", judgement.checks))
+    };
+    let floor: Vec<_> = judgement.checks.iter().filter(|c| c.goal == Goal::ProjectionFloor).collect();
+    assert_eq!(floor.len(), 6);
+    assert!(floor.iter().all(|c| !c.met && c.value > 6.0), "{floor:#?}");
+    let stairway = check(Goal::Scaling1000, "stairway");
+    assert!((stairway.value - 0.3641).abs() < 1e-6 && !stairway.met, "{stairway:?}");
+    let deep = check(Goal::Scaling10000, "stairway");
+    assert!((deep.value - 2.2197).abs() < 1e-6 && !deep.met, "{deep:?}");
+    assert!(check(Goal::CompareCost, "kitchen 4K, passes").met);
+    assert!(!check(Goal::CompareCost, "demo 1080p, passes").met);
+    assert!(judgement.checks.iter().filter(|c| c.goal == Goal::CollisionWorld).all(|c| c.met));
 }
 
 #[test]
