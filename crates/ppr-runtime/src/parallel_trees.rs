@@ -228,7 +228,7 @@ impl FrameTree {
         words.extend([f(vx), f(vy), f(vz), self.members.len() as u32]);
         words.extend([tests_start, 0, 0, 0]);
         let (au, av) = (family.axis_u.as_dvec3(), family.axis_v.as_dvec3());
-        let TreeScratch { spans: geometry, stats, buckets } = scratch;
+        let TreeScratch { spans: geometry, stats, buckets, member_buckets } = scratch;
         geometry.clear();
         geometry.extend(self.members.iter().map(|&m| {
             let s = &table.shapes[m as usize];
@@ -256,7 +256,7 @@ impl FrameTree {
         }
         let index_at = base + words.len() as u32;
         let room = index_words(self.members.len());
-        match index.then(|| offset_index(geometry, stats[1].d, buckets)).flatten() {
+        match index.then(|| offset_index(geometry, stats[1].d, buckets, member_buckets)).flatten() {
             Some((d0, per_metre)) => {
                 let at = (header - base) as usize;
                 words[at + 13..at + 16].copy_from_slice(&[index_at, d0.to_bits(), per_metre.to_bits()]);
@@ -276,6 +276,7 @@ pub struct TreeScratch {
     spans: Vec<MemberSpan>,
     stats: Vec<NodeStats>,
     buckets: Vec<u32>,
+    member_buckets: Vec<u32>,
 }
 
 /// The offset index of members `spans` (in leaf order) whose offsets span `range`: fills
@@ -283,7 +284,12 @@ pub struct TreeScratch {
 /// by bucket, and returns the lowest offset and the buckets per metre as the shader gets
 /// them; `None` where the offsets do not spread (a bucket with more than
 /// [`INDEX_MOST_PER_BUCKET`] members, or buckets too narrow for f32 at these offsets).
-fn offset_index(spans: &[MemberSpan], range: [f64; 2], out: &mut Vec<u32>) -> Option<(f32, f32)> {
+fn offset_index(
+    spans: &[MemberSpan],
+    range: [f64; 2],
+    out: &mut Vec<u32>,
+    member_buckets: &mut Vec<u32>,
+) -> Option<(f32, f32)> {
     let n = spans.len();
     let width = range[1] - range[0];
     // A bucket must stay wide against the f32 rounding of the pixels' offsets and of the
@@ -299,8 +305,10 @@ fn offset_index(spans: &[MemberSpan], range: [f64; 2], out: &mut Vec<u32>) -> Op
     out.clear();
     out.resize(2 * n + 1, 0);
     let (starts, order) = out.split_at_mut(n + 1);
-    for s in spans {
-        starts[bucket(s.offset) + 1] += 1;
+    member_buckets.clear();
+    member_buckets.extend(spans.iter().map(|s| bucket(s.offset) as u32));
+    for &b in member_buckets.iter() {
+        starts[b as usize + 1] += 1;
     }
     if starts.iter().any(|&c| c > INDEX_MOST_PER_BUCKET) {
         return None;
@@ -309,10 +317,9 @@ fn offset_index(spans: &[MemberSpan], range: [f64; 2], out: &mut Vec<u32>) -> Op
         starts[b] += starts[b - 1];
     }
     // Each member to the next free slot of its bucket (its start counted up, then back).
-    for (leaf, s) in spans.iter().enumerate() {
-        let b = bucket(s.offset);
-        order[starts[b] as usize] = leaf as u32;
-        starts[b] += 1;
+    for (leaf, &b) in member_buckets.iter().enumerate() {
+        order[starts[b as usize] as usize] = leaf as u32;
+        starts[b as usize] += 1;
     }
     for b in (1..=n).rev() {
         starts[b] = starts[b - 1];
@@ -933,7 +940,7 @@ mod tests {
             let mut out = Vec::new();
             // Steps within a factor 3 of each other: no bucket (the mean step wide) holds
             // more than 3, so the offsets always get an index.
-            let Some((d0, per_metre)) = offset_index(&spans, range, &mut out) else {
+            let Some((d0, per_metre)) = offset_index(&spans, range, &mut out, &mut Vec::new()) else {
                 return Err(proptest::test_runner::TestCaseError::fail("spread offsets get an index"));
             };
             let n = spans.len();
