@@ -5,8 +5,8 @@
 use std::path::PathBuf;
 
 use ppr_bench::goals::bench_rows::{CompareRow, RuntimeRow, read_rows};
-use ppr_bench::goals::checks::Goal;
-use ppr_bench::goals::{GoalFiles, judge_files};
+use ppr_bench::goals::checks::{Check, Goal};
+use ppr_bench::goals::{GoalFiles, GoalJudgement, judge_files};
 
 fn repo_root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
@@ -14,6 +14,15 @@ fn repo_root() -> PathBuf {
 
 fn perf(name: &str) -> PathBuf {
     repo_root().join("docs/perf").join(name)
+}
+
+/// The judgement's check of `goal` for `subject`; panics with every check where there is none.
+fn check_of<'a>(judgement: &'a GoalJudgement, goal: Goal, subject: &str) -> &'a Check {
+    judgement
+        .checks
+        .iter()
+        .find(|c| c.goal == goal && c.subject == subject)
+        .unwrap_or_else(|| panic!("no {goal:?} check of {subject}: {:#?}", judgement.checks))
 }
 
 #[test]
@@ -50,13 +59,7 @@ fn the_thirty_fourth_session_s_record_is_judged_as_its_note_says() {
     })
     .expect("judged");
     assert_eq!(written, judgement.markdown);
-    let check = |goal: Goal, subject: &str| {
-        judgement
-            .checks
-            .iter()
-            .find(|c| c.goal == goal && c.subject == subject)
-            .unwrap_or_else(|| panic!("no {goal:?} check of {subject}: {:#?}", judgement.checks))
-    };
+    let check = |goal: Goal, subject: &str| check_of(&judgement, goal, subject);
     // The note: whole frames 0.257 / 0.315 / 0.221 and 0.120 (met) / 0.295 / 0.179.
     let mirror = check(Goal::Frame4k, "demo cam_mirror 4K");
     assert!((mirror.value - 0.3151).abs() < 1e-9 && !mirror.met);
@@ -110,13 +113,7 @@ fn the_thirty_seventh_session_s_record_is_judged_as_its_report_says() {
     assert_eq!((met, judgement.checks.len()), (19, 38), "{}", judgement.markdown);
     let committed = std::fs::read_to_string(perf("goals_37_h100.md")).expect("the committed report");
     assert!(committed.contains("**19 of 38 checks met.**"), "{committed}");
-    let check = |goal: Goal, subject: &str| {
-        judgement
-            .checks
-            .iter()
-            .find(|c| c.goal == goal && c.subject == subject)
-            .unwrap_or_else(|| panic!("no {goal:?} check of {subject}: {:#?}", judgement.checks))
-    };
+    let check = |goal: Goal, subject: &str| check_of(&judgement, goal, subject);
     let floor: Vec<_> = judgement.checks.iter().filter(|c| c.goal == Goal::ProjectionFloor).collect();
     assert_eq!(floor.len(), 6);
     assert!(floor.iter().all(|c| !c.met && c.value > 6.0), "{floor:#?}");
