@@ -70,6 +70,12 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("tests only", Choice::Off, Ablation::TestsOnly),
         ("no encode", Choice::Off, Ablation::NoEncode),
         ("no write", Choice::Off, Ablation::NoWrite),
+        // The same, each pass timed on its own: what the projection and the reflection
+        // cost doing nothing (the launch, and on GPUs the block lists the projection
+        // builds), and how each grows as the projection does more.
+        ("empty, reflection own pass", Choice::Off, Ablation::Empty),
+        ("tests only, reflection own pass", Choice::Off, Ablation::TestsOnly),
+        ("no write, reflection own pass", Choice::Off, Ablation::NoWrite),
         ("source boxes", Choice::On, Ablation::None),
         ("no source boxes", Choice::Off, Ablation::None),
         ("culling on", Choice::Auto, Ablation::None),
@@ -119,6 +125,7 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("layers: after reflection", Choice::Auto, Ablation::None),
         ("classify own pass", Choice::Auto, Ablation::None),
         ("frame span", Choice::Auto, Ablation::None),
+        ("frame span, empty", Choice::Off, Ablation::Empty),
         ("frame span, layers own pass", Choice::Auto, Ablation::None),
         ("frame span, layers every tile", Choice::Auto, Ablation::None),
         ("frame span, layers after reflection", Choice::Auto, Ablation::None),
@@ -133,6 +140,9 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("layered reflection own pass", Choice::Auto, Ablation::None),
         ("reflection own pass", Choice::Auto, Ablation::None),
         ("reflection: empty", Choice::Auto, Ablation::None),
+        ("reflection: empty, reflection own pass", Choice::Auto, Ablation::None),
+        ("reflection: no glossy, reflection own pass", Choice::Auto, Ablation::None),
+        ("reflection: mirrors, reflection own pass", Choice::Auto, Ablation::None),
         ("reflection: no colour", Choice::Auto, Ablation::None),
         ("reflection: no glossy", Choice::Auto, Ablation::None),
         ("reflection: mirrors", Choice::Auto, Ablation::None),
@@ -339,7 +349,10 @@ pub fn run_runtime(
                     params.depth_occlusion = Choice::Off;
                     params.occluder_lists = Choice::On;
                 }
-                let reflection_ablation = match name.strip_prefix("reflection: ") {
+                let reflection_ablation = match name
+                    .strip_prefix("reflection: ")
+                    .map(|r| r.trim_end_matches(", reflection own pass"))
+                {
                     Some(r) if r.ends_with("empty") => ReflectionAblation::Empty,
                     Some(r) if r.ends_with("no colour") => ReflectionAblation::NoColour,
                     Some(r) if r.ends_with("no glossy") => ReflectionAblation::NoGlossy,
