@@ -15,7 +15,7 @@ want() { [[ "$STEPS" == *" $1 "* ]]; }
 source crates/ppr-bench/scripts/h200_env.sh
 ROWS=()
 for row in "empty" "empty, reflection own pass" "tests only, reflection own pass" \
-    "no write, reflection own pass" "reflection own pass" "reflection: empty, reflection own pass" \
+    "no write, reflection own pass" "no atomic" "no atomic, reflection own pass" "reflection own pass" "reflection: empty, reflection own pass" \
     "reflection: no glossy, reflection own pass" "reflection: mirrors, reflection own pass" \
     "classify own pass" "frame span" "frame span, empty" "frame span, classify own pass"; do
   ROWS+=(--profile-row "$row")

@@ -58,7 +58,7 @@
 //   tests.
 // - ABLATION (bench only, never a correct image): 1 returns at once, 2 reads depth and
 //   positions only, 3 also runs the shape tests, 4 writes without encoding, 5 encodes
-//   without writing.
+//   without writing, 6 does all but the atomic.
 // Not a variant (the plan decides per frame): a test whose `shape` has GROUP_TEST_FLAG
 // stands for a merged group of coplanar shapes, tested by the pyramid of their bounding
 // rectangle; a pixel that passes writes only if its reflection point lies on a member
@@ -540,7 +540,11 @@ fn write_projection(pixel: vec2<u32>, mirrored: vec3<f32>, n: vec3<f32>, d: f32)
     if (!OCCLUSION_FIRST && DEPTH_OCCLUSION && occluded_at(t, n, d)) {
         return false;
     }
-    if (mode == 0u) {
+    if (ABLATION == 6u) {
+        if (value == 0x12345u) {
+            atomicStore(&intermediate[index], value);
+        }
+    } else if (mode == 0u) {
         atomicMin(&intermediate[index], value);
     } else if ((mode & PPR_FLAG_WRITE_LAST) != 0u) {
         atomicStore(&intermediate[index], value);

@@ -59,6 +59,7 @@ pub fn projection_variants() -> Vec<ProjectionVariant> {
             Ablation::TestsOnly,
             Ablation::NoEncode,
             Ablation::NoWrite,
+            Ablation::NoAtomic,
         ] {
             out.push(ProjectionVariant { ablation, ..base });
         }

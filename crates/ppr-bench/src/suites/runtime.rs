@@ -76,6 +76,8 @@ fn projection_profile() -> Vec<(&'static str, Choice, Ablation)> {
         ("empty, reflection own pass", Choice::Off, Ablation::Empty),
         ("tests only, reflection own pass", Choice::Off, Ablation::TestsOnly),
         ("no write, reflection own pass", Choice::Off, Ablation::NoWrite),
+        ("no atomic", Choice::Off, Ablation::NoAtomic),
+        ("no atomic, reflection own pass", Choice::Off, Ablation::NoAtomic),
         ("source boxes", Choice::On, Ablation::None),
         ("no source boxes", Choice::Off, Ablation::None),
         ("culling on", Choice::Auto, Ablation::None),

@@ -132,6 +132,9 @@ pub enum Ablation {
     NoEncode,
     /// Projects and encodes, but does not write.
     NoWrite,
+    /// Everything but the `atomicMin`: the plain load, the encoding and the occlusion test
+    /// run (with nothing written, no write loses at the load), the atomic does not.
+    NoAtomic,
 }
 
 impl Ablation {
@@ -143,6 +146,7 @@ impl Ablation {
             Self::TestsOnly => 3.0,
             Self::NoEncode => 4.0,
             Self::NoWrite => 5.0,
+            Self::NoAtomic => 6.0,
         }
     }
 }
