@@ -6,6 +6,7 @@
 #     (each pass timed on its own with the projection empty, testing only, or not writing;
 #     the reflection pass empty, without glossy, mirrors only; the classification on its
 #     own; the whole frame with the projection empty), about 60 s;
+#   fixed4k: the same at 4K only, 10 frames;
 #   stdiag: the same rows on the stairway at 1, 1 000 and 10 000 treads, about 40 s.
 #
 #   bash crates/ppr-bench/scripts/h200_record38.sh fixed stdiag profile generated collision  # ~560 s
@@ -21,6 +22,8 @@ for row in "empty" "empty, reflection own pass" "tests only, reflection own pass
   ROWS+=(--profile-row "$row")
 done
 want fixed && step fixed 150 $B runtime $C --projection-profile "${ROWS[@]}" --frames 20 --scene demo --scene kitchen --out $R/fixed
+# fixed4k: the same at 4K only, 10 frames (about 25 s), when little device time is left.
+want fixed4k && step fixed4k 100 $B runtime $C --projection-profile "${ROWS[@]}" --frames 10 --scene demo --scene kitchen --resolution 4k --out $R/fixed4k
 want stdiag && step stdiag 120 $B runtime $C --projection-profile "${ROWS[@]}" --frames 10 --scene stairway-1 --scene stairway-1000 --scene stairway-10000 --resolution 4k --out $R/stdiag
 REST=""
 for s in compare collision profile generated; do want $s && REST="$REST $s"; done
