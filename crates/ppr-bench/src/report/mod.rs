@@ -3,6 +3,7 @@
 pub mod causes_report;
 pub mod compare_report;
 pub mod csv_file;
+pub mod frame_parts;
 pub mod goals_report;
 pub mod image_sheet;
 pub mod markdown;

@@ -4,7 +4,9 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::error::BenchError;
+use crate::goals::bench_rows::RuntimeRow;
 use crate::report::csv_file::{CsvTable, num};
+use crate::report::frame_parts::frame_parts_table;
 use crate::report::markdown::{MarkdownTable, ms};
 use crate::suites::runtime::RuntimeOutcome;
 
@@ -214,6 +216,9 @@ pub fn write_runtime_report(
         let _ = writeln!(md);
     }
     md.push_str(&table.render());
+    if let Some(parts) = frame_parts_table(&csv_rows(outcome)) {
+        let _ = writeln!(md, "\n{parts}");
+    }
     let _ = writeln!(md, "\nPlans:\n");
     for r in &outcome.rows {
         let _ = writeln!(md, "- {} {} {}: {}", r.scene, r.camera, r.resolution, r.plan);
@@ -223,6 +228,27 @@ pub fn write_runtime_report(
     let md_path = dir.join("runtime.md");
     std::fs::write(&md_path, md).map_err(|e| BenchError::io(&md_path, e))?;
     Ok(vec![md_path, csv_path])
+}
+
+/// The report's rows as `runtime.csv` holds them (one a pass), for the tables built from
+/// that file's rows.
+fn csv_rows(outcome: &RuntimeOutcome) -> Vec<RuntimeRow> {
+    let mut rows = Vec::new();
+    for r in &outcome.rows {
+        let [width, height] = r.resolution.size();
+        for (pass, s) in r.timings.passes() {
+            rows.push(RuntimeRow {
+                scene: r.scene.clone(),
+                camera: r.camera.clone(),
+                width,
+                height,
+                pass,
+                median_ms: s.median,
+                ratio_to_floor: f64::NAN,
+            });
+        }
+    }
+    rows
 }
 
 /// The bytes of `pass` (passes recorded together, `a + b`, move both's; the frame's span,

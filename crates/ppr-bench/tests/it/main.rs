@@ -3,6 +3,7 @@
 
 mod bounces;
 mod error_causes;
+mod frame_parts;
 mod glossy_compare;
 mod goals;
 mod mirror_rooms;
